@@ -1,0 +1,129 @@
+#include "manifest.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <regex>
+
+#include "errors.h"
+#include "generators.h"
+#include "mesh_io.h"
+
+namespace fs = std::filesystem;
+
+namespace sdb {
+namespace {
+
+struct Builtin {
+  const char* name;
+  const char* description;
+  std::function<ControlMesh()> make;
+};
+
+// Stand-ins for the c-patch paper's models (TABLES.md): same quad count and extraordinary share.
+const std::vector<Builtin>& builtins() {
+  static const std::vector<Builtin> list = {
+      {"cube", "cube, 6 quads, eight valence-3 corners", [] { return gen::cube(); }},
+      {"torus", "torus grid 16x32 quads, all regular", [] { return gen::torus(16, 32); }},
+      {"torus-8x8", "torus grid 8x8 quads, all regular", [] { return gen::torus(8, 8); }},
+      {"quadsphere", "cube-sphere, 6 x 4^2 quads", [] { return gen::quad_sphere(4); }},
+      {"pole3", "closed quad mesh with two valence-3 poles", [] { return gen::pole(3); }},
+      {"pole4", "closed quad mesh with two valence-4 poles", [] { return gen::pole(4); }},
+      {"pole5", "closed quad mesh with two valence-5 poles", [] { return gen::pole(5); }},
+      {"pole6", "closed quad mesh with two valence-6 poles", [] { return gen::pole(6); }},
+      {"pole7", "closed quad mesh with two valence-7 poles", [] { return gen::pole(7); }},
+      {"pole8", "closed quad mesh with two valence-8 poles", [] { return gen::pole(8); }},
+      {"icosphere", "icosphere, 320 triangles", [] { return gen::icosphere(2); }},
+      {"tetrahedron", "tetrahedron, 4 triangles", [] { return gen::tetrahedron(); }},
+      {"creased-cube", "cube, every edge crease sharpness 2", [] { return gen::creased_cube(2.0f); }},
+      {"open-patch", "8x8 quad patch with boundary", [] { return gen::open_patch(8, 8); }},
+      {"sword-standin", "random quads: 138 quads, 38% extraordinary (the paper's Sword)",
+       [] { return gen::random_quads(138, 0.38, 1); }},
+      {"head-standin", "random quads: 600 quads, 100% extraordinary (the paper's Head)",
+       [] { return gen::random_quads(600, 1.00, 1); }},
+      {"frog-standin", "random quads: 1292 quads, 59% extraordinary (the paper's Frog)",
+       [] { return gen::random_quads(1292, 0.59, 1); }},
+      {"frog-party", "nine frog stand-ins (the paper's Frog Party)",
+       [] { return gen::party(gen::random_quads(1292, 0.59, 1), 9); }},
+  };
+  return list;
+}
+
+std::optional<ControlMesh> parametrised(const std::string& name) {
+  std::smatch m;
+  auto i = [&](int k) { return std::stoi(m[k].str()); };
+  if (std::regex_match(name, m, std::regex(R"(torus-(\d+)x(\d+))"))) return gen::torus(i(1), i(2));
+  if (std::regex_match(name, m, std::regex(R"(quadsphere-(\d+))"))) return gen::quad_sphere(i(1));
+  if (std::regex_match(name, m, std::regex(R"(icosphere-(\d+))"))) return gen::icosphere(i(1));
+  if (std::regex_match(name, m, std::regex(R"(pole(\d+))"))) return gen::pole(i(1));
+  if (std::regex_match(name, m, std::regex(R"(open-patch-(\d+)x(\d+))"))) return gen::open_patch(i(1), i(2));
+  if (std::regex_match(name, m, std::regex(R"(random-(\d+)-(\d+)(?:-(\d+))?)")))
+    return gen::random_quads(i(1), i(2) / 100.0, m[3].matched ? i(3) : 1);
+  return std::nullopt;
+}
+
+bool is_mesh_file(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj" || ext == ".off" || ext == ".ply";
+}
+
+}  // namespace
+
+std::optional<std::string> corpus_dir() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("SUBDIVBENCH_DATASETS"); env && *env) candidates.emplace_back(env);
+  candidates.emplace_back(fs::path(SDB_SOURCE_DIR) / ".." / "shared" / "datasets");
+  candidates.emplace_back(fs::current_path() / ".." / "shared" / "datasets");
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (fs::is_directory(c, ec)) return fs::weakly_canonical(c).string();
+  }
+  return std::nullopt;
+}
+
+std::vector<MeshEntry> list_meshes() {
+  std::vector<MeshEntry> out;
+  for (const auto& b : builtins()) out.push_back({b.name, "builtin", b.description});
+  if (auto dir = corpus_dir()) {
+    std::vector<MeshEntry> corpus;
+    for (const auto& e : fs::recursive_directory_iterator(*dir)) {
+      if (!e.is_regular_file() || !is_mesh_file(e.path())) continue;
+      fs::path rel = fs::relative(e.path(), *dir);
+      corpus.push_back({rel.replace_extension().string(), "corpus", e.path().string()});
+    }
+    std::sort(corpus.begin(), corpus.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    out.insert(out.end(), corpus.begin(), corpus.end());
+  }
+  return out;
+}
+
+ControlMesh load_mesh(const std::string& name) {
+  for (const auto& b : builtins())
+    if (name == b.name) {
+      ControlMesh m = b.make();
+      m.name = b.name;
+      return m;
+    }
+  if (auto m = parametrised(name)) return *m;
+  std::error_code ec;
+  if (fs::is_regular_file(name, ec)) return read_mesh(name);
+  if (auto dir = corpus_dir()) {
+    const fs::path base = fs::path(*dir) / name;
+    if (fs::is_regular_file(base, ec)) return read_mesh(base.string());
+    for (const char* ext : {".obj", ".off", ".ply"}) {
+      fs::path p = base;
+      p += ext;
+      if (fs::is_regular_file(p, ec)) {
+        ControlMesh m = read_mesh(p.string());
+        m.name = name;
+        return m;
+      }
+    }
+  }
+  if (is_mesh_file(name)) return read_mesh(name);  // gives the "no such file" message
+  throw InputError(name, "no such mesh: not a built-in name, a corpus name or a file (see `subdivbench list meshes`)");
+}
+
+}  // namespace sdb

@@ -1,0 +1,29 @@
+// The named meshes: built-in generators and, when present, the shared corpus
+// (../shared/datasets beside the checkout, or $SUBDIVBENCH_DATASETS).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control_mesh.h"
+
+namespace sdb {
+
+struct MeshEntry {
+  std::string name;         // what `--mesh` takes
+  std::string kind;         // "builtin" or "corpus"
+  std::string description;  // generator and parameters, or the file path
+};
+
+// Built-in names first (fixed list), then every .obj/.off/.ply of the corpus by relative path
+// without extension, e.g. "crane/spot_control".
+std::vector<MeshEntry> list_meshes();
+
+// A manifest name, a parametrised generator name (torus-MxN, quadsphere-K, icosphere-L,
+// pole<N>, open-patch-MxN, random-Q-P[-S]), a corpus name, or a path to a file.
+ControlMesh load_mesh(const std::string& name);
+
+std::optional<std::string> corpus_dir();
+
+}  // namespace sdb

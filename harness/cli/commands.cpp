@@ -1,0 +1,182 @@
+#include "commands.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <thread>
+
+#include "errors.h"
+#include "facts.h"
+#include "manifest.h"
+#include "registry.h"
+
+namespace sdb::cli {
+namespace {
+
+struct Options {
+  std::string out = "results/latest";
+  std::string list_what = "schemes";
+  std::string mesh;
+  bool json = false;
+};
+Options opts;
+std::map<std::string, std::function<int()>> verbs;
+
+nlohmann::json facts_json(const ControlMesh& m, const MeshFacts& f) {
+  auto hist = [](const std::map<int, int>& h) {
+    nlohmann::json j = nlohmann::json::object();
+    for (auto [k, v] : h) j[std::to_string(k)] = v;
+    return j;
+  };
+  return {{"name", m.name},
+          {"source", m.source},
+          {"vertices", f.vertices},
+          {"faces", f.faces},
+          {"edges", f.edges},
+          {"face_sizes", hist(f.face_sizes)},
+          {"valences", hist(f.valences)},
+          {"boundary_edges", f.boundary_edges},
+          {"boundary_loops", f.boundary_loops},
+          {"non_manifold_edges", f.non_manifold_edges},
+          {"inconsistent_edges", f.inconsistent_edges},
+          {"degenerate_faces", f.degenerate_faces},
+          {"unused_vertices", f.unused_vertices},
+          {"components", f.components},
+          {"euler_characteristic", f.euler},
+          {"genus", f.genus < 0 ? nlohmann::json(nullptr) : nlohmann::json(f.genus)},
+          {"closed", f.closed},
+          {"extraordinary_vertex_fraction", f.extraordinary_vertex_fraction},
+          {"extraordinary_quad_fraction", f.extraordinary_quad_fraction},
+          {"creased_edges", f.creased_edges},
+          {"corners", f.corners},
+          {"holes", f.holes},
+          {"boundary_rule", to_string(m.boundary)},
+          {"warnings", m.warnings}};
+}
+
+std::string histogram_text(const std::map<int, int>& h) {
+  std::string s;
+  for (auto [k, v] : h) s += (s.empty() ? "" : ", ") + std::to_string(k) + ": " + std::to_string(v);
+  return s;
+}
+
+int info() {
+  const ControlMesh mesh = load_mesh(opts.mesh);
+  const MeshFacts f = compute_facts(mesh);
+  if (opts.json) {
+    std::cout << facts_json(mesh, f).dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%s  (%s)\n", mesh.name.c_str(), mesh.source.c_str());
+  std::printf("  vertices %d, faces %d, edges %d\n", f.vertices, f.faces, f.edges);
+  std::printf("  face sizes   %s\n", histogram_text(f.face_sizes).c_str());
+  std::printf("  valences     %s\n", histogram_text(f.valences).c_str());
+  std::printf("  boundary edges %d in %d loops, non-manifold edges %d, inconsistently oriented edges %d, degenerate faces %d\n",
+              f.boundary_edges, f.boundary_loops, f.non_manifold_edges, f.inconsistent_edges, f.degenerate_faces);
+  std::printf("  components %d, Euler characteristic %d, genus %s, %s\n", f.components, f.euler,
+              f.genus < 0 ? "undefined" : std::to_string(f.genus).c_str(), f.closed ? "closed" : "open");
+  std::printf("  extraordinary: %.1f%% of vertices, %.1f%% of quads\n", 100 * f.extraordinary_vertex_fraction,
+              100 * f.extraordinary_quad_fraction);
+  std::printf("  creased edges %d, corners %d, holes %d, boundary rule %s\n", f.creased_edges, f.corners, f.holes,
+              to_string(mesh.boundary).c_str());
+  if (f.unused_vertices) std::printf("  unused vertices %d\n", f.unused_vertices);
+  for (const auto& w : mesh.warnings) std::printf("  warning: %s\n", w.c_str());
+  return 0;
+}
+
+int list_meshes_cmd() {
+  std::printf("%-40s %-8s %8s %8s %8s  %s\n", "name", "kind", "vertices", "faces", "extra%", "description");
+  for (const auto& e : list_meshes()) {
+    try {
+      const ControlMesh m = load_mesh(e.name);
+      const MeshFacts f = compute_facts(m);
+      const bool quads = f.face_sizes.count(4) && f.face_sizes.at(4) * 2 > f.faces;
+      const double extra = quads ? f.extraordinary_quad_fraction : f.extraordinary_vertex_fraction;
+      std::printf("%-40s %-8s %8d %8d %7.1f%%  %s%s\n", e.name.c_str(), e.kind.c_str(), f.vertices, f.faces,
+                  100 * extra, quads ? "" : "(vertices) ", e.description.c_str());
+    } catch (const InputError& err) {
+      std::printf("%-40s %-8s %8s %8s %8s  unreadable: %s\n", e.name.c_str(), e.kind.c_str(), "-", "-", "-", err.what());
+    }
+  }
+  if (!corpus_dir()) std::printf("(shared corpus not found: set SUBDIVBENCH_DATASETS or place ../shared/datasets beside the checkout)\n");
+  return 0;
+}
+
+int list_schemes_cmd() {
+  if (all_schemes().empty()) {
+    std::printf("no schemes built yet\n");
+    return 0;
+  }
+  std::printf("%-16s %-22s %-8s %s\n", "scheme", "backends", "levels", "paper");
+  for (const auto& s : all_schemes()) {
+    const SchemeInfo& i = s->info();
+    std::string backends, levels;
+    for (Backend b : i.backends) backends += (backends.empty() ? "" : ",") + std::string(to_string(b));
+    levels = i.level_kind == LevelKind::Depth ? "depth" : "rate N";
+    std::printf("%-16s %-22s %-8s %s\n", i.name.c_str(), backends.c_str(), levels.c_str(), i.paper.c_str());
+  }
+  return 0;
+}
+
+int list_backends_cmd() {
+  std::printf("%-8s %-12s %s\n", "backend", "status", "detail");
+  std::printf("%-8s %-12s %s\n", "cpu", "available", "one thread");
+  std::printf("%-8s %-12s %u hardware threads (TBB)\n", "cpu-mt", "available", std::thread::hardware_concurrency());
+  std::printf("%-8s %-12s %s\n", "vulkan", "unavailable", "Vulkan backend not built yet");
+  return 0;
+}
+
+int list() {
+  if (opts.list_what == "meshes") return list_meshes_cmd();
+  if (opts.list_what == "backends") return list_backends_cmd();
+  return list_schemes_cmd();
+}
+
+// Until benchmarks exist, `run` says what it would run and writes nothing.
+int run_plan() {
+  if (all_schemes().empty()) {
+    std::printf("no schemes are built yet: nothing to run, nothing written to %s\n", opts.out.c_str());
+    return 0;
+  }
+  std::cerr << "subdivbench: 'run' is not built yet\n";
+  return 2;
+}
+
+int not_built(const std::string& verb) {
+  std::cerr << "subdivbench: '" << verb << "' is not built yet\n";
+  return 2;
+}
+
+}  // namespace
+
+void register_commands(CLI::App& app) {
+  auto* list_cmd = app.add_subcommand("list", "List schemes, meshes or backends");
+  list_cmd->add_option("what", opts.list_what, "schemes | meshes | backends")
+      ->check(CLI::IsMember({"schemes", "meshes", "backends"}));
+  verbs["list"] = list;
+
+  auto* info_cmd = app.add_subcommand("info", "Facts of a mesh: counts, histograms, genus, extraordinary share");
+  info_cmd->add_option("mesh", opts.mesh, "manifest name or path")->required();
+  info_cmd->add_flag("--json", opts.json, "print one JSON object");
+  verbs["info"] = info;
+
+  auto* run_cmd = app.add_subcommand("run", "Run schemes on meshes and write results.json and reports");
+  run_cmd->add_option("--out", opts.out, "output folder");
+  verbs["run"] = run_plan;
+
+  for (const char* verb : {"validate", "bench", "gate", "report", "paper"}) {
+    auto* cmd = app.add_subcommand(verb, std::string("(not built yet) ") + verb);
+    cmd->allow_extras();
+    verbs[verb] = [v = std::string(verb)] { return not_built(v); };
+  }
+}
+
+int run_selected(const CLI::App& app) {
+  for (const auto* sub : app.get_subcommands()) return verbs.at(sub->get_name())();
+  return 2;
+}
+
+}  // namespace sdb::cli

@@ -1,0 +1,34 @@
+// subdivbench: parses the command line and calls the modules. Exit codes: 0 all ran, 1 a check
+// failed (crack, deviation over bound, gate regression), 2 bad usage or bad input (one line naming
+// file and line), 3 internal error.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "errors.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"subdivbench: GPU subdivision methods on identical meshes, measured and validated"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Every verb's options");
+  sdb::cli::register_commands(app);
+  try {
+    app.parse(argc, argv);
+    return sdb::cli::run_selected(app);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "subdivbench: " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const sdb::InputError& e) {
+    std::cerr << "subdivbench: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "subdivbench: internal error: " << e.what() << "\n";
+    return 3;
+  }
+}

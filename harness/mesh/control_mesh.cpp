@@ -1,0 +1,26 @@
+#include "control_mesh.h"
+
+namespace sdb {
+
+std::vector<int> face_offsets(const ControlMesh& m) {
+  std::vector<int> offsets(m.face_sizes.size() + 1, 0);
+  for (size_t f = 0; f < m.face_sizes.size(); ++f) offsets[f + 1] = offsets[f] + m.face_sizes[f];
+  return offsets;
+}
+
+std::string face_location(const ControlMesh& m, int face) {
+  if (face >= 0 && face < static_cast<int>(m.face_lines.size()) && m.face_lines[face] > 0)
+    return m.source + ":" + std::to_string(m.face_lines[face]);
+  return m.source + " (face " + std::to_string(face) + ")";
+}
+
+std::string to_string(BoundaryRule rule) {
+  switch (rule) {
+    case BoundaryRule::None: return "none";
+    case BoundaryRule::EdgeOnly: return "edge-only";
+    case BoundaryRule::EdgeAndCorner: return "edge-and-corner";
+  }
+  return "?";
+}
+
+}  // namespace sdb

@@ -1,0 +1,58 @@
+// ControlMesh: the input every scheme and the reference start from. Plain data, no behaviour.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace sdb {
+
+using Point3 = std::array<float, 3>;
+
+// OpenSubdiv's vertex boundary interpolation (Sdc::Options::VtxBoundaryInterpolation).
+enum class BoundaryRule { None, EdgeOnly, EdgeAndCorner };
+enum class CreaseMethod { Uniform, Chaikin };
+// Catmull-Clark treatment of triangles (Sdc::Options::TriangleSubdivision).
+enum class TriangleRule { Catmark, Smooth };
+
+struct EdgeCrease {
+  int v0 = 0, v1 = 0;
+  float sharpness = 0.0f;
+};
+
+struct VertexCorner {
+  int vertex = 0;
+  float sharpness = 0.0f;
+};
+
+struct ControlMesh {
+  std::string name;    // manifest name or file stem
+  std::string source;  // file path, or "builtin:<generator>"
+  std::vector<Point3> positions;
+  std::vector<int> face_sizes;
+  std::vector<int> face_vertices;  // concatenated, counter-clockwise
+  std::vector<EdgeCrease> creases;
+  std::vector<VertexCorner> corners;
+  std::vector<int> holes;  // face indices
+  BoundaryRule boundary = BoundaryRule::EdgeOnly;  // OpenSubdiv's regression default
+  CreaseMethod crease_method = CreaseMethod::Uniform;
+  TriangleRule triangle_rule = TriangleRule::Catmark;
+  // Source line of each face (empty for generated meshes), so that checks made after reading
+  // (non-manifold edges, orientation) can still name the line.
+  std::vector<int> face_lines;
+  // Things the reader kept going past (ignored tags and the like), shown by `info`.
+  std::vector<std::string> warnings;
+};
+
+inline int num_faces(const ControlMesh& m) { return static_cast<int>(m.face_sizes.size()); }
+inline int num_vertices(const ControlMesh& m) { return static_cast<int>(m.positions.size()); }
+
+// Prefix sums of face_sizes: face f's vertices are face_vertices[offsets[f] .. offsets[f+1]).
+std::vector<int> face_offsets(const ControlMesh& m);
+
+// "file:line" for face f when known, else the mesh source.
+std::string face_location(const ControlMesh& m, int face);
+
+std::string to_string(BoundaryRule rule);
+
+}  // namespace sdb

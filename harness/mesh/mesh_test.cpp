@@ -1,0 +1,216 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "errors.h"
+#include "facts.h"
+#include "mesh_io.h"
+#include "quadrangulate.h"
+
+namespace fs = std::filesystem;
+using namespace sdb;
+
+namespace {
+
+std::string corpus(const std::string& rel) {
+  const fs::path p = fs::path(SDB_SOURCE_DIR) / ".." / "shared" / "datasets" / rel;
+  return fs::exists(p) ? p.string() : std::string();
+}
+
+// The message of the InputError `text` raises when read as `name`, or "" when it reads fine.
+std::string obj_error(const std::string& text) {
+  try {
+    parse_obj(text, "bad.obj");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+
+}  // namespace
+
+TEST(ObjReader, ReadsPolygonsSlashSyntaxAndNegativeIndices) {
+  const ControlMesh m = parse_obj(std::string(kQuad) + "vt 0 0\nvn 0 0 1\nf 1/1/1 2//1 3/1 -1\n", "q.obj");
+  ASSERT_EQ(num_faces(m), 1);
+  EXPECT_EQ(m.face_sizes[0], 4);
+  EXPECT_EQ(m.face_vertices, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(m.face_lines, (std::vector<int>{7}));
+}
+
+TEST(ObjReader, ReadsOpenSubdivTags) {
+  const ControlMesh m = parse_obj(std::string(kQuad) +
+                                      "v 0 0 1\nf 1 2 3 4\nf 1 5 2\n"
+                                      "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 4 3.0\nt hole 1/0/0 1\n"
+                                      "t interpolateboundary 1/0/0 1\nt creasemethod 0/0/1 chaikin\n"
+                                      "t vertexedit 1/0/0 0\n",
+                                  "tags.obj");
+  ASSERT_EQ(m.creases.size(), 1u);
+  EXPECT_EQ(m.creases[0].v0, 0);
+  EXPECT_EQ(m.creases[0].v1, 1);
+  EXPECT_FLOAT_EQ(m.creases[0].sharpness, 2.5f);
+  ASSERT_EQ(m.corners.size(), 1u);
+  EXPECT_EQ(m.corners[0].vertex, 4);
+  EXPECT_EQ(m.holes, (std::vector<int>{1}));
+  EXPECT_EQ(m.boundary, BoundaryRule::EdgeAndCorner);
+  EXPECT_EQ(m.crease_method, CreaseMethod::Chaikin);
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("vertexedit"), std::string::npos);
+}
+
+// One malformed input per check; each message names the file and line.
+struct Malformed {
+  const char* what;
+  std::string text;
+  const char* expect;
+};
+
+TEST(ObjReader, RefusesMalformedInputWithFileAndLine) {
+  const std::string q = kQuad;
+  const std::vector<Malformed> cases = {
+      {"malformed number", "v 0 0 0\nv 1 abc 0\n", "bad.obj:2: malformed number 'abc'"},
+      {"too few coordinates", "v 0 0\n", "bad.obj:1: vertex needs 3 coordinates"},
+      {"NaN coordinate", q + "v nan 0 0\nf 1 2 3\n", "bad.obj:5: NaN or Inf coordinate"},
+      {"Inf coordinate", q + "v 0 inf 0\nf 1 2 3\n", "bad.obj:5: NaN or Inf coordinate"},
+      {"index out of range", q + "f 1 2 9\n", "bad.obj:5: vertex index 9 out of range (mesh has 4 vertices)"},
+      {"index zero", q + "f 0 1 2\n", "bad.obj:5: vertex index 0"},
+      {"relative index before start", q + "f -1 -2 -7\n", "bad.obj:5: relative index -7"},
+      {"fewer than 3 vertices", q + "f 1 2\n", "bad.obj:5: face has 2 vertices; at least 3 needed"},
+      {"malformed face index", q + "f 1 2 x\n", "bad.obj:5: malformed integer 'x'"},
+      {"empty: no faces", q, "bad.obj: empty mesh: no faces"},
+      {"empty: nothing", "# nothing\n", "bad.obj: empty mesh: no vertices"},
+      {"crease on a non-edge", q + "f 1 2 3 4\nt crease 2/1/0 0 2 1.0\n", "bad.obj:6: crease tag names (0,2)"},
+      {"tag count mismatch", q + "f 1 2 3 4\nt crease 2/1/0 0 1\n", "bad.obj:6: tag 'crease' announces 3 arguments"},
+      {"corner out of range", q + "f 1 2 3 4\nt corner 1/1/0 9 1.0\n", "bad.obj:6: corner tag names vertex 9"},
+      {"hole out of range", q + "f 1 2 3 4\nt hole 1/0/0 3\n", "bad.obj:6: hole tag names face 3"},
+  };
+  for (const auto& c : cases) {
+    const std::string msg = obj_error(c.text);
+    EXPECT_EQ(msg.rfind(c.expect, 0), 0u) << c.what << ": got '" << msg << "'";
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << c.what << ": message must be one line";
+  }
+}
+
+TEST(ReadMesh, MissingFileAndDirectory) {
+  EXPECT_THROW(
+      {
+        try {
+          read_mesh("/nonexistent/x.obj");
+        } catch (const InputError& e) {
+          EXPECT_STREQ(e.what(), "/nonexistent/x.obj: no such file");
+          throw;
+        }
+      },
+      InputError);
+  const fs::path dir = fs::temp_directory_path() / "sdb_dir.obj";
+  fs::create_directories(dir);
+  EXPECT_THROW(read_mesh(dir.string()), InputError);
+}
+
+TEST(ReadMesh, OffThroughOpenMeshKeepsFileData) {
+  const fs::path p = fs::temp_directory_path() / "sdb_quad.off";
+  std::ofstream(p) << "OFF\n# comment\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n4 0 1 2 3\n3 0 4 1\n";
+  const ControlMesh m = read_mesh(p.string());
+  EXPECT_EQ(num_vertices(m), 5);
+  EXPECT_EQ(m.face_sizes, (std::vector<int>{4, 3}));
+  EXPECT_EQ(m.face_lines, (std::vector<int>{9, 10}));
+}
+
+TEST(ReadMesh, OffErrorsNameTheLine) {
+  const fs::path p = fs::temp_directory_path() / "sdb_bad.off";
+  std::ofstream(p) << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+  try {
+    read_mesh(p.string());
+    FAIL() << "out-of-range index accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), p.string() + ":6: vertex index 7 out of range (mesh has 3 vertices)");
+  }
+  std::ofstream(p) << "OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n";
+  try {
+    read_mesh(p.string());
+    FAIL() << "malformed number accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), p.string() + ":4: malformed number 'x'");
+  }
+}
+
+// Non-manifold edges and inconsistent orientation are facts of a mesh, refused by schemes that
+// need a manifold: the message names the line of the face that breaks it.
+TEST(Facts, NonManifoldAndOrientationAreReportedWithTheLine) {
+  const std::string fan = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+  const ControlMesh nm = parse_obj(fan, "fan.obj");
+  EXPECT_EQ(compute_facts(nm).non_manifold_edges, 1);
+  try {
+    require_manifold(nm, "test-scheme");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("fan.obj:8: non-manifold edge (1,2) shared by 3 faces", 0), 0u) << e.what();
+  }
+  const ControlMesh degenerate = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\nf 1 3 3 2\n", "deg.obj");
+  EXPECT_EQ(compute_facts(degenerate).degenerate_faces, 1);
+  try {
+    require_manifold(degenerate, "test-scheme");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("deg.obj:6: vertex 3 repeated in one face; test-scheme needs", 0), 0u) << e.what();
+  }
+  const ControlMesh flip = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nf 1 2 3\nf 1 2 4\n", "flip.obj");
+  const MeshFacts f = compute_facts(flip);
+  EXPECT_EQ(f.inconsistent_edges, 1);
+  EXPECT_EQ(f.genus, -1);
+  try {
+    require_manifold(flip, "test-scheme");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("flip.obj:6: inconsistent orientation", 0), 0u) << e.what();
+  }
+}
+
+TEST(Facts, SpotControlMesh) {
+  const std::string path = corpus("crane/spot_control.obj");
+  if (path.empty()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const MeshFacts f = compute_facts(read_mesh(path));
+  EXPECT_EQ(f.vertices, 188);
+  EXPECT_EQ(f.face_sizes, (std::map<int, int>{{3, 4}, {4, 160}, {5, 16}}));
+  EXPECT_TRUE(f.closed);
+  EXPECT_EQ(f.genus, 0);
+  EXPECT_EQ(f.components, 1);
+  EXPECT_EQ(f.boundary_edges, 0);
+  EXPECT_EQ(f.euler, 2);
+}
+
+TEST(Facts, CreaseTaggedShapeKeepsSharpness) {
+  const std::string path = corpus("opensubdiv/catmark_chaikin1.obj");
+  if (path.empty()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const ControlMesh m = read_mesh(path);
+  ASSERT_FALSE(m.creases.empty());
+  EXPECT_EQ(m.crease_method, CreaseMethod::Chaikin);
+  bool found = false;
+  for (const auto& c : m.creases) found |= c.v0 == 0 && c.v1 == 1 && c.sharpness == 5.0f;
+  EXPECT_TRUE(found);
+  // Through one Catmull-Clark step the crease survives at sharpness 5 - 1 (Chaikin varies it).
+  const ControlMesh q = quadrangulate(m);
+  float max_sharp = 0;
+  for (const auto& c : q.creases) max_sharp = std::max(max_sharp, c.sharpness);
+  EXPECT_GT(max_sharp, 3.0f);
+  EXPECT_LT(max_sharp, 5.0f);
+}
+
+TEST(Quadrangulate, SpotBecomesAllQuadsWithTheSameTopologyClass) {
+  const std::string path = corpus("crane/spot_control.obj");
+  if (path.empty()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const ControlMesh m = read_mesh(path);
+  const ControlMesh q = quadrangulate(m);
+  const MeshFacts f = compute_facts(q);
+  EXPECT_TRUE(f.all_quads);
+  // 4 triangles -> 12 quads, 160 quads -> 640, 16 pentagons -> 80.
+  EXPECT_EQ(f.faces, 12 + 640 + 80);
+  EXPECT_TRUE(f.closed);
+  EXPECT_EQ(f.genus, 0);
+  // Quad face lines point back to the input line of their parent face.
+  ASSERT_EQ(q.face_lines.size(), q.face_sizes.size());
+  EXPECT_EQ(q.face_lines[0], m.face_lines[0]);
+  EXPECT_EQ(q.face_lines.back(), m.face_lines.back());
+}

@@ -1,0 +1,20 @@
+#include "registry.h"
+
+namespace sdb {
+
+const std::vector<std::unique_ptr<Scheme>>& all_schemes() {
+  static const std::vector<std::unique_ptr<Scheme>> schemes = [] {
+    std::vector<std::unique_ptr<Scheme>> list;
+    // Schemes register here, peers first, as they are built.
+    return list;
+  }();
+  return schemes;
+}
+
+const Scheme* find_scheme(std::string_view name) {
+  for (const auto& s : all_schemes())
+    if (s->info().name == name) return s.get();
+  return nullptr;
+}
+
+}  // namespace sdb

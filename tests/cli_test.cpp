@@ -1,0 +1,70 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli_helpers.h"
+
+namespace fs = std::filesystem;
+using sdb::test::run_cli;
+
+namespace {
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / "sdb_cli_inputs" / name;
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+  return p;
+}
+
+}  // namespace
+
+// Bad input: one line on stderr naming file and line, exit code 2, nothing on stdout.
+TEST(Cli, BadInputExitsTwoWithOneLine) {
+  const std::string q = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  struct Case {
+    std::string file, text, expect;
+  };
+  const std::vector<Case> cases = {
+      {"number.obj", "v 0 0 0\nv 1 zz 0\n", "number.obj:2: malformed number 'zz'"},
+      {"range.obj", q + "f 1 2 3 5\n", "range.obj:5: vertex index 5 out of range"},
+      {"short.obj", q + "f 1 2\n", "short.obj:5: face has 2 vertices"},
+      {"nan.obj", "v 0 0 nan\n" + q + "f 1 2 3\n", "nan.obj:1: NaN or Inf coordinate"},
+      {"empty.obj", "", "empty.obj: empty mesh: no vertices"},
+      {"range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "range.off:6: vertex index 3 out of range"},
+      {"mesh.stl", "solid x\n", "mesh.stl: unknown mesh format '.stl'"},
+  };
+  for (const auto& c : cases) {
+    const fs::path p = write_file(c.file, c.text);
+    const auto r = run_cli("info " + p.string());
+    EXPECT_EQ(r.exit_code, 2) << c.file;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.file << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.file << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.file;
+  }
+  const auto missing = run_cli("info /no/such/file.obj");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("/no/such/file.obj: no such file"), std::string::npos);
+  const auto unknown = run_cli("info not-a-mesh");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+}
+
+TEST(Cli, InfoJsonHasTheFactsInSnakeCase) {
+  const auto r = run_cli("info torus-4x6 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"\"vertices\": 24", "\"faces\": 24", "\"genus\": 1", "\"closed\": true",
+                          "\"extraordinary_quad_fraction\": 0.0", "\"euler_characteristic\": 0"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+}
+
+TEST(Cli, ListMeshesShowsBuiltinsAndCorpus) {
+  const auto r = run_cli("list meshes");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("frog-standin"), std::string::npos);
+  EXPECT_NE(r.out.find("torus"), std::string::npos);
+  EXPECT_EQ(r.out.find("unreadable"), std::string::npos) << r.out;
+  if (fs::exists(fs::path(SDB_SOURCE_DIR) / ".." / "shared" / "datasets")) {
+    EXPECT_NE(r.out.find("crane/spot_control"), std::string::npos);
+  }
+}
