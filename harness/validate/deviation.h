@@ -1,0 +1,37 @@
+// Deviation of a scheme's output from the reference limit surface at the same SurfaceCoord, and
+// two-sided Hausdorff distance between surfaces (Metro's convention).
+#pragma once
+
+#include <vector>
+
+#include "limit_evaluator.h"
+#include "tessellation.h"
+
+namespace sdb {
+
+struct DeviationReport {
+  // Distance to the limit point at the same SurfaceCoord, in % of the local base-face size.
+  double pos_max_pct = 0, pos_mean_pct = 0, pos_rms_pct = 0, pos_p95_pct = 0;
+  // Same distance relative to the reference bounding-box diagonal.
+  double pos_max_rel_diag = 0;
+  // Angle between output normal and limit normal, in degrees.
+  double normal_max_deg = 0, normal_mean_deg = 0, normal_rms_deg = 0, normal_p95_deg = 0;
+  long vertices = 0;
+  std::vector<float> vertex_pct, vertex_deg;  // per output vertex, for heat maps
+};
+
+// Uses t.reference when set, else `reference`'s mesh; the evaluator must be built on that mesh.
+DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& reference);
+
+struct HausdorffReport {
+  // Relative to the reference bounding-box diagonal. forward: output -> reference; backward:
+  // reference -> output. Sampled at vertices and triangle interiors of the source surface.
+  double forward_mean = 0, forward_rms = 0, forward_max = 0;
+  double backward_mean = 0, backward_rms = 0, backward_max = 0;
+  double max() const { return forward_max > backward_max ? forward_max : backward_max; }
+  long samples = 0;
+};
+
+HausdorffReport hausdorff(const Tessellation& output, const Tessellation& reference);
+
+}  // namespace sdb
