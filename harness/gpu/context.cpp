@@ -89,7 +89,7 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   ctx->validation_ = instance.validation && instance.debug_utils;
   if (ctx->validation_) ctx->create_debug_messenger();
 
-  std::vector<PhysicalDevice> devices = list_physical_devices(ctx->vk_, ctx->instance_);
+  std::vector<PhysicalDevice> devices = list_physical_devices(ctx->vk_, instance);
   std::vector<DeviceInfo> infos;
   for (const PhysicalDevice& d : devices) infos.push_back(d.info);
   DeviceChoice choice = choose_device(infos, options.device);
@@ -116,7 +116,7 @@ void Context::create_device(const PhysicalDevice& chosen) {
   queue_family_ = chosen.queue_family;
   vk_.vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
 
-  const bool v12 = info_.api_version_raw >= VK_API_VERSION_1_2;
+  const bool v12 = chosen.api_version >= VK_API_VERSION_1_2;
   VkPhysicalDeviceVulkan11Features has11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
   VkPhysicalDeviceVulkan12Features has12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &has11};
   VkPhysicalDeviceFeatures2 has{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, v12 ? &has12 : nullptr};
@@ -249,9 +249,8 @@ void Context::submit_and_wait(VkCommandBuffer cmd) {
   info.commandBufferCount = 1;
   info.pCommandBuffers = &cmd;
   check(vk_.vkQueueSubmit(queue_, 1, &info, fence_), "vkQueueSubmit", "submitting commands");
-  VkResult waited = vk_.vkWaitForFences(device_, 1, &fence_, VK_TRUE, k_submit_timeout_ns);
-  // Reset before reporting, so that a timeout does not leave the fence signalled-or-pending for
-  // the next submission; after a timeout the device is in an unknown state anyway.
+  const VkResult waited = vk_.vkWaitForFences(device_, 1, &fence_, VK_TRUE, k_submit_timeout_ns);
+  // A timeout is an error: the work is still pending, so the context is unusable afterwards.
   if (waited == VK_TIMEOUT) throw VulkanError(VK_TIMEOUT, "vkWaitForFences", "waiting 600 s for submitted commands");
   check(waited, "vkWaitForFences", "waiting for submitted commands");
   check(vk_.vkResetFences(device_, 1, &fence_), "vkResetFences", "resetting the submission fence");

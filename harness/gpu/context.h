@@ -1,6 +1,7 @@
 // Context: the Vulkan instance, the chosen device, its graphics+compute queue, a command pool, a
 // pipeline cache and the offscreen render pass. Create one per process (shared_context()) and
-// keep it alive longer than every object made from it.
+// keep it alive longer than every object made from it. Record and submit from one thread at a
+// time: the command pool is shared (submission itself is serialized).
 #pragma once
 
 #include <atomic>

@@ -43,9 +43,10 @@ DeviceInfo probe_or_throw(std::string_view wanted) {
     out.reason = "no Vulkan loader (libvulkan.so.1 lacks vkCreateInstance)";
     return out;
   }
-  ScopedInstance scoped{vk, create_instance(vk, {}).instance};
+  const InstanceResult instance = create_instance(vk, {});
+  ScopedInstance scoped{vk, instance.instance};
   std::vector<DeviceInfo> infos;
-  for (PhysicalDevice& d : list_physical_devices(vk, scoped.instance)) infos.push_back(std::move(d.info));
+  for (PhysicalDevice& d : list_physical_devices(vk, instance)) infos.push_back(std::move(d.info));
   DeviceChoice choice = choose_device(infos, wanted);
   if (choice.index < 0) {
     out.reason = choice.reason;

@@ -124,14 +124,16 @@ void fill_limits(const VkPhysicalDeviceLimits& l, DeviceLimits& out) {
 // Properties and features that need the *2 queries (Vulkan 1.1+ devices only).
 void fill_extended(const Vk& vk, PhysicalDevice& pd) {
   DeviceInfo& info = pd.info;
-  const uint32_t api = info.api_version_raw;
+  const uint32_t api = pd.api_version;
   const bool has_mesh_ext =
       std::find(pd.extensions.begin(), pd.extensions.end(), VK_EXT_MESH_SHADER_EXTENSION_NAME) != pd.extensions.end();
 
+  // maxMemoryAllocationSize is Vulkan 1.1 (maintenance3), the driver's name 1.2, maxBufferSize 1.3.
+  VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceMaintenance4Properties maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES};
-  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-  void** next = &props2.pNext;
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &maintenance3};
+  void** next = &maintenance3.pNext;
   if (api >= VK_API_VERSION_1_2) {
     *next = &driver;
     next = &driver.pNext;
@@ -141,6 +143,7 @@ void fill_extended(const Vk& vk, PhysicalDevice& pd) {
     next = &maintenance4.pNext;
   }
   vk.vkGetPhysicalDeviceProperties2(pd.handle, &props2);
+  info.limits.max_memory_allocation_size = maintenance3.maxMemoryAllocationSize;
   if (api >= VK_API_VERSION_1_2) {
     info.driver_name = driver.driverName;
     info.driver_info = driver.driverInfo;
@@ -187,7 +190,7 @@ void fill_queue_family(const Vk& vk, PhysicalDevice& pd) {
   }
 }
 
-PhysicalDevice describe_physical_device(const Vk& vk, VkPhysicalDevice handle) {
+PhysicalDevice describe_physical_device(const Vk& vk, VkPhysicalDevice handle, uint32_t instance_api) {
   PhysicalDevice pd;
   pd.handle = handle;
   DeviceInfo& info = pd.info;
@@ -201,8 +204,8 @@ PhysicalDevice describe_physical_device(const Vk& vk, VkPhysicalDevice handle) {
   info.driver_version = driver_version_string(props.vendorID, props.driverVersion);
   info.api_version_raw = props.apiVersion;
   info.api_version = version_string(props.apiVersion);
+  pd.api_version = std::min(props.apiVersion, instance_api);
   fill_limits(props.limits, info.limits);
-  info.limits.max_memory_allocation_size = info.limits.max_buffer_size = 0;
 
   VkPhysicalDeviceMemoryProperties mem;
   vk.vkGetPhysicalDeviceMemoryProperties(handle, &mem);
@@ -210,16 +213,11 @@ PhysicalDevice describe_physical_device(const Vk& vk, VkPhysicalDevice handle) {
     if (mem.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
       info.limits.device_local_bytes = std::max<uint64_t>(info.limits.device_local_bytes, mem.memoryHeaps[h].size);
 
-  if (props.apiVersion < k_min_api_version) {
+  if (pd.api_version < k_min_api_version) {
     info.reason = info.name + " supports Vulkan " + info.api_version + " only; 1.1 is needed";
     return pd;
   }
   pd.extensions = device_extensions(vk, handle);
-  // maxMemoryAllocationSize is a Vulkan 1.1 property (VkPhysicalDeviceMaintenance3Properties).
-  VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
-  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &maintenance3};
-  vk.vkGetPhysicalDeviceProperties2(handle, &props2);
-  info.limits.max_memory_allocation_size = maintenance3.maxMemoryAllocationSize;
   fill_extended(vk, pd);
   fill_queue_family(vk, pd);
   if (pd.queue_family == UINT32_MAX) {
@@ -289,16 +287,16 @@ InstanceResult create_instance(Vk& vk, const InstanceRequest& request) {
   return result;
 }
 
-std::vector<PhysicalDevice> list_physical_devices(const Vk& vk, VkInstance instance) {
+std::vector<PhysicalDevice> list_physical_devices(const Vk& vk, const InstanceResult& instance) {
   uint32_t count = 0;
-  VkResult r = vk.vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  VkResult r = vk.vkEnumeratePhysicalDevices(instance.instance, &count, nullptr);
   if (r == VK_ERROR_INITIALIZATION_FAILED) return {};  // the loader says so when no driver loads
   check(r, "vkEnumeratePhysicalDevices", "listing devices");
   std::vector<VkPhysicalDevice> handles(count);
-  r = vk.vkEnumeratePhysicalDevices(instance, &count, handles.data());
+  r = vk.vkEnumeratePhysicalDevices(instance.instance, &count, handles.data());
   check(r, "vkEnumeratePhysicalDevices", "listing devices");
   std::vector<PhysicalDevice> devices;
-  for (uint32_t i = 0; i < count; ++i) devices.push_back(describe_physical_device(vk, handles[i]));
+  for (uint32_t i = 0; i < count; ++i) devices.push_back(describe_physical_device(vk, handles[i], instance.api_version));
   for (PhysicalDevice& d : devices)
     for (const PhysicalDevice& other : devices)
       d.info.devices.push_back(other.info.name + " (" + std::string(to_string(other.info.type)) + ")");

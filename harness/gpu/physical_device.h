@@ -37,11 +37,12 @@ struct PhysicalDevice {
   VkPhysicalDevice handle = VK_NULL_HANDLE;
   DeviceInfo info;  // info.available: usable by us; else info.reason says why not
   uint32_t queue_family = UINT32_MAX;  // graphics + compute
+  uint32_t api_version = 0;  // what we may use: the lower of the device's and the instance's
   std::vector<std::string> extensions;
 };
 
 // Every physical device with its facts. Throws VulkanError.
-std::vector<PhysicalDevice> list_physical_devices(const Vk& vk, VkInstance instance);
+std::vector<PhysicalDevice> list_physical_devices(const Vk& vk, const InstanceResult& instance);
 
 struct DeviceChoice {
   int index = -1;  // into the list; -1 with `reason` when none fits
