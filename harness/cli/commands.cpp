@@ -8,6 +8,7 @@
 #include <map>
 #include <thread>
 
+#include "device_info.h"
 #include "errors.h"
 #include "facts.h"
 #include "manifest.h"
@@ -125,7 +126,9 @@ int list_backends_cmd() {
   std::printf("%-8s %-12s %s\n", "backend", "status", "detail");
   std::printf("%-8s %-12s %s\n", "cpu", "available", "one thread");
   std::printf("%-8s %-12s %u hardware threads (TBB)\n", "cpu-mt", "available", std::thread::hardware_concurrency());
-  std::printf("%-8s %-12s %s\n", "vulkan", "unavailable", "Vulkan backend not built yet");
+  const gpu::DeviceInfo vk = gpu::probe();
+  std::printf("%-8s %-12s %s\n", "vulkan", vk.available ? "available" : "unavailable",
+              vk.available ? gpu::summary(vk).c_str() : vk.reason.c_str());
   return 0;
 }
 
