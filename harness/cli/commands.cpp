@@ -13,6 +13,7 @@
 #include "facts.h"
 #include "manifest.h"
 #include "registry.h"
+#include "gate_commands.h"
 #include "run_commands.h"
 
 namespace sdb::cli {
@@ -157,8 +158,9 @@ void register_commands(CLI::App& app) {
   verbs["info"] = info;
 
   register_run_commands(app, verbs);
+  register_gate_commands(app, verbs);
 
-  for (const char* verb : {"bench", "gate", "report", "paper"}) {
+  for (const char* verb : {"paper"}) {
     auto* cmd = app.add_subcommand(verb, std::string("(not built yet) ") + verb);
     cmd->allow_extras();
     verbs[verb] = [v = std::string(verb)] { return not_built(v); };
