@@ -1,0 +1,384 @@
+#include "evaluation.h"
+
+#include "conversion.h"
+
+namespace sdb::cpatch {
+namespace {
+
+template <class T>
+Vec3<T> as(Vec3f p) {
+  return {T(p.x), T(p.y), T(p.z)};
+}
+
+// A record's control data in one frame: the corner points and interior coefficients.
+template <class T>
+struct PatchControl {
+  Vec3<T> v[4], t0[4], t1[4], x[4][3];
+};
+
+// Float, relative to the patch origin p*_0: what the fast evaluation works in.
+PatchControl<float> local_control(const Vec3f* r) {
+  PatchControl<float> c;
+  const Vec3f origin = r[record_index(0, kP)];
+  for (int i = 0; i < 4; ++i) {
+    const Vec3f shift = r[record_index(i, kP)] - origin;
+    c.v[i] = r[record_index(i, kV)] + shift;
+    c.t0[i] = r[record_index(i, kT0)] + shift;
+    c.t1[i] = r[record_index(i, kT1)] + shift;
+    for (int k = 0; k < 3; ++k) c.x[i][k] = r[record_index(i, RecordEntry(kX0 + k))];
+  }
+  return c;
+}
+
+// Double, absolute: for the reference evaluation.
+PatchControl<double> absolute_control(const Vec3f* r) {
+  PatchControl<double> c;
+  const Vec3d origin = as<double>(r[record_index(0, kP)]);
+  for (int i = 0; i < 4; ++i) {
+    const Vec3d corner = as<double>(r[record_index(i, kP)]);
+    c.v[i] = corner + as<double>(r[record_index(i, kV)]);
+    c.t0[i] = corner + as<double>(r[record_index(i, kT0)]);
+    c.t1[i] = corner + as<double>(r[record_index(i, kT1)]);
+    for (int k = 0; k < 3; ++k) c.x[i][k] = origin + as<double>(r[record_index(i, RecordEntry(kX0 + k))]);
+  }
+  return c;
+}
+
+// Figure 6: the 4 x 4 Bezier points g[k][l] (k along u, l along v) of an ordinary quad.
+template <class T>
+void bicubic_control_points(const PatchControl<T>& c, Vec3<T> g[4][4]) {
+  g[0][0] = c.v[0], g[1][0] = c.t0[0], g[0][1] = c.t1[0], g[1][1] = c.x[0][0];
+  g[3][0] = c.v[1], g[3][1] = c.t0[1], g[2][0] = c.t1[1], g[2][1] = c.x[1][0];
+  g[3][3] = c.v[2], g[2][3] = c.t0[2], g[3][2] = c.t1[2], g[2][2] = c.x[2][0];
+  g[0][3] = c.v[3], g[0][2] = c.t0[3], g[1][3] = c.t1[3], g[1][2] = c.x[3][0];
+}
+
+// Equations (4) (boundary points by degree raising) and (3) (interior points implied by C1
+// continuity between the pieces), in kQuarticIndex order.
+template <class T>
+std::array<std::array<Vec3<T>, kQuarticPoints>, 4> expand(const PatchControl<T>& c) {
+  auto B = [&](int i) { return c.x[(i + 4) % 4][0]; };  // b211
+  auto C = [&](int i) { return c.x[(i + 4) % 4][1]; };  // b121
+  auto X = [&](int i) { return c.x[(i + 4) % 4][2]; };  // b112
+  const T half = 0.5, quarter = 0.25, three = 3;
+  const Vec3<T> center = quarter * (((X(0) + X(1)) + X(2)) + X(3));
+  std::array<std::array<Vec3<T>, kQuarticPoints>, 4> pieces;
+  for (int i = 0; i < 4; ++i) {
+    const int n = (i + 1) % 4;
+    const Vec3<T> b310 = quarter * (c.v[i] + three * c.t0[i]);
+    const Vec3<T> b130 = quarter * (c.v[n] + three * c.t1[n]);
+    const Vec3<T> b130_prev = quarter * (c.v[i] + three * c.t1[i]);  // b^{i-1}_130
+    const Vec3<T> b310_next = quarter * (c.v[n] + three * c.t0[n]);  // b^{i+1}_310
+    pieces[i] = {c.v[i],
+                 b310,
+                 half * (b310 + b130_prev),       // b301
+                 half * (c.t0[i] + c.t1[n]),      // b220
+                 B(i),                            // b211
+                 half * (B(i) + C(i - 1)),        // b202
+                 b130,                            // b130
+                 C(i),                            // b121
+                 X(i),                            // b112
+                 half * (X(i) + X(i - 1)),        // b103
+                 c.v[n],                          // b040
+                 half * (b130 + b310_next),       // b031
+                 half * (C(i) + B(i + 1)),        // b022
+                 half * (X(i) + X(i + 1)),        // b013
+                 center};                         // b004
+  }
+  return pieces;
+}
+
+double power(double x, int e) {
+  double r = 1.0;
+  for (int i = 0; i < e; ++i) r *= x;
+  return r;
+}
+
+double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+
+// Bernstein polynomial of total degree k + l + m at barycentric (a, b, c).
+double bernstein3(int k, int l, int m, double a, double b, double c) {
+  if (k < 0 || l < 0 || m < 0) return 0.0;
+  return factorial(k + l + m) / (factorial(k) * factorial(l) * factorial(m)) * power(a, k) * power(b, l) * power(c, m);
+}
+
+double cubic_bernstein(int k, double u) { return bernstein3(k, 3 - k, 0, u, 1.0 - u, 0.0); }
+double cubic_bernstein_du(int k, double u) {
+  return 3.0 * (bernstein3(k - 1, 3 - k, 0, u, 1.0 - u, 0.0) - bernstein3(k, 2 - k, 0, u, 1.0 - u, 0.0));
+}
+
+// A piece's barycentric coordinates (corner i, corner i+1, centre) at (u, v), with their
+// (constant) derivatives in u and v.
+struct PieceCoords {
+  double l[3], du[3], dv[3];
+};
+
+PieceCoords piece_coords(int piece, double u, double v) {
+  static const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const double ax = corner[piece][0] - 0.5, ay = corner[piece][1] - 0.5;
+  const double bx = corner[(piece + 1) % 4][0] - 0.5, by = corner[(piece + 1) % 4][1] - 0.5;
+  // (u, v) - centre = l0 (A - centre) + l1 (B - centre); invert the 2 x 2 system.
+  const double det = ax * by - bx * ay;
+  const double i00 = by / det, i01 = -bx / det, i10 = -ay / det, i11 = ax / det;
+  const double x = u - 0.5, y = v - 0.5;
+  PieceCoords p;
+  p.l[0] = i00 * x + i01 * y;
+  p.l[1] = i10 * x + i11 * y;
+  p.l[2] = 1.0 - p.l[0] - p.l[1];
+  p.du[0] = i00, p.du[1] = i10, p.du[2] = -(i00 + i10);
+  p.dv[0] = i01, p.dv[1] = i11, p.dv[2] = -(i01 + i11);
+  return p;
+}
+
+// Quartic basis function m of kQuarticIndex and its u, v derivatives at piece coordinates c.
+void quartic_basis(int m, const PieceCoords& c, double& w, double& wu, double& wv) {
+  const auto [k, l, n] = kQuarticIndex[m];
+  const double* x = c.l;
+  w = bernstein3(k, l, n, x[0], x[1], x[2]);
+  const double d0 = 4.0 * bernstein3(k - 1, l, n, x[0], x[1], x[2]);
+  const double d1 = 4.0 * bernstein3(k, l - 1, n, x[0], x[1], x[2]);
+  const double d2 = 4.0 * bernstein3(k, l, n - 1, x[0], x[1], x[2]);
+  wu = c.du[0] * d0 + c.du[1] * d1 + c.du[2] * d2;
+  wv = c.dv[0] * d0 + c.dv[1] * d1 + c.dv[2] * d2;
+}
+
+int piece_at(double u, double v) {
+  if (v <= u && v <= 1.0 - u) return 0;
+  if (u >= v && u >= 1.0 - v) return 1;
+  if (v >= u && v >= 1.0 - u) return 2;
+  return 3;
+}
+
+void add_scaled(std::array<double, 3>& acc, double w, const Vec3d& p) {
+  acc[0] += w * p.x;
+  acc[1] += w * p.y;
+  acc[2] += w * p.z;
+}
+
+// Unit normals du x dv into the scratch's u arrays, in place. A degenerate tangent frame (only
+// from degenerate control meshes) gets (0, 0, 1) so that every normal stays unit length.
+void normals_in_place(PatchScratch& s, int count) {
+  for (int k = 0; k < count; ++k) {
+    const float nx = s.uy[k] * s.vz[k] - s.uz[k] * s.vy[k];
+    const float ny = s.uz[k] * s.vx[k] - s.ux[k] * s.vz[k];
+    const float nz = s.ux[k] * s.vy[k] - s.uy[k] * s.vx[k];
+    const float len2 = nx * nx + ny * ny + nz * nz;
+    const bool ok = len2 > 0.0f;
+    const float inv = ok ? 1.0f / std::sqrt(len2) : 0.0f;
+    s.ux[k] = nx * inv;
+    s.uy[k] = ny * inv;
+    s.uz[k] = ok ? nz * inv : 1.0f;
+  }
+}
+
+void interleave(const PatchScratch& s, int count, const int* order, Vec3f origin, Point3* positions, Point3* normals) {
+  for (int k = 0; k < count; ++k) {
+    const int at = order ? order[k] : k;
+    positions[at] = {origin.x + s.px[k], origin.y + s.py[k], origin.z + s.pz[k]};
+    normals[at] = {s.ux[k], s.uy[k], s.uz[k]};
+  }
+}
+
+}  // namespace
+
+CpatchPieces expand_cpatch(const Vec3f* record) { return expand(local_control(record)); }
+
+int cpatch_piece(int i, int j, int rate) {
+  const int m = rate - 1;
+  if (j <= i && j <= m - i) return 0;
+  if (i >= j && i >= m - j) return 1;
+  if (j >= i && j >= m - i) return 2;
+  return 3;
+}
+
+SampleGrid::SampleGrid(int rate) : rate_(rate) {
+  build_cubic();
+  build_quartic();
+}
+
+void SampleGrid::build_cubic() {
+  cubic_.assign(4 * rate_, 0.0f);
+  cubic_du_.assign(4 * rate_, 0.0f);
+  for (int i = 0; i < rate_; ++i) {
+    const double u = static_cast<double>(i) / (rate_ - 1);
+    for (int k = 0; k < 4; ++k) {
+      cubic_[k * rate_ + i] = static_cast<float>(cubic_bernstein(k, u));
+      cubic_du_[k * rate_ + i] = static_cast<float>(cubic_bernstein_du(k, u));
+    }
+  }
+}
+
+void SampleGrid::build_quartic() {
+  const int count = samples();
+  piece_order_.clear();
+  for (int piece = 0; piece < 4; ++piece) {
+    piece_begin_[piece] = static_cast<int>(piece_order_.size());
+    for (int s = 0; s < count; ++s)
+      if (cpatch_piece(s % rate_, s / rate_, rate_) == piece) piece_order_.push_back(s);
+  }
+  piece_begin_[4] = count;
+  quartic_.assign(kQuarticPoints * count, 0.0f);
+  quartic_du_.assign(kQuarticPoints * count, 0.0f);
+  quartic_dv_.assign(kQuarticPoints * count, 0.0f);
+  for (int piece = 0; piece < 4; ++piece)
+    for (int k = piece_begin_[piece]; k < piece_begin_[piece + 1]; ++k) {
+      const int s = piece_order_[k];
+      const PieceCoords c = piece_coords(piece, static_cast<double>(s % rate_) / (rate_ - 1),
+                                         static_cast<double>(s / rate_) / (rate_ - 1));
+      for (int m = 0; m < kQuarticPoints; ++m) {
+        double w, wu, wv;
+        quartic_basis(m, c, w, wu, wv);
+        quartic_[m * count + k] = static_cast<float>(w);
+        quartic_du_[m * count + k] = static_cast<float>(wu);
+        quartic_dv_[m * count + k] = static_cast<float>(wv);
+      }
+    }
+}
+
+int SampleGrid::side_sample(int side, int m) const {
+  const int last = rate_ - 1;
+  switch (side) {
+    case 0: return m;                                // v = 0, u increasing
+    case 1: return m * rate_ + last;                 // u = 1, v increasing
+    case 2: return last * rate_ + (last - m);        // v = 1, u decreasing
+    default: return (last - m) * rate_;              // u = 0, v decreasing
+  }
+}
+
+void PatchScratch::resize(int samples) {
+  data.assign(9 * static_cast<size_t>(samples), 0.0f);
+  float* d = data.data();
+  px = d, py = d + samples, pz = d + 2 * samples;
+  ux = d + 3 * samples, uy = d + 4 * samples, uz = d + 5 * samples;
+  vx = d + 6 * samples, vy = d + 7 * samples, vz = d + 8 * samples;
+}
+
+// Tensor-product evaluation, separated: per row j the four column curves C_k(v_j) and their v
+// derivatives D_k(v_j), then along the row P = sum B_k(u) C_k, P_u = sum B'_k(u) C_k,
+// P_v = sum B_k(u) D_k. The row loop vectorises across samples.
+void evaluate_bicubic(const SampleGrid& grid, const Vec3f* record, PatchScratch& out) {
+  Vec3f g[4][4];
+  bicubic_control_points(local_control(record), g);
+  const int n = grid.rate();
+  const float *b0 = grid.cubic(0), *b1 = grid.cubic(1), *b2 = grid.cubic(2), *b3 = grid.cubic(3);
+  const float *d0 = grid.cubic_du(0), *d1 = grid.cubic_du(1), *d2 = grid.cubic_du(2), *d3 = grid.cubic_du(3);
+  for (int j = 0; j < n; ++j) {
+    Vec3f c[4], d[4];
+    for (int k = 0; k < 4; ++k) {
+      c[k] = ((b0[j] * g[k][0] + b1[j] * g[k][1]) + b2[j] * g[k][2]) + b3[j] * g[k][3];
+      d[k] = ((d0[j] * g[k][0] + d1[j] * g[k][1]) + d2[j] * g[k][2]) + d3[j] * g[k][3];
+    }
+    const int row = j * n;
+    float* __restrict px = out.px + row;
+    float* __restrict py = out.py + row;
+    float* __restrict pz = out.pz + row;
+    float* __restrict ux = out.ux + row;
+    float* __restrict uy = out.uy + row;
+    float* __restrict uz = out.uz + row;
+    float* __restrict vx = out.vx + row;
+    float* __restrict vy = out.vy + row;
+    float* __restrict vz = out.vz + row;
+    for (int i = 0; i < n; ++i) {
+      px[i] = b0[i] * c[0].x + b1[i] * c[1].x + b2[i] * c[2].x + b3[i] * c[3].x;
+      py[i] = b0[i] * c[0].y + b1[i] * c[1].y + b2[i] * c[2].y + b3[i] * c[3].y;
+      pz[i] = b0[i] * c[0].z + b1[i] * c[1].z + b2[i] * c[2].z + b3[i] * c[3].z;
+      ux[i] = d0[i] * c[0].x + d1[i] * c[1].x + d2[i] * c[2].x + d3[i] * c[3].x;
+      uy[i] = d0[i] * c[0].y + d1[i] * c[1].y + d2[i] * c[2].y + d3[i] * c[3].y;
+      uz[i] = d0[i] * c[0].z + d1[i] * c[1].z + d2[i] * c[2].z + d3[i] * c[3].z;
+      vx[i] = b0[i] * d[0].x + b1[i] * d[1].x + b2[i] * d[2].x + b3[i] * d[3].x;
+      vy[i] = b0[i] * d[0].y + b1[i] * d[1].y + b2[i] * d[2].y + b3[i] * d[3].y;
+      vz[i] = b0[i] * d[0].z + b1[i] * d[1].z + b2[i] * d[2].z + b3[i] * d[3].z;
+    }
+  }
+}
+
+// Per piece: P = sum_m w_m(s) b_m over its 15 quartic Bezier points, likewise for the derivatives,
+// with the per-sample weights precomputed; samples are in piece order so each loop runs over a
+// contiguous range with the piece's points fixed.
+void evaluate_cpatch(const SampleGrid& grid, const Vec3f* record, PatchScratch& out) {
+  const CpatchPieces pieces = expand_cpatch(record);
+  for (int piece = 0; piece < 4; ++piece) {
+    float x[kQuarticPoints], y[kQuarticPoints], z[kQuarticPoints];
+    for (int m = 0; m < kQuarticPoints; ++m) x[m] = pieces[piece][m].x, y[m] = pieces[piece][m].y, z[m] = pieces[piece][m].z;
+    for (int k = grid.piece_begin(piece); k < grid.piece_begin(piece + 1); ++k) {
+      float px = 0, py = 0, pz = 0, ux = 0, uy = 0, uz = 0, vx = 0, vy = 0, vz = 0;
+#pragma GCC unroll 15
+      for (int m = 0; m < kQuarticPoints; ++m) {
+        const float w = grid.quartic(m)[k], wu = grid.quartic_du(m)[k], wv = grid.quartic_dv(m)[k];
+        px += w * x[m], py += w * y[m], pz += w * z[m];
+        ux += wu * x[m], uy += wu * y[m], uz += wu * z[m];
+        vx += wv * x[m], vy += wv * y[m], vz += wv * z[m];
+      }
+      out.px[k] = px, out.py[k] = py, out.pz[k] = pz;
+      out.ux[k] = ux, out.uy[k] = uy, out.uz[k] = uz;
+      out.vx[k] = vx, out.vy[k] = vy, out.vz[k] = vz;
+    }
+  }
+}
+
+// Side a -> b is evaluated from its lower-index end L to its higher end H in L's frame:
+// p*_L + border_point(v_L, t_{L->H}, t_{H->L} + d, v_H + d), d = p*_H - p*_L, all from per-vertex
+// data, so the neighbouring quad, which runs the side the other way, computes the same bits.
+void write_border(const SampleGrid& grid, const Vec3f* record, uint8_t forward_sides, Point3* positions) {
+  const int last = grid.rate() - 1;
+  const float *w0 = grid.cubic(0), *w1 = grid.cubic(1), *w2 = grid.cubic(2), *w3 = grid.cubic(3);
+  for (int side = 0; side < 4; ++side) {
+    const int a = side, b = (side + 1) % 4;
+    const Vec3f& pa = record[record_index(a, kP)];
+    const Vec3f& pb = record[record_index(b, kP)];
+    positions[grid.side_sample(side, 0)] = to_point3(pa + record[record_index(a, kV)]);
+    const bool forward = (forward_sides >> side) & 1u;
+    const Vec3f origin = forward ? pa : pb;
+    const Vec3f d = forward ? pb - pa : pa - pb;
+    const Vec3f c0 = forward ? record[record_index(a, kV)] : record[record_index(b, kV)];
+    const Vec3f c1 = forward ? record[record_index(a, kT0)] : record[record_index(b, kT1)];
+    const Vec3f c2 = (forward ? record[record_index(b, kT1)] : record[record_index(a, kT0)]) + d;
+    const Vec3f c3 = (forward ? record[record_index(b, kV)] : record[record_index(a, kV)]) + d;
+    for (int m = 1; m < last; ++m) {
+      const int c = forward ? m : last - m;
+      positions[grid.side_sample(side, m)] = to_point3(origin + border_point(c0, c1, c2, c3, w0[c], w1[c], w2[c], w3[c]));
+    }
+  }
+}
+
+void evaluate_quad(const SampleGrid& grid, const Vec3f* record, bool is_cpatch, uint8_t forward_sides,
+                   PatchScratch& scratch, Point3* positions, Point3* normals) {
+  const int count = grid.samples();
+  if (is_cpatch)
+    evaluate_cpatch(grid, record, scratch);
+  else
+    evaluate_bicubic(grid, record, scratch);
+  normals_in_place(scratch, count);
+  interleave(scratch, count, is_cpatch ? grid.piece_order() : nullptr, record[record_index(0, kP)], positions, normals);
+  write_border(grid, record, forward_sides, positions);
+}
+
+PatchPoint bicubic_at(const Vec3f* record, double u, double v) {
+  Vec3d g[4][4];
+  bicubic_control_points(absolute_control(record), g);
+  PatchPoint out;
+  for (int k = 0; k < 4; ++k)
+    for (int l = 0; l < 4; ++l) {
+      add_scaled(out.position, cubic_bernstein(k, u) * cubic_bernstein(l, v), g[k][l]);
+      add_scaled(out.du, cubic_bernstein_du(k, u) * cubic_bernstein(l, v), g[k][l]);
+      add_scaled(out.dv, cubic_bernstein(k, u) * cubic_bernstein_du(l, v), g[k][l]);
+    }
+  return out;
+}
+
+PatchPoint cpatch_at(const Vec3f* record, double u, double v) {
+  const auto pieces = expand(absolute_control(record));
+  const int piece = piece_at(u, v);
+  const PieceCoords c = piece_coords(piece, u, v);
+  PatchPoint out;
+  for (int m = 0; m < kQuarticPoints; ++m) {
+    double w, wu, wv;
+    quartic_basis(m, c, w, wu, wv);
+    add_scaled(out.position, w, pieces[piece][m]);
+    add_scaled(out.du, wu, pieces[piece][m]);
+    add_scaled(out.dv, wv, pieces[piece][m]);
+  }
+  return out;
+}
+
+}  // namespace sdb::cpatch
