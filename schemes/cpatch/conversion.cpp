@@ -31,14 +31,17 @@ void CpatchConverter::convert_vertex(const Vec3f* positions, int vertex, VertexP
   Vec3f* f = &out.face[first];
   Vec3f* e = &out.edge[first];
   Vec3f sum_direct{}, sum_diagonal{};
+  // p_{2j+2} is the next sector's p_{2j}: carry it instead of wrapping indices (no modulo).
+  const Vec3f first_direct = positions[ring[0]] - center;
+  Vec3f d0 = first_direct;
   for (int j = 0; j < n; ++j) {
-    const Vec3f d0 = positions[ring[2 * j]] - center;
     const Vec3f d1 = positions[ring[2 * j + 1]] - center;
-    const Vec3f d2 = positions[ring[(2 * j + 2) % (2 * n)]] - center;
+    const Vec3f d2 = j + 1 < n ? positions[ring[2 * j + 2]] - center : first_direct;
     // f_j = (4 p* + 2 p_{2j} + 2 p_{2j+2} + p_{2j+1}) / 9
     f[j] = (1.0f / 9.0f) * (2.0f * (d0 + d2) + d1);
     sum_direct += d0;
     sum_diagonal += d1;
+    d0 = d2;
   }
   // Catmull-Clark limit point: (n^2 p* + 4 sum p_{2j} + sum p_{2j+1}) / (n (n + 5)).
   const ValenceConstants& k = t_.valence_constants[n];
@@ -46,7 +49,8 @@ void CpatchConverter::convert_vertex(const Vec3f* positions, int vertex, VertexP
   out.limit[vertex] = v;
   out.limit_absolute[vertex] = center + v;
   // e_j = (f_j + f_{j-1}) / 2: the B-spline-to-Bezier edge rule (see README.md, "Corrections").
-  for (int j = 0; j < n; ++j) e[j] = 0.5f * (f[j] + f[(j + n - 1) % n]);
+  e[0] = 0.5f * (f[0] + f[n - 1]);
+  for (int j = 1; j < n; ++j) e[j] = 0.5f * (f[j] + f[j - 1]);
   Vec3f* t = &out.tangent[first];
   if (n == 4) {
     // Equation (1): for n = 4 the projection leaves t_j = e_j; taking e_j as it is keeps ordinary

@@ -6,6 +6,7 @@
 // per-frame part of the scheme and what the GPU passes mirror (README.md).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "topology.h"
@@ -42,6 +43,7 @@ constexpr int kRecordSize = 28;
 enum RecordEntry { kP = 0, kV = 1, kT0 = 2, kT1 = 3, kX0 = 4, kX1 = 5, kX2 = 6 };
 constexpr RecordEntry kF = kX0, kB211 = kX0, kB121 = kX1, kB112 = kX2;
 inline constexpr int record_index(int corner, RecordEntry e) { return 7 * corner + e; }
+using PatchRecord = std::array<Vec3f, kRecordSize>;
 
 // Table 1's projection of the edge points e_0..e_{n-1} around v into the tangent plane:
 // t_j = v + 1/(n sigma_n) sum_l cos(2 pi (j - l) / n) (e_l - v), written as

@@ -170,7 +170,8 @@ TEST(Cpatch, ReproducesTheBicubicBoundaryCurves) {
   const CpatchTopology& t = eval.topology();
   ASSERT_FALSE(t.extraordinary_quads.empty());
   for (int q : t.extraordinary_quads) {
-    const Vec3f* r = eval.record(q);
+    const PatchRecord record = eval.record(q);
+    const Vec3f* r = record.data();
     for (int side = 0; side < 4; ++side) {
       const int a = side, b = (side + 1) % 4;
       const Vec3d cubic[4] = {corner_point(r, a, kV), corner_point(r, a, kT0), corner_point(r, b, kT1),
@@ -192,7 +193,8 @@ TEST(Cpatch, PiecesJoinWithContinuousDerivatives) {
   eval.execute();
   const double eps = 1e-7;
   for (int q : eval.topology().extraordinary_quads) {
-    const Vec3f* r = eval.record(q);
+    const PatchRecord record = eval.record(q);
+    const Vec3f* r = record.data();
     for (double s : {0.05, 0.2, 0.35, 0.65, 0.8, 0.95}) {
       // Points on the diagonal u = v and on u = 1 - v, approached from both sides.
       const double points[2][2][2] = {{{s + eps, s - eps}, {s - eps, s + eps}}, {{s + eps, 1 - s + eps}, {s - eps, 1 - s - eps}}};
@@ -223,7 +225,8 @@ TEST(Evaluation, GridMatchesReferenceEvaluation) {
         const size_t k = size_t(q) * rate * rate + s;
         const SurfaceCoord c = out.coords[k];
         ASSERT_EQ(c.face, uint32_t(q));
-        const PatchPoint p = cp ? cpatch_at(eval.record(q), c.u, c.v) : bicubic_at(eval.record(q), c.u, c.v);
+        const PatchRecord record = eval.record(q);
+        const PatchPoint p = cp ? cpatch_at(record.data(), c.u, c.v) : bicubic_at(record.data(), c.u, c.v);
         const Vec3f pos = to_vec3(out.positions[k]);
         EXPECT_LE(distance(p.position, to_double(pos)), 2e-6 * scale);
         const auto& du = p.du;
@@ -256,4 +259,31 @@ TEST(Evaluation, SamplesAreAssignedToTheRightPieceAndEveryPieceIsUsed) {
   EXPECT_EQ(grid.side_sample(2, 0), 80);
   EXPECT_EQ(grid.side_sample(3, 0), 72);
   EXPECT_EQ(grid.side_sample(3, 8), 0);
+}
+
+// The eight-lane path for ordinary quads performs the scalar path's operations lane by lane:
+// its output must equal evaluate_quad's bit for bit (so bicubic and c-patch quads share one
+// definition of a border, whichever path evaluated them).
+TEST(Evaluation, LanePathIsBitIdenticalToThePerQuadPath) {
+  for (int rate : {2, 3, 9}) {
+    const ControlMesh m = accepted("frog-standin");
+    CpatchCpuEvaluation eval(m, rate, false);
+    eval.execute();
+    const CpatchTopology& t = eval.topology();
+    const SampleGrid& grid = eval.grid();
+    const size_t per_quad = size_t(rate) * rate;
+    PatchScratch scratch(rate * rate);
+    std::vector<Point3> positions(per_quad), normals(per_quad);
+    int compared = 0;
+    for (int q : t.ordinary_quads) {
+      const PatchRecord record = eval.record(q);
+      evaluate_quad(grid, record.data(), false, t.forward_sides[q], scratch, positions.data(), normals.data());
+      for (size_t s = 0; s < per_quad; ++s) {
+        ASSERT_EQ(positions[s], eval.output().positions[q * per_quad + s]) << "quad " << q << " sample " << s;
+        ASSERT_EQ(normals[s], eval.output().normals[q * per_quad + s]) << "quad " << q << " sample " << s;
+      }
+      ++compared;
+    }
+    EXPECT_GT(compared, 100);
+  }
 }

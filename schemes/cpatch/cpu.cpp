@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace sdb::cpatch {
@@ -17,9 +18,19 @@ CpatchCpuEvaluation::CpatchCpuEvaluation(const ControlMesh& quads, int rate, boo
   positions_.reserve(quads.positions.size());
   for (const Point3& p : quads.positions) positions_.push_back(to_vec3(p));
   points_.resize(topology_);
-  records_.assign(static_cast<size_t>(topology_.num_quads) * kRecordSize, Vec3f{});
+  records_.assign(topology_.extraordinary_quads.size() * kRecordSize, Vec3f{});
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
   build_output_topology();
+  build_lane_groups();
+}
+
+// Ordinary quads in groups of kLanes for evaluate_bicubic_lanes; the last group repeats its last
+// quad in the lanes left over (the same values written twice, by the same thread).
+void CpatchCpuEvaluation::build_lane_groups() {
+  const std::vector<int>& ordinary = topology_.ordinary_quads;
+  lane_groups_.clear();
+  for (size_t g = 0; g < ordinary.size(); g += kLanes)
+    for (size_t l = 0; l < size_t(kLanes); ++l) lane_groups_.push_back(ordinary[std::min(g + l, ordinary.size() - 1)]);
 }
 
 // Per quad its own N x N vertices (row j = v index), 2 (N-1)^2 triangles counter-clockwise in
@@ -74,17 +85,51 @@ void CpatchCpuEvaluation::execute() {
   for_range(topology_.num_vertices, 1024, [&](int begin, int end, PatchScratch&) {
     converter_.convert_vertices(positions_.data(), begin, end, points_);
   });
-  // Pass 1b, Figure 6 / Table 2: per quad, the record the evaluation reads.
-  for_range(topology_.num_quads, 1024, [&](int begin, int end, PatchScratch&) {
-    for (int q = begin; q < end; ++q) converter_.build_patch(positions_.data(), points_, q, &records_[static_cast<size_t>(q) * kRecordSize]);
+  // Pass 1b, Table 2: per extraordinary quad, the c-patch record.
+  const std::vector<int>& cpatches = topology_.extraordinary_quads;
+  auto cpatch_record = [&](int e) { return &records_[static_cast<size_t>(e) * kRecordSize]; };
+  for_range(static_cast<int>(cpatches.size()), 256, [&](int begin, int end, PatchScratch&) {
+    for (int e = begin; e < end; ++e) converter_.build_cpatch(positions_.data(), points_, e, cpatch_record(e));
   });
-  // Pass 2: per quad, N x N positions and normals.
+  // Pass 2: per quad, N x N positions and normals; ordinary quads kLanes at a time, each
+  // assembling its bicubic record (Figure 6) just before.
   const size_t per_quad = static_cast<size_t>(grid_.samples());
-  for_range(topology_.num_quads, 64, [&](int begin, int end, PatchScratch& scratch) {
-    for (int q = begin; q < end; ++q)
-      evaluate_quad(grid_, &records_[static_cast<size_t>(q) * kRecordSize], topology_.extraordinary[q] != 0,
-                    topology_.forward_sides[q], scratch, &out_.positions[q * per_quad], &out_.normals[q * per_quad]);
+  const int groups = static_cast<int>(lane_groups_.size() / kLanes);
+  for_range(groups, 16, [&](int begin, int end, PatchScratch&) {
+    for (int g = begin; g < end; ++g) {
+      PatchRecord local[kLanes];
+      const Vec3f* records[kLanes];
+      uint8_t sides[kLanes];
+      Point3* positions[kLanes];
+      Point3* normals[kLanes];
+      for (int l = 0; l < kLanes; ++l) {
+        const int q = lane_groups_[static_cast<size_t>(g) * kLanes + l];
+        converter_.build_bicubic(positions_.data(), points_, q, local[l].data());
+        records[l] = local[l].data();
+        sides[l] = topology_.forward_sides[q];
+        positions[l] = &out_.positions[q * per_quad];
+        normals[l] = &out_.normals[q * per_quad];
+      }
+      evaluate_bicubic_lanes(grid_, records, sides, positions, normals);
+    }
   });
+  for_range(static_cast<int>(cpatches.size()), 64, [&](int begin, int end, PatchScratch& scratch) {
+    for (int e = begin; e < end; ++e) {
+      const int q = cpatches[e];
+      evaluate_quad(grid_, cpatch_record(e), true, topology_.forward_sides[q], scratch, &out_.positions[q * per_quad],
+                    &out_.normals[q * per_quad]);
+    }
+  });
+}
+
+PatchRecord CpatchCpuEvaluation::record(int quad) const {
+  PatchRecord r;
+  const int e = topology_.extraordinary_index[quad];
+  if (e >= 0)
+    std::copy_n(&records_[static_cast<size_t>(e) * kRecordSize], kRecordSize, r.begin());
+  else
+    converter_.build_bicubic(positions_.data(), points_, quad, r.data());
+  return r;
 }
 
 size_t CpatchCpuEvaluation::bytes_out() const {

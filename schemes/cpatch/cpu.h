@@ -1,7 +1,9 @@
 // CpatchCpuEvaluation: the cpu and cpu-mt backends of cpatch-2pass. prepare() builds the
 // CpatchTopology, the SampleGrid for rate N and the output's triangles and SurfaceCoords;
-// execute() runs the three per-frame passes (Table 1 per vertex, Table 2 / Figure 6 per quad,
-// evaluation per quad) on the current control positions. cpu-mt runs each pass with
+// execute() runs the per-frame passes on the current control positions: Table 1 per vertex,
+// Table 2 per extraordinary quad (its c-patch record), then the evaluation per quad; an ordinary
+// quad's record (Figure 6, copies of vertex points) is assembled on the stack right before it is
+// evaluated, kLanes quads at a time, instead of going through memory. cpu-mt runs each pass with
 // tbb::parallel_for over independent items, so its output is bit-identical to cpu's.
 #pragma once
 
@@ -36,11 +38,14 @@ class CpatchCpuEvaluation final : public Evaluation {
   const CpatchTopology& topology() const { return topology_; }
   const SampleGrid& grid() const { return grid_; }
   const VertexPoints& vertex_points() const { return points_; }
-  const Vec3f* record(int quad) const { return &records_[static_cast<size_t>(quad) * kRecordSize]; }
+  // The record of quad `quad` from the last execute(): a c-patch's as pass 1b wrote it, an
+  // ordinary quad's assembled again (execute() assembles those inside the evaluation pass).
+  PatchRecord record(int quad) const;
   const Tessellation& output() const { return out_; }
 
  private:
   void build_output_topology();
+  void build_lane_groups();
   template <class Body>
   void for_range(int count, int grain, const Body& body);
 
@@ -49,7 +54,8 @@ class CpatchCpuEvaluation final : public Evaluation {
   SampleGrid grid_;
   std::vector<Vec3f> positions_;
   VertexPoints points_;
-  std::vector<Vec3f> records_;
+  std::vector<Vec3f> records_;    // kRecordSize per extraordinary quad (c-patches)
+  std::vector<int> lane_groups_;  // kLanes ordinary quads per group
   Tessellation out_;
   bool multithreaded_;
   std::unique_ptr<tbb::task_arena> arena_;

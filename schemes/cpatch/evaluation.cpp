@@ -1,6 +1,10 @@
 #include "evaluation.h"
 
+#include <algorithm>
+#include <limits>
+
 #include "conversion.h"
+#include "patch_control.h"
 
 namespace sdb::cpatch {
 namespace {
@@ -8,49 +12,6 @@ namespace {
 template <class T>
 Vec3<T> as(Vec3f p) {
   return {T(p.x), T(p.y), T(p.z)};
-}
-
-// A record's control data in one frame: the corner points and interior coefficients.
-template <class T>
-struct PatchControl {
-  Vec3<T> v[4], t0[4], t1[4], x[4][3];
-};
-
-// Float, relative to the patch origin p*_0: what the fast evaluation works in.
-PatchControl<float> local_control(const Vec3f* r) {
-  PatchControl<float> c;
-  const Vec3f origin = r[record_index(0, kP)];
-  for (int i = 0; i < 4; ++i) {
-    const Vec3f shift = r[record_index(i, kP)] - origin;
-    c.v[i] = r[record_index(i, kV)] + shift;
-    c.t0[i] = r[record_index(i, kT0)] + shift;
-    c.t1[i] = r[record_index(i, kT1)] + shift;
-    for (int k = 0; k < 3; ++k) c.x[i][k] = r[record_index(i, RecordEntry(kX0 + k))];
-  }
-  return c;
-}
-
-// Double, absolute: for the reference evaluation.
-PatchControl<double> absolute_control(const Vec3f* r) {
-  PatchControl<double> c;
-  const Vec3d origin = as<double>(r[record_index(0, kP)]);
-  for (int i = 0; i < 4; ++i) {
-    const Vec3d corner = as<double>(r[record_index(i, kP)]);
-    c.v[i] = corner + as<double>(r[record_index(i, kV)]);
-    c.t0[i] = corner + as<double>(r[record_index(i, kT0)]);
-    c.t1[i] = corner + as<double>(r[record_index(i, kT1)]);
-    for (int k = 0; k < 3; ++k) c.x[i][k] = origin + as<double>(r[record_index(i, RecordEntry(kX0 + k))]);
-  }
-  return c;
-}
-
-// Figure 6: the 4 x 4 Bezier points g[k][l] (k along u, l along v) of an ordinary quad.
-template <class T>
-void bicubic_control_points(const PatchControl<T>& c, Vec3<T> g[4][4]) {
-  g[0][0] = c.v[0], g[1][0] = c.t0[0], g[0][1] = c.t1[0], g[1][1] = c.x[0][0];
-  g[3][0] = c.v[1], g[3][1] = c.t0[1], g[2][0] = c.t1[1], g[2][1] = c.x[1][0];
-  g[3][3] = c.v[2], g[2][3] = c.t0[2], g[3][2] = c.t1[2], g[2][2] = c.x[2][0];
-  g[0][3] = c.v[3], g[0][2] = c.t0[3], g[1][3] = c.t1[3], g[1][2] = c.x[3][0];
 }
 
 // Equations (4) (boundary points by degree raising) and (3) (interior points implied by C1
@@ -156,18 +117,27 @@ void add_scaled(std::array<double, 3>& acc, double w, const Vec3d& p) {
 }
 
 // Unit normals du x dv into the scratch's u arrays, in place. A degenerate tangent frame (only
-// from degenerate control meshes) gets (0, 0, 1) so that every normal stays unit length.
+// from degenerate control meshes) gets (0, 0, 1) so that every normal stays unit length. Written
+// without branches (the division is unconditional) so that the loop vectorises.
 void normals_in_place(PatchScratch& s, int count) {
+  float* __restrict ux = s.ux;
+  float* __restrict uy = s.uy;
+  float* __restrict uz = s.uz;
+  const float* __restrict vx = s.vx;
+  const float* __restrict vy = s.vy;
+  const float* __restrict vz = s.vz;
+#pragma omp simd
   for (int k = 0; k < count; ++k) {
-    const float nx = s.uy[k] * s.vz[k] - s.uz[k] * s.vy[k];
-    const float ny = s.uz[k] * s.vx[k] - s.ux[k] * s.vz[k];
-    const float nz = s.ux[k] * s.vy[k] - s.uy[k] * s.vx[k];
+    const float nx = uy[k] * vz[k] - uz[k] * vy[k];
+    const float ny = uz[k] * vx[k] - ux[k] * vz[k];
+    const float nz = ux[k] * vy[k] - uy[k] * vx[k];
     const float len2 = nx * nx + ny * ny + nz * nz;
-    const bool ok = len2 > 0.0f;
-    const float inv = ok ? 1.0f / std::sqrt(len2) : 0.0f;
-    s.ux[k] = nx * inv;
-    s.uy[k] = ny * inv;
-    s.uz[k] = ok ? nz * inv : 1.0f;
+    // + FLT_MIN keeps the division finite without a branch; it changes no normal length in range.
+    const float inv = 1.0f / std::sqrt(len2 + std::numeric_limits<float>::min());
+    const float ok = static_cast<float>(len2 > 0.0f);
+    ux[k] = ok * (nx * inv);
+    uy[k] = ok * (ny * inv);
+    uz[k] = ok * (nz * inv) + (1.0f - ok);
   }
 }
 
@@ -180,6 +150,34 @@ void interleave(const PatchScratch& s, int count, const int* order, Vec3f origin
 }
 
 }  // namespace
+
+// Float, relative to the patch origin p*_0: what the fast evaluation works in.
+PatchControl<float> local_control(const Vec3f* r) {
+  PatchControl<float> c;
+  const Vec3f origin = r[record_index(0, kP)];
+  for (int i = 0; i < 4; ++i) {
+    const Vec3f shift = r[record_index(i, kP)] - origin;
+    c.v[i] = r[record_index(i, kV)] + shift;
+    c.t0[i] = r[record_index(i, kT0)] + shift;
+    c.t1[i] = r[record_index(i, kT1)] + shift;
+    for (int k = 0; k < 3; ++k) c.x[i][k] = r[record_index(i, RecordEntry(kX0 + k))];
+  }
+  return c;
+}
+
+// Double, absolute: for the reference evaluation.
+PatchControl<double> absolute_control(const Vec3f* r) {
+  PatchControl<double> c;
+  const Vec3d origin = as<double>(r[record_index(0, kP)]);
+  for (int i = 0; i < 4; ++i) {
+    const Vec3d corner = as<double>(r[record_index(i, kP)]);
+    c.v[i] = corner + as<double>(r[record_index(i, kV)]);
+    c.t0[i] = corner + as<double>(r[record_index(i, kT0)]);
+    c.t1[i] = corner + as<double>(r[record_index(i, kT1)]);
+    for (int k = 0; k < 3; ++k) c.x[i][k] = origin + as<double>(r[record_index(i, RecordEntry(kX0 + k))]);
+  }
+  return c;
+}
 
 CpatchPieces expand_cpatch(const Vec3f* record) { return expand(local_control(record)); }
 
@@ -255,19 +253,32 @@ void PatchScratch::resize(int samples) {
 
 // Tensor-product evaluation, separated: per row j the four column curves C_k(v_j) and their v
 // derivatives D_k(v_j), then along the row P = sum B_k(u) C_k, P_u = sum B'_k(u) C_k,
-// P_v = sum B_k(u) D_k. The row loop vectorises across samples.
+// P_v = sum B_k(u) D_k. The row loop, with the 24 column values held in scalars, vectorises
+// across samples.
 void evaluate_bicubic(const SampleGrid& grid, const Vec3f* record, PatchScratch& out) {
   Vec3f g[4][4];
   bicubic_control_points(local_control(record), g);
   const int n = grid.rate();
-  const float *b0 = grid.cubic(0), *b1 = grid.cubic(1), *b2 = grid.cubic(2), *b3 = grid.cubic(3);
-  const float *d0 = grid.cubic_du(0), *d1 = grid.cubic_du(1), *d2 = grid.cubic_du(2), *d3 = grid.cubic_du(3);
+  const float* __restrict b0 = grid.cubic(0);
+  const float* __restrict b1 = grid.cubic(1);
+  const float* __restrict b2 = grid.cubic(2);
+  const float* __restrict b3 = grid.cubic(3);
+  const float* __restrict d0 = grid.cubic_du(0);
+  const float* __restrict d1 = grid.cubic_du(1);
+  const float* __restrict d2 = grid.cubic_du(2);
+  const float* __restrict d3 = grid.cubic_du(3);
   for (int j = 0; j < n; ++j) {
     Vec3f c[4], d[4];
     for (int k = 0; k < 4; ++k) {
       c[k] = ((b0[j] * g[k][0] + b1[j] * g[k][1]) + b2[j] * g[k][2]) + b3[j] * g[k][3];
       d[k] = ((d0[j] * g[k][0] + d1[j] * g[k][1]) + d2[j] * g[k][2]) + d3[j] * g[k][3];
     }
+    const float c0x = c[0].x, c1x = c[1].x, c2x = c[2].x, c3x = c[3].x;
+    const float c0y = c[0].y, c1y = c[1].y, c2y = c[2].y, c3y = c[3].y;
+    const float c0z = c[0].z, c1z = c[1].z, c2z = c[2].z, c3z = c[3].z;
+    const float e0x = d[0].x, e1x = d[1].x, e2x = d[2].x, e3x = d[3].x;
+    const float e0y = d[0].y, e1y = d[1].y, e2y = d[2].y, e3y = d[3].y;
+    const float e0z = d[0].z, e1z = d[1].z, e2z = d[2].z, e3z = d[3].z;
     const int row = j * n;
     float* __restrict px = out.px + row;
     float* __restrict py = out.py + row;
@@ -278,16 +289,17 @@ void evaluate_bicubic(const SampleGrid& grid, const Vec3f* record, PatchScratch&
     float* __restrict vx = out.vx + row;
     float* __restrict vy = out.vy + row;
     float* __restrict vz = out.vz + row;
+#pragma omp simd
     for (int i = 0; i < n; ++i) {
-      px[i] = b0[i] * c[0].x + b1[i] * c[1].x + b2[i] * c[2].x + b3[i] * c[3].x;
-      py[i] = b0[i] * c[0].y + b1[i] * c[1].y + b2[i] * c[2].y + b3[i] * c[3].y;
-      pz[i] = b0[i] * c[0].z + b1[i] * c[1].z + b2[i] * c[2].z + b3[i] * c[3].z;
-      ux[i] = d0[i] * c[0].x + d1[i] * c[1].x + d2[i] * c[2].x + d3[i] * c[3].x;
-      uy[i] = d0[i] * c[0].y + d1[i] * c[1].y + d2[i] * c[2].y + d3[i] * c[3].y;
-      uz[i] = d0[i] * c[0].z + d1[i] * c[1].z + d2[i] * c[2].z + d3[i] * c[3].z;
-      vx[i] = b0[i] * d[0].x + b1[i] * d[1].x + b2[i] * d[2].x + b3[i] * d[3].x;
-      vy[i] = b0[i] * d[0].y + b1[i] * d[1].y + b2[i] * d[2].y + b3[i] * d[3].y;
-      vz[i] = b0[i] * d[0].z + b1[i] * d[1].z + b2[i] * d[2].z + b3[i] * d[3].z;
+      px[i] = ((b0[i] * c0x + b1[i] * c1x) + b2[i] * c2x) + b3[i] * c3x;
+      py[i] = ((b0[i] * c0y + b1[i] * c1y) + b2[i] * c2y) + b3[i] * c3y;
+      pz[i] = ((b0[i] * c0z + b1[i] * c1z) + b2[i] * c2z) + b3[i] * c3z;
+      ux[i] = ((d0[i] * c0x + d1[i] * c1x) + d2[i] * c2x) + d3[i] * c3x;
+      uy[i] = ((d0[i] * c0y + d1[i] * c1y) + d2[i] * c2y) + d3[i] * c3y;
+      uz[i] = ((d0[i] * c0z + d1[i] * c1z) + d2[i] * c2z) + d3[i] * c3z;
+      vx[i] = ((b0[i] * e0x + b1[i] * e1x) + b2[i] * e2x) + b3[i] * e3x;
+      vy[i] = ((b0[i] * e0y + b1[i] * e1y) + b2[i] * e2y) + b3[i] * e3y;
+      vz[i] = ((b0[i] * e0z + b1[i] * e1z) + b2[i] * e2z) + b3[i] * e3z;
     }
   }
 }
@@ -295,23 +307,38 @@ void evaluate_bicubic(const SampleGrid& grid, const Vec3f* record, PatchScratch&
 // Per piece: P = sum_m w_m(s) b_m over its 15 quartic Bezier points, likewise for the derivatives,
 // with the per-sample weights precomputed; samples are in piece order so each loop runs over a
 // contiguous range with the piece's points fixed.
+__attribute__((target_clones("avx2", "default")))
 void evaluate_cpatch(const SampleGrid& grid, const Vec3f* record, PatchScratch& out) {
   const CpatchPieces pieces = expand_cpatch(record);
+  const int count = grid.samples();
+  const float* __restrict w = grid.quartic(0);
+  const float* __restrict wu = grid.quartic_du(0);
+  const float* __restrict wv = grid.quartic_dv(0);
+  float* __restrict px = out.px;
+  float* __restrict py = out.py;
+  float* __restrict pz = out.pz;
+  float* __restrict ux = out.ux;
+  float* __restrict uy = out.uy;
+  float* __restrict uz = out.uz;
+  float* __restrict vx = out.vx;
+  float* __restrict vy = out.vy;
+  float* __restrict vz = out.vz;
   for (int piece = 0; piece < 4; ++piece) {
     float x[kQuarticPoints], y[kQuarticPoints], z[kQuarticPoints];
     for (int m = 0; m < kQuarticPoints; ++m) x[m] = pieces[piece][m].x, y[m] = pieces[piece][m].y, z[m] = pieces[piece][m].z;
+#pragma omp simd
     for (int k = grid.piece_begin(piece); k < grid.piece_begin(piece + 1); ++k) {
-      float px = 0, py = 0, pz = 0, ux = 0, uy = 0, uz = 0, vx = 0, vy = 0, vz = 0;
+      float sx = 0, sy = 0, sz = 0, sux = 0, suy = 0, suz = 0, svx = 0, svy = 0, svz = 0;
 #pragma GCC unroll 15
       for (int m = 0; m < kQuarticPoints; ++m) {
-        const float w = grid.quartic(m)[k], wu = grid.quartic_du(m)[k], wv = grid.quartic_dv(m)[k];
-        px += w * x[m], py += w * y[m], pz += w * z[m];
-        ux += wu * x[m], uy += wu * y[m], uz += wu * z[m];
-        vx += wv * x[m], vy += wv * y[m], vz += wv * z[m];
+        const float a = w[m * count + k], b = wu[m * count + k], c = wv[m * count + k];
+        sx += a * x[m], sy += a * y[m], sz += a * z[m];
+        sux += b * x[m], suy += b * y[m], suz += b * z[m];
+        svx += c * x[m], svy += c * y[m], svz += c * z[m];
       }
-      out.px[k] = px, out.py[k] = py, out.pz[k] = pz;
-      out.ux[k] = ux, out.uy[k] = uy, out.uz[k] = uz;
-      out.vx[k] = vx, out.vy[k] = vy, out.vz[k] = vz;
+      px[k] = sx, py[k] = sy, pz[k] = sz;
+      ux[k] = sux, uy[k] = suy, uz[k] = suz;
+      vx[k] = svx, vy[k] = svy, vz[k] = svz;
     }
   }
 }
@@ -320,13 +347,16 @@ void evaluate_cpatch(const SampleGrid& grid, const Vec3f* record, PatchScratch& 
 // p*_L + border_point(v_L, t_{L->H}, t_{H->L} + d, v_H + d), d = p*_H - p*_L, all from per-vertex
 // data, so the neighbouring quad, which runs the side the other way, computes the same bits.
 void write_border(const SampleGrid& grid, const Vec3f* record, uint8_t forward_sides, Point3* positions) {
-  const int last = grid.rate() - 1;
+  const int n = grid.rate(), last = n - 1;
   const float *w0 = grid.cubic(0), *w1 = grid.cubic(1), *w2 = grid.cubic(2), *w3 = grid.cubic(3);
+  // Side k's samples: start + m * step, m = 0..N-1 from corner k.
+  const int start[4] = {0, last, n * n - 1, n * last};
+  const int step[4] = {1, n, -1, -n};
   for (int side = 0; side < 4; ++side) {
     const int a = side, b = (side + 1) % 4;
     const Vec3f& pa = record[record_index(a, kP)];
     const Vec3f& pb = record[record_index(b, kP)];
-    positions[grid.side_sample(side, 0)] = to_point3(pa + record[record_index(a, kV)]);
+    positions[start[side]] = to_point3(pa + record[record_index(a, kV)]);
     const bool forward = (forward_sides >> side) & 1u;
     const Vec3f origin = forward ? pa : pb;
     const Vec3f d = forward ? pb - pa : pa - pb;
@@ -334,10 +364,11 @@ void write_border(const SampleGrid& grid, const Vec3f* record, uint8_t forward_s
     const Vec3f c1 = forward ? record[record_index(a, kT0)] : record[record_index(b, kT1)];
     const Vec3f c2 = (forward ? record[record_index(b, kT1)] : record[record_index(a, kT0)]) + d;
     const Vec3f c3 = (forward ? record[record_index(b, kV)] : record[record_index(a, kV)]) + d;
-    for (int m = 1; m < last; ++m) {
-      const int c = forward ? m : last - m;
-      positions[grid.side_sample(side, m)] = to_point3(origin + border_point(c0, c1, c2, c3, w0[c], w1[c], w2[c], w3[c]));
-    }
+    // Canonical sample c = m (forward) or N-1-m, written at the side's position m.
+    int at = start[side] + (forward ? 1 : last - 1) * step[side];
+    const int advance = forward ? step[side] : -step[side];
+    for (int c = 1; c < last; ++c, at += advance)
+      positions[at] = to_point3(origin + border_point(c0, c1, c2, c3, w0[c], w1[c], w2[c], w3[c]));
   }
 }
 

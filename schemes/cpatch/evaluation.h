@@ -68,6 +68,8 @@ class SampleGrid {
   std::vector<float> quartic_, quartic_du_, quartic_dv_;
 };
 
+constexpr int kLanes = 8;
+
 // Position and first derivatives of one patch at all samples, structure of arrays.
 struct PatchScratch {
   std::vector<float> data;
@@ -89,6 +91,11 @@ inline Vec3f border_point(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, con
 // Interior positions are p*_0 + the patch evaluated relative to p*_0 (README.md, "Float precision").
 void evaluate_quad(const SampleGrid& grid, const Vec3f* record, bool is_cpatch, uint8_t forward_sides,
                    PatchScratch& scratch, Point3* positions, Point3* normals);
+
+// kLanes ordinary (bicubic) quads at once, one per SIMD lane: each quad's output is
+// bit-identical to evaluate_quad's, at a fraction of the instructions per sample.
+void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes], const uint8_t forward_sides[kLanes],
+                            Point3* const positions[kLanes], Point3* const normals[kLanes]);
 
 // The parts of evaluate_quad, exposed for tests.
 // Relative to p*_0: bicubic in grid order, c-patch in piece order.
