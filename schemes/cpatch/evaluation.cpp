@@ -3,118 +3,12 @@
 #include <algorithm>
 #include <limits>
 
+#include "bernstein.h"
 #include "conversion.h"
 #include "patch_control.h"
 
 namespace sdb::cpatch {
 namespace {
-
-template <class T>
-Vec3<T> as(Vec3f p) {
-  return {T(p.x), T(p.y), T(p.z)};
-}
-
-// Equations (4) (boundary points by degree raising) and (3) (interior points implied by C1
-// continuity between the pieces), in kQuarticIndex order.
-template <class T>
-std::array<std::array<Vec3<T>, kQuarticPoints>, 4> expand(const PatchControl<T>& c) {
-  auto B = [&](int i) { return c.x[(i + 4) % 4][0]; };  // b211
-  auto C = [&](int i) { return c.x[(i + 4) % 4][1]; };  // b121
-  auto X = [&](int i) { return c.x[(i + 4) % 4][2]; };  // b112
-  const T half = 0.5, quarter = 0.25, three = 3;
-  const Vec3<T> center = quarter * (((X(0) + X(1)) + X(2)) + X(3));
-  std::array<std::array<Vec3<T>, kQuarticPoints>, 4> pieces;
-  for (int i = 0; i < 4; ++i) {
-    const int n = (i + 1) % 4;
-    const Vec3<T> b310 = quarter * (c.v[i] + three * c.t0[i]);
-    const Vec3<T> b130 = quarter * (c.v[n] + three * c.t1[n]);
-    const Vec3<T> b130_prev = quarter * (c.v[i] + three * c.t1[i]);  // b^{i-1}_130
-    const Vec3<T> b310_next = quarter * (c.v[n] + three * c.t0[n]);  // b^{i+1}_310
-    pieces[i] = {c.v[i],
-                 b310,
-                 half * (b310 + b130_prev),       // b301
-                 half * (c.t0[i] + c.t1[n]),      // b220
-                 B(i),                            // b211
-                 half * (B(i) + C(i - 1)),        // b202
-                 b130,                            // b130
-                 C(i),                            // b121
-                 X(i),                            // b112
-                 half * (X(i) + X(i - 1)),        // b103
-                 c.v[n],                          // b040
-                 half * (b130 + b310_next),       // b031
-                 half * (C(i) + B(i + 1)),        // b022
-                 half * (X(i) + X(i + 1)),        // b013
-                 center};                         // b004
-  }
-  return pieces;
-}
-
-double power(double x, int e) {
-  double r = 1.0;
-  for (int i = 0; i < e; ++i) r *= x;
-  return r;
-}
-
-double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
-
-// Bernstein polynomial of total degree k + l + m at barycentric (a, b, c).
-double bernstein3(int k, int l, int m, double a, double b, double c) {
-  if (k < 0 || l < 0 || m < 0) return 0.0;
-  return factorial(k + l + m) / (factorial(k) * factorial(l) * factorial(m)) * power(a, k) * power(b, l) * power(c, m);
-}
-
-double cubic_bernstein(int k, double u) { return bernstein3(k, 3 - k, 0, u, 1.0 - u, 0.0); }
-double cubic_bernstein_du(int k, double u) {
-  return 3.0 * (bernstein3(k - 1, 3 - k, 0, u, 1.0 - u, 0.0) - bernstein3(k, 2 - k, 0, u, 1.0 - u, 0.0));
-}
-
-// A piece's barycentric coordinates (corner i, corner i+1, centre) at (u, v), with their
-// (constant) derivatives in u and v.
-struct PieceCoords {
-  double l[3], du[3], dv[3];
-};
-
-PieceCoords piece_coords(int piece, double u, double v) {
-  static const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  const double ax = corner[piece][0] - 0.5, ay = corner[piece][1] - 0.5;
-  const double bx = corner[(piece + 1) % 4][0] - 0.5, by = corner[(piece + 1) % 4][1] - 0.5;
-  // (u, v) - centre = l0 (A - centre) + l1 (B - centre); invert the 2 x 2 system.
-  const double det = ax * by - bx * ay;
-  const double i00 = by / det, i01 = -bx / det, i10 = -ay / det, i11 = ax / det;
-  const double x = u - 0.5, y = v - 0.5;
-  PieceCoords p;
-  p.l[0] = i00 * x + i01 * y;
-  p.l[1] = i10 * x + i11 * y;
-  p.l[2] = 1.0 - p.l[0] - p.l[1];
-  p.du[0] = i00, p.du[1] = i10, p.du[2] = -(i00 + i10);
-  p.dv[0] = i01, p.dv[1] = i11, p.dv[2] = -(i01 + i11);
-  return p;
-}
-
-// Quartic basis function m of kQuarticIndex and its u, v derivatives at piece coordinates c.
-void quartic_basis(int m, const PieceCoords& c, double& w, double& wu, double& wv) {
-  const auto [k, l, n] = kQuarticIndex[m];
-  const double* x = c.l;
-  w = bernstein3(k, l, n, x[0], x[1], x[2]);
-  const double d0 = 4.0 * bernstein3(k - 1, l, n, x[0], x[1], x[2]);
-  const double d1 = 4.0 * bernstein3(k, l - 1, n, x[0], x[1], x[2]);
-  const double d2 = 4.0 * bernstein3(k, l, n - 1, x[0], x[1], x[2]);
-  wu = c.du[0] * d0 + c.du[1] * d1 + c.du[2] * d2;
-  wv = c.dv[0] * d0 + c.dv[1] * d1 + c.dv[2] * d2;
-}
-
-int piece_at(double u, double v) {
-  if (v <= u && v <= 1.0 - u) return 0;
-  if (u >= v && u >= 1.0 - v) return 1;
-  if (v >= u && v >= 1.0 - u) return 2;
-  return 3;
-}
-
-void add_scaled(std::array<double, 3>& acc, double w, const Vec3d& p) {
-  acc[0] += w * p.x;
-  acc[1] += w * p.y;
-  acc[2] += w * p.z;
-}
 
 // Unit normals du x dv into the scratch's u arrays, in place. A degenerate tangent frame (only
 // from degenerate control meshes) gets (0, 0, 1) so that every normal stays unit length. Written
@@ -161,20 +55,6 @@ PatchControl<float> local_control(const Vec3f* r) {
     c.t0[i] = r[record_index(i, kT0)] + shift;
     c.t1[i] = r[record_index(i, kT1)] + shift;
     for (int k = 0; k < 3; ++k) c.x[i][k] = r[record_index(i, RecordEntry(kX0 + k))];
-  }
-  return c;
-}
-
-// Double, absolute: for the reference evaluation.
-PatchControl<double> absolute_control(const Vec3f* r) {
-  PatchControl<double> c;
-  const Vec3d origin = as<double>(r[record_index(0, kP)]);
-  for (int i = 0; i < 4; ++i) {
-    const Vec3d corner = as<double>(r[record_index(i, kP)]);
-    c.v[i] = corner + as<double>(r[record_index(i, kV)]);
-    c.t0[i] = corner + as<double>(r[record_index(i, kT0)]);
-    c.t1[i] = corner + as<double>(r[record_index(i, kT1)]);
-    for (int k = 0; k < 3; ++k) c.x[i][k] = origin + as<double>(r[record_index(i, RecordEntry(kX0 + k))]);
   }
   return c;
 }
@@ -382,34 +262,6 @@ void evaluate_quad(const SampleGrid& grid, const Vec3f* record, bool is_cpatch, 
   normals_in_place(scratch, count);
   interleave(scratch, count, is_cpatch ? grid.piece_order() : nullptr, record[record_index(0, kP)], positions, normals);
   write_border(grid, record, forward_sides, positions);
-}
-
-PatchPoint bicubic_at(const Vec3f* record, double u, double v) {
-  Vec3d g[4][4];
-  bicubic_control_points(absolute_control(record), g);
-  PatchPoint out;
-  for (int k = 0; k < 4; ++k)
-    for (int l = 0; l < 4; ++l) {
-      add_scaled(out.position, cubic_bernstein(k, u) * cubic_bernstein(l, v), g[k][l]);
-      add_scaled(out.du, cubic_bernstein_du(k, u) * cubic_bernstein(l, v), g[k][l]);
-      add_scaled(out.dv, cubic_bernstein(k, u) * cubic_bernstein_du(l, v), g[k][l]);
-    }
-  return out;
-}
-
-PatchPoint cpatch_at(const Vec3f* record, double u, double v) {
-  const auto pieces = expand(absolute_control(record));
-  const int piece = piece_at(u, v);
-  const PieceCoords c = piece_coords(piece, u, v);
-  PatchPoint out;
-  for (int m = 0; m < kQuarticPoints; ++m) {
-    double w, wu, wv;
-    quartic_basis(m, c, w, wu, wv);
-    add_scaled(out.position, w, pieces[piece][m]);
-    add_scaled(out.du, wu, pieces[piece][m]);
-    add_scaled(out.dv, wv, pieces[piece][m]);
-  }
-  return out;
 }
 
 }  // namespace sdb::cpatch
