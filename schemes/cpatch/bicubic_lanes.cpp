@@ -196,7 +196,7 @@ SDB_LANES void border_lanes(const SampleGrid& grid, const LaneRecords& r, const 
 
 }  // namespace
 
-__attribute__((target_clones("avx2", "default")))
+SDB_CPATCH_CLONES
 void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes], const uint8_t forward_sides[kLanes],
                             Point3* const positions[kLanes], Point3* const normals[kLanes]) {
   const LaneRecords r = load_records(records);

@@ -187,7 +187,7 @@ void evaluate_bicubic(const SampleGrid& grid, const Vec3f* record, PatchScratch&
 // Per piece: P = sum_m w_m(s) b_m over its 15 quartic Bezier points, likewise for the derivatives,
 // with the per-sample weights precomputed; samples are in piece order so each loop runs over a
 // contiguous range with the piece's points fixed.
-__attribute__((target_clones("avx2", "default")))
+SDB_CPATCH_CLONES
 void evaluate_cpatch(const SampleGrid& grid, const Vec3f* record, PatchScratch& out) {
   const CpatchPieces pieces = expand_cpatch(record);
   const int count = grid.samples();

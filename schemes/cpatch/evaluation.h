@@ -19,6 +19,15 @@
 #include "control_mesh.h"
 #include "vec3.h"
 
+// The hot loops are built for AVX2 and for the x86-64 baseline, picked at load time; both give
+// the same bits (no fused multiply-adds). Define SDB_CPATCH_BASELINE_ONLY to build the baseline
+// alone (to test it on an AVX2 machine).
+#if defined(SDB_CPATCH_BASELINE_ONLY) || !defined(__x86_64__)
+#define SDB_CPATCH_CLONES
+#else
+#define SDB_CPATCH_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
 namespace sdb::cpatch {
 
 // The c-patch's four triangular pieces: piece i has corners i, i+1 and the quad's centre
