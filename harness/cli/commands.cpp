@@ -8,16 +8,17 @@
 #include <map>
 #include <thread>
 
+#include "device_info.h"
 #include "errors.h"
 #include "facts.h"
 #include "manifest.h"
 #include "registry.h"
+#include "run_commands.h"
 
 namespace sdb::cli {
 namespace {
 
 struct Options {
-  std::string out = "results/latest";
   std::string list_what = "schemes";
   std::string mesh;
   bool json = false;
@@ -125,7 +126,9 @@ int list_backends_cmd() {
   std::printf("%-8s %-12s %s\n", "backend", "status", "detail");
   std::printf("%-8s %-12s %s\n", "cpu", "available", "one thread");
   std::printf("%-8s %-12s %u hardware threads (TBB)\n", "cpu-mt", "available", std::thread::hardware_concurrency());
-  std::printf("%-8s %-12s %s\n", "vulkan", "unavailable", "Vulkan backend not built yet");
+  const gpu::DeviceInfo vk = gpu::probe();
+  std::printf("%-8s %-12s %s\n", "vulkan", vk.available ? "available" : "unavailable",
+              vk.available ? gpu::summary(vk).c_str() : vk.reason.c_str());
   return 0;
 }
 
@@ -133,16 +136,6 @@ int list() {
   if (opts.list_what == "meshes") return list_meshes_cmd();
   if (opts.list_what == "backends") return list_backends_cmd();
   return list_schemes_cmd();
-}
-
-// Until benchmarks exist, `run` says what it would run and writes nothing.
-int run_plan() {
-  if (all_schemes().empty()) {
-    std::printf("no schemes are built yet: nothing to run, nothing written to %s\n", opts.out.c_str());
-    return 0;
-  }
-  std::cerr << "subdivbench: 'run' is not built yet\n";
-  return 2;
 }
 
 int not_built(const std::string& verb) {
@@ -163,11 +156,9 @@ void register_commands(CLI::App& app) {
   info_cmd->add_flag("--json", opts.json, "print one JSON object");
   verbs["info"] = info;
 
-  auto* run_cmd = app.add_subcommand("run", "Run schemes on meshes and write results.json and reports");
-  run_cmd->add_option("--out", opts.out, "output folder");
-  verbs["run"] = run_plan;
+  register_run_commands(app, verbs);
 
-  for (const char* verb : {"validate", "bench", "gate", "report", "paper"}) {
+  for (const char* verb : {"bench", "gate", "report", "paper"}) {
     auto* cmd = app.add_subcommand(verb, std::string("(not built yet) ") + verb);
     cmd->allow_extras();
     verbs[verb] = [v = std::string(verb)] { return not_built(v); };

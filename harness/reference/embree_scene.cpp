@@ -27,25 +27,35 @@ void check_device(const char* what) {
 
 // An intersect context that carries the hit list: the filter rejects every hit so traversal
 // continues and records it, giving all crossings of the ray.
-struct Hit {
-  float t;
-  uint32_t prim;
-  bool entering;  // dir . geometric normal < 0
-};
-
 struct AllHitsContext {
   RTCIntersectContext base;
-  std::vector<Hit>* hits;
+  EmbreeTriangleScene::LineCrossings* out;
+  float edge_eps;
+  float origin_norm;  // |origin|: Embree intersects in the ray's frame, so errors scale with it
 };
 
+// How far from an edge a hit must be for its barycentrics to be trusted: float rounding of the
+// vertices in the ray's frame (~eps (|o| + t)), over the triangle's size L, amplified by
+// 1 / |cos| of the angle between the line and the normal (a grazing line sees the triangle edge-on).
+float barycentric_uncertainty(float t, float origin_norm, const float ng[3], const float dir[3]) {
+  const float ng_len = std::sqrt(ng[0] * ng[0] + ng[1] * ng[1] + ng[2] * ng[2]);  // twice the area
+  const float cosine = std::abs(ng[0] * dir[0] + ng[1] * dir[1] + ng[2] * dir[2]) / std::max(ng_len, 1e-30f);
+  const float size = std::sqrt(ng_len);
+  return 16.0f * 1.2e-7f * (origin_norm + t) / std::max(size * cosine, 1e-30f);
+}
+
+// Rejects every hit so traversal continues to the next, counting them on the way.
 void record_hit(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<AllHitsContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (!args->valid[i]) continue;
-    const float facing = RTCRayN_dir_x(args->ray, args->N, i) * RTCHitN_Ng_x(args->hit, args->N, i) +
-                         RTCRayN_dir_y(args->ray, args->N, i) * RTCHitN_Ng_y(args->hit, args->N, i) +
-                         RTCRayN_dir_z(args->ray, args->N, i) * RTCHitN_Ng_z(args->hit, args->N, i);
-    ctx->hits->push_back({RTCRayN_tfar(args->ray, args->N, i), RTCHitN_primID(args->hit, args->N, i), facing < 0});
+    const unsigned N = args->N;
+    const float u = RTCHitN_u(args->hit, N, i), v = RTCHitN_v(args->hit, N, i);
+    const float ng[3] = {RTCHitN_Ng_x(args->hit, N, i), RTCHitN_Ng_y(args->hit, N, i), RTCHitN_Ng_z(args->hit, N, i)};
+    const float dir[3] = {RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
+    const float tol = std::max(ctx->edge_eps, barycentric_uncertainty(RTCRayN_tfar(args->ray, N, i), ctx->origin_norm, ng, dir));
+    ++ctx->out->count;
+    if (std::min({u, v, 1.0f - u - v}) < tol) ctx->out->ambiguous = true;
     args->valid[i] = 0;
   }
 }
@@ -140,19 +150,14 @@ EmbreeTriangleScene::~EmbreeTriangleScene() {
   if (scene_) rtcReleaseScene(scene_);
 }
 
-bool EmbreeTriangleScene::share_vertex(uint32_t a, uint32_t b) const {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (triangles_[3 * a + i] == triangles_[3 * b + j]) return true;
-  return false;
-}
-
-std::vector<float> EmbreeTriangleScene::crossings(const float origin[3], const float dir[3], float tfar,
-                                                  float merge_eps) const {
-  std::vector<Hit> hits;
+EmbreeTriangleScene::LineCrossings EmbreeTriangleScene::crossings(const float origin[3], const float dir[3], float tfar,
+                                                                  float edge_eps) const {
+  LineCrossings out;
   AllHitsContext ctx;
   rtcInitIntersectContext(&ctx.base);
-  ctx.hits = &hits;
+  ctx.out = &out;
+  ctx.edge_eps = edge_eps;
+  ctx.origin_norm = std::sqrt(origin[0] * origin[0] + origin[1] * origin[1] + origin[2] * origin[2]);
   RTCRayHit rh{};
   rh.ray.org_x = origin[0], rh.ray.org_y = origin[1], rh.ray.org_z = origin[2];
   rh.ray.dir_x = dir[0], rh.ray.dir_y = dir[1], rh.ray.dir_z = dir[2];
@@ -161,20 +166,7 @@ std::vector<float> EmbreeTriangleScene::crossings(const float origin[3], const f
   rh.ray.mask = 0xffffffffu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &ctx.base, &rh);
-  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t; });
-  // A line through a shared edge or vertex is reported by every triangle there: one crossing.
-  // Close hits on unrelated triangles (a thin fold), or on neighbours in opposite directions (a
-  // line grazing in and out, or touching a ridge) stay separate crossings.
-  std::vector<float> merged;
-  size_t group = 0;
-  for (size_t i = 0; i < hits.size(); ++i) {
-    const bool same = !merged.empty() && hits[i].t - hits[group].t <= merge_eps &&
-                      hits[i].entering == hits[group].entering && share_vertex(hits[i].prim, hits[group].prim);
-    if (same) continue;
-    merged.push_back(hits[i].t);
-    group = i;
-  }
-  return merged;
+  return out;
 }
 
 double EmbreeTriangleScene::closest_distance(const double p[3]) const {

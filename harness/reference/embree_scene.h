@@ -24,17 +24,20 @@ class EmbreeTriangleScene {
   EmbreeTriangleScene(const EmbreeTriangleScene&) = delete;
   EmbreeTriangleScene& operator=(const EmbreeTriangleScene&) = delete;
 
-  // Parameters t in [0, tfar] of every crossing of origin + t * dir, sorted. Hits within
-  // `merge_eps`, in the same direction, on triangles sharing a vertex (a ray through a shared edge
-  // or vertex reports each triangle) count as one crossing. Thread-safe.
-  std::vector<float> crossings(const float origin[3], const float dir[3], float tfar, float merge_eps) const;
+  struct LineCrossings {
+    int count = 0;
+    // A hit closer to a triangle's edge or vertex than its barycentrics can be trusted (at least
+    // `edge_eps`, more for grazing lines and far origins): whether the line crosses there,
+    // touches a ridge or passes between two triangles is not decidable in float.
+    bool ambiguous = false;
+  };
+  // Every crossing of origin + t * dir for t in [0, tfar]. Thread-safe.
+  LineCrossings crossings(const float origin[3], const float dir[3], float tfar, float edge_eps) const;
 
   // Closest point on the surface to p; returns the distance. Thread-safe.
   double closest_distance(const double p[3]) const;
 
  private:
-  bool share_vertex(uint32_t a, uint32_t b) const;
-
   RTCScene scene_ = nullptr;
   std::vector<Point3> positions_;
   std::vector<uint32_t> triangles_;

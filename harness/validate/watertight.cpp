@@ -94,6 +94,43 @@ std::vector<BorderEdge> border_edges(const Tessellation& t) {
   return out;
 }
 
+constexpr float kEdgeEps = 1e-5f;
+
+struct Line {
+  double through[3], dir[3];
+};
+
+// A uniformly random line through the bounding sphere: random direction, random point of the
+// sphere's disc perpendicular to it.
+Line random_line(uint64_t& state, const Sphere& s) {
+  Line l;
+  random_direction(state, l.dir);
+  double a[3];
+  random_direction(state, a);
+  const double dot = a[0] * l.dir[0] + a[1] * l.dir[1] + a[2] * l.dir[2];
+  for (int k = 0; k < 3; ++k) a[k] -= dot * l.dir[k];
+  const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  const double radius = s.radius * std::sqrt(unit(state));
+  for (int k = 0; k < 3; ++k) l.through[k] = s.centre[k] + radius * a[k] / len;
+  return l;
+}
+
+// A line in a random direction through a point next to a random border edge: up to 2% of the
+// edge's length off it (at least 0.1%, well beyond float resolution), still inside any crack
+// open there.
+Line border_line(uint64_t& state, const std::vector<BorderEdge>& targets) {
+  Line l;
+  random_direction(state, l.dir);
+  const BorderEdge& e = targets[mix(state++) % targets.size()];
+  double off[3];
+  random_direction(state, off);
+  const double len2 = double(e.along[0]) * e.along[0] + double(e.along[1]) * e.along[1] + double(e.along[2]) * e.along[2];
+  const double proj = (off[0] * e.along[0] + off[1] * e.along[1] + off[2] * e.along[2]) / std::max(len2, 1e-300);
+  const double scale = (0.001 + 0.019 * unit(state)) * std::sqrt(len2);
+  for (int k = 0; k < 3; ++k) l.through[k] = e.mid[k] + scale * (off[k] - proj * e.along[k]);
+  return l;
+}
+
 }  // namespace
 
 long count_open_edges(const Tessellation& t) {
@@ -124,7 +161,6 @@ RayCrackReport ray_crack_check(const Tessellation& t, const RayCheckOptions& opt
   const std::vector<BorderEdge> targets = border_edges(t);
   const long border = targets.empty() ? 0 : (options.border_lines > 0 ? options.border_lines : options.random_lines);
   const long total = options.random_lines + border;
-  const float merge = static_cast<float>(1e-5 * 2 * s.radius);
 
   report.rays = total;
   report.cracks = tbb::parallel_reduce(
@@ -132,34 +168,19 @@ RayCrackReport ray_crack_check(const Tessellation& t, const RayCheckOptions& opt
       [&](const tbb::blocked_range<long>& r, long cracks) {
         for (long i = r.begin(); i < r.end(); ++i) {
           uint64_t state = mix(options.seed * 0x100000001b3ull + static_cast<uint64_t>(i));
-          double dir[3], through[3];
-          random_direction(state, dir);
-          if (i < options.random_lines) {
-            // A uniformly random point of the sphere's disc perpendicular to dir.
-            double a[3], b[3];
-            random_direction(state, a);
-            const double dot = a[0] * dir[0] + a[1] * dir[1] + a[2] * dir[2];
-            for (int k = 0; k < 3; ++k) a[k] -= dot * dir[k];
-            const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-            const double radius = s.radius * std::sqrt(unit(state));
-            for (int k = 0; k < 3; ++k) b[k] = a[k] / len, through[k] = s.centre[k] + radius * b[k];
-          } else {
-            // Aim next to a border edge, not on it: a line exactly through a convex ridge can touch
-            // the surface without crossing it. Up to 2% of the edge length off the edge still
-            // passes through any crack open there; at least 0.1% keeps it off the edge in float.
-            const BorderEdge& e = targets[mix(state++) % targets.size()];
-            double off[3];
-            random_direction(state, off);
-            const double len2 = double(e.along[0]) * e.along[0] + double(e.along[1]) * e.along[1] + double(e.along[2]) * e.along[2];
-            const double proj = (off[0] * e.along[0] + off[1] * e.along[1] + off[2] * e.along[2]) / std::max(len2, 1e-300);
-            const double scale = (0.001 + 0.019 * unit(state)) * std::sqrt(len2);  // at least float resolution away
-            for (int k = 0; k < 3; ++k) through[k] = e.mid[k] + scale * (off[k] - proj * e.along[k]);
+          // A line that passes within float resolution of an edge is undecidable (it may touch a
+          // ridge, or be reported by one of two triangles): draw another. Real cracks are gaps
+          // a line passes through without such a hit; narrower ones are the exact check's job.
+          for (int attempt = 0; attempt < 16; ++attempt) {
+            const Line line = i < options.random_lines ? random_line(state, s) : border_line(state, targets);
+            float origin[3], d[3];
+            for (int k = 0; k < 3; ++k)
+              origin[k] = static_cast<float>(line.through[k] - 2.5 * s.radius * line.dir[k]), d[k] = static_cast<float>(line.dir[k]);
+            const auto hits = scene.crossings(origin, d, static_cast<float>(5 * s.radius), kEdgeEps);
+            if (hits.ambiguous) continue;
+            cracks += hits.count % 2;
+            break;
           }
-          float origin[3], d[3];
-          for (int k = 0; k < 3; ++k)
-            origin[k] = static_cast<float>(through[k] - 2.5 * s.radius * dir[k]), d[k] = static_cast<float>(dir[k]);
-          const auto hits = scene.crossings(origin, d, static_cast<float>(5 * s.radius), merge);
-          cracks += hits.size() % 2;
         }
         return cracks;
       },
