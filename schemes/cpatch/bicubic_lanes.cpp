@@ -11,8 +11,8 @@
 #include <cmath>
 #include <limits>
 
-#include "evaluation.h"
 #include "conversion.h"
+#include "evaluation.h"
 
 namespace sdb::cpatch {
 namespace {
@@ -90,7 +90,9 @@ SDB_LANES LaneRecords load_records(const Vec3f* const records[kLanes]) {
 }
 
 SDB_LANES Vec3Lanes sub(const Vec3Lanes& a, const Vec3Lanes& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-SDB_LANES Vec3Lanes select(LaneMask m, const Vec3Lanes& a, const Vec3Lanes& b) { return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z}; }
+SDB_LANES Vec3Lanes select(LaneMask m, const Vec3Lanes& a, const Vec3Lanes& b) {
+  return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
+}
 
 struct LaneInput {
   Vec3Lanes g[4][4];  // g[k][l]: Bezier net column k (u index), row l (v index), relative to p*_0
@@ -189,7 +191,8 @@ SDB_LANES void border_lanes(const SampleGrid& grid, const LaneRecords& r, const 
       Lanes weight[4];
       for (int k = 0; k < 4; ++k) weight[k] = forward ? broadcast(w[k][m]) : broadcast(w[k][last - m]);
       const Vec3Lanes p = combine(weight[0], weight[1], weight[2], weight[3], c);
-      store_transposed<Store::Exact>(origin.x + p.x, origin.y + p.y, origin.z + p.z, positions, start[side] + m * step[side]);
+      store_transposed<Store::Exact>(origin.x + p.x, origin.y + p.y, origin.z + p.z, positions,
+                                     start[side] + m * step[side]);
     }
   }
 }
@@ -197,8 +200,9 @@ SDB_LANES void border_lanes(const SampleGrid& grid, const LaneRecords& r, const 
 }  // namespace
 
 SDB_CPATCH_CLONES
-void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes], const uint8_t forward_sides[kLanes],
-                            Point3* const positions[kLanes], Point3* const normals[kLanes]) {
+void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes],
+                            const uint8_t forward_sides[kLanes], Point3* const positions[kLanes],
+                            Point3* const normals[kLanes]) {
   const LaneRecords r = load_records(records);
   evaluate_lanes(grid, bicubic_lanes_input(r), positions, normals);
   border_lanes(grid, r, forward_sides, positions);

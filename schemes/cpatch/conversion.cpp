@@ -10,8 +10,8 @@ void VertexPoints::resize(const CpatchTopology& t) {
   tangent.assign(t.num_slots(), {});
 }
 
-void project_tangents(Vec3f v, const Vec3f* e, int n, const ValenceConstants& k, const float* cos_j,
-                      const float* sin_j, Vec3f* t) {
+void project_tangents(Vec3f v, const Vec3f* e, int n, const ValenceConstants& k, const float* cos_j, const float* sin_j,
+                      Vec3f* t) {
   Vec3f a{}, b{};
   for (int l = 0; l < n; ++l) {
     const Vec3f d = e[l] - v;
@@ -120,9 +120,9 @@ void CpatchConverter::build_cpatch(const Vec3f* positions, const VertexPoints& p
   for (int i = 0; i < 4; ++i) {
     const QuadCorner& c = t_.corners[4 * quad + i];
     const Vec3f shift = record[record_index(i, kP)] - origin;
-    in[i] = {points.limit[c.vertex] + shift,     points.tangent[c.sector_slot] + shift,
+    in[i] = {points.limit[c.vertex] + shift,           points.tangent[c.sector_slot] + shift,
              points.tangent[c.prev_edge_slot] + shift, points.face[c.sector_slot] + shift,
-             points.edge[c.sector_slot] + shift, points.edge[c.prev_edge_slot] + shift};
+             points.edge[c.sector_slot] + shift,       points.edge[c.prev_edge_slot] + shift};
   }
   const CpatchInterior b = cpatch_interior(in, &t_.cpatch_weights[4 * index]);
   for (int i = 0; i < 4; ++i) {

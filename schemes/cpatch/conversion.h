@@ -48,8 +48,8 @@ using PatchRecord = std::array<Vec3f, kRecordSize>;
 // Table 1's projection of the edge points e_0..e_{n-1} around v into the tangent plane:
 // t_j = v + 1/(n sigma_n) sum_l cos(2 pi (j - l) / n) (e_l - v), written as
 // v + 1/(n sigma_n) (cos_j A + sin_j B) with A = sum_l cos_l (e_l - v), B = sum_l sin_l (e_l - v).
-void project_tangents(Vec3f v, const Vec3f* e, int n, const ValenceConstants& k, const float* cos_j,
-                      const float* sin_j, Vec3f* t);
+void project_tangents(Vec3f v, const Vec3f* e, int n, const ValenceConstants& k, const float* cos_j, const float* sin_j,
+                      Vec3f* t);
 
 // One extraordinary quad's corner data, as Table 2 reads it.
 struct CpatchCornerInput {

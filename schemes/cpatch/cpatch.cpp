@@ -20,7 +20,8 @@ MeshRequirements cpatch_requirements() {
   return r;
 }
 
-SchemeInfo make_info(const char* name, const char* description, std::vector<Backend> backends, std::vector<int> levels) {
+SchemeInfo make_info(const char* name, const char* description, std::vector<Backend> backends,
+                     std::vector<int> levels) {
   SchemeInfo info;
   info.name = name;
   info.paper = kPaper;
@@ -46,30 +47,30 @@ class CpatchTwoPassScheme final : public Scheme {
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
     if (auto why = unsupported(request)) throw std::invalid_argument(*why);
     return std::make_unique<cpatch::CpatchCpuEvaluation>(mesh, request.level, request.backend == Backend::CpuMt,
-                                                          request.threads);
+                                                         request.threads);
   }
 };
 
 }  // namespace
 
 const SchemeInfo& cpatch_2pass_info() {
-  static const SchemeInfo info =
-      make_info("cpatch-2pass", "bicubic patches on ordinary quads, c-patches on extraordinary ones; convert, then evaluate",
-                {Backend::Cpu, Backend::CpuMt}, {2, 5, 9, 17, 33});
+  static const SchemeInfo info = make_info(
+      "cpatch-2pass", "bicubic patches on ordinary quads, c-patches on extraordinary ones; convert, then evaluate",
+      {Backend::Cpu, Backend::CpuMt}, {2, 5, 9, 17, 33});
   return info;
 }
 
 const SchemeInfo& cpatch_1pass_info() {
-  static const SchemeInfo info = make_info(
-      "cpatch-1pass", "c-patches converted and evaluated in one geometry-shader pass (paper: N <= 8)", {Backend::Vulkan},
-      {2, 5, 8});
+  static const SchemeInfo info =
+      make_info("cpatch-1pass", "c-patches converted and evaluated in one geometry-shader pass (paper: N <= 8)",
+                {Backend::Vulkan}, {2, 5, 8});
   return info;
 }
 
 const SchemeInfo& cpatch_tess_info() {
-  static const SchemeInfo info = make_info(
-      "cpatch-tess", "c-patches evaluated by the hardware tessellator (the paper's Section 6 outlook)", {Backend::Vulkan},
-      {2, 5, 9, 17, 33});
+  static const SchemeInfo info =
+      make_info("cpatch-tess", "c-patches evaluated by the hardware tessellator (the paper's Section 6 outlook)",
+                {Backend::Vulkan}, {2, 5, 9, 17, 33});
   return info;
 }
 

@@ -10,10 +10,10 @@
 
 #include "cpatch.h"
 #include "cpu.h"
-#include "errors.h"
-#include "manifest.h"
 #include "deviation.h"
+#include "errors.h"
 #include "limit_evaluator.h"
+#include "manifest.h"
 #include "watertight.h"
 
 using namespace sdb;
@@ -21,7 +21,8 @@ using namespace sdb::cpatch;
 
 namespace {
 
-const char* kCorpusMeshes[] = {"crane/spot_control", "crane/blub_control", "pmp/fandisk_quads", "stein/sword_quad_dominant"};
+const char* kCorpusMeshes[] = {"crane/spot_control", "crane/blub_control", "pmp/fandisk_quads",
+                               "stein/sword_quad_dominant"};
 
 bool corpus_present(const std::string& name) {
   if (!corpus_dir()) return false;
@@ -77,8 +78,8 @@ std::vector<BorderPair> border_pairs(const CpatchCpuEvaluation& eval) {
     if (edge.first > edge.second) continue;  // each edge once
     const auto [q2, k2] = sides.at({edge.second, edge.first});
     for (int m = 0; m < g.rate(); ++m)
-      pairs.push_back({side.first * per_quad + g.side_sample(side.second, m),
-                       q2 * per_quad + g.side_sample(k2, g.rate() - 1 - m)});
+      pairs.push_back(
+          {side.first * per_quad + g.side_sample(side.second, m), q2 * per_quad + g.side_sample(k2, g.rate() - 1 - m)});
   }
   return pairs;
 }
@@ -158,7 +159,8 @@ TEST(Lemma1, NormalsAgreeAcrossEveryEdgeOfTheCorpus) {
 TEST(Watertight, NoOpenEdgesOnBuiltInMeshes) {
   for (const std::string& name : weld_meshes()) {
     const ControlMesh quads = accepted(name);
-    for (int rate : {2, 5, 9, 17}) EXPECT_EQ(count_open_edges(evaluate(quads, rate)->output()), 0) << name << " N=" << rate;
+    for (int rate : {2, 5, 9, 17})
+      EXPECT_EQ(count_open_edges(evaluate(quads, rate)->output()), 0) << name << " N=" << rate;
   }
   EXPECT_EQ(count_open_edges(evaluate(accepted("frog-standin"), 33)->output()), 0) << "frog-standin N=33";
 }
@@ -293,11 +295,12 @@ void report_deviation(const std::string& name, int rate) {
   const auto eval = evaluate(quads, rate);
   const LimitEvaluator limit(quads, SubdivisionRule::CatmullClark);
   const DeviationReport d = measure_deviation(eval->output(), limit);
-  std::printf("deviation %s N=%d (%zu quads, %zu c-patches): position %% of local quad size max %.3f mean %.4f rms %.4f "
-              "p95 %.4f; normal deg max %.3f mean %.4f rms %.4f p95 %.4f\n",
-              name.c_str(), rate, quads.face_sizes.size(), eval->topology().extraordinary_quads.size(), d.pos_max_pct,
-              d.pos_mean_pct, d.pos_rms_pct, d.pos_p95_pct, d.normal_max_deg, d.normal_mean_deg, d.normal_rms_deg,
-              d.normal_p95_deg);
+  std::printf(
+      "deviation %s N=%d (%zu quads, %zu c-patches): position %% of local quad size max %.3f mean %.4f rms %.4f "
+      "p95 %.4f; normal deg max %.3f mean %.4f rms %.4f p95 %.4f\n",
+      name.c_str(), rate, quads.face_sizes.size(), eval->topology().extraordinary_quads.size(), d.pos_max_pct,
+      d.pos_mean_pct, d.pos_rms_pct, d.pos_p95_pct, d.normal_max_deg, d.normal_mean_deg, d.normal_rms_deg,
+      d.normal_p95_deg);
   ::testing::Test::RecordProperty(name + "_pos_max_pct", scientific(d.pos_max_pct));
   ::testing::Test::RecordProperty(name + "_normal_max_deg", scientific(d.normal_max_deg));
   EXPECT_EQ(d.vertices, long(eval->output().num_vertices()));

@@ -1,13 +1,14 @@
 // Unit tests of the c-patch conversion (Tables 1, 2, equations (3)-(5)) and of the patch
 // evaluation, on small meshes. Surface-level properties (limit, Lemma 1, weld) are in
 // cpatch_surface_test.cpp.
+#include "cpatch.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "conversion.h"
-#include "cpatch.h"
 #include "cpu.h"
 #include "evaluation.h"
 #include "manifest.h"
@@ -121,7 +122,8 @@ TEST(Table1, TangentPointsAreCoplanarWithTheLimitPoint) {
     const Vec3d normal = cross(to_double(p.tangent[s]) - center, to_double(p.tangent[s + 1]) - center);
     const Vec3d unit = (1.0 / std::sqrt(dot(normal, normal))) * normal;
     for (int j = 2; j < n; ++j)
-      EXPECT_LE(std::abs(dot(to_double(p.tangent[s + j]) - center, unit)), tolerance) << "vertex " << v << " valence " << n;
+      EXPECT_LE(std::abs(dot(to_double(p.tangent[s + j]) - center, unit)), tolerance)
+          << "vertex " << v << " valence " << n;
   }
 }
 
@@ -138,7 +140,8 @@ TEST(Table2, B112SolvesEquationFiveWithTheAverageConstraint) {
     in[i] = {random_point(), random_point(), random_point(), random_point(), random_point(), random_point()};
     const double ci = std::cos(2 * M_PI / valences[i]), cn = std::cos(2 * M_PI / valences[(i + 1) % 4]);
     const double si = std::sin(2 * M_PI / valences[i]), sn = std::sin(2 * M_PI / valences[(i + 1) % 4]);
-    w[i] = {float((1 + ci) / 4), float((1 - cn) / 8), float((1 + cn) / 4), float((1 - ci) / 8), float(3 / (4 * (si + sn)))};
+    w[i] = {float((1 + ci) / 4), float((1 - cn) / 8), float((1 + cn) / 4), float((1 - ci) / 8),
+            float(3 / (4 * (si + sn)))};
   }
   const CpatchInterior b = cpatch_interior(in, w);
   Vec3d q{};
@@ -153,7 +156,8 @@ TEST(Table2, B112SolvesEquationFiveWithTheAverageConstraint) {
   }
   Vec3d g{}, mean{};
   for (int i = 0; i < 4; ++i) {
-    g = g + (1.0 / 64) * (to_double(in[i].v) + 3.0 * (to_double(in[i].e0) + to_double(in[i].e1)) + 9.0 * to_double(in[i].f));
+    g = g + (1.0 / 64) *
+                (to_double(in[i].v) + 3.0 * (to_double(in[i].e0) + to_double(in[i].e1)) + 9.0 * to_double(in[i].f));
     mean = mean + 0.25 * to_double(b.b112[i]);
   }
   EXPECT_NEAR(mean.x, g.x, 1e-5);
@@ -197,7 +201,8 @@ TEST(Cpatch, PiecesJoinWithContinuousDerivatives) {
     const Vec3f* r = record.data();
     for (double s : {0.05, 0.2, 0.35, 0.65, 0.8, 0.95}) {
       // Points on the diagonal u = v and on u = 1 - v, approached from both sides.
-      const double points[2][2][2] = {{{s + eps, s - eps}, {s - eps, s + eps}}, {{s + eps, 1 - s + eps}, {s - eps, 1 - s - eps}}};
+      const double points[2][2][2] = {{{s + eps, s - eps}, {s - eps, s + eps}},
+                                      {{s + eps, 1 - s + eps}, {s - eps, 1 - s - eps}}};
       for (const auto& pair : points) {
         const PatchPoint a = cpatch_at(r, pair[0][0], pair[0][1]), b = cpatch_at(r, pair[1][0], pair[1][1]);
         const double scale = norm(a.du) + norm(a.dv);

@@ -4,7 +4,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "errors.h"
 
 namespace sdb::cpatch {
 
@@ -15,6 +20,10 @@ CpatchCpuEvaluation::CpatchCpuEvaluation(const ControlMesh& quads, int rate, boo
       multithreaded_(multithreaded),
       scratch_(rate * rate),
       thread_scratch_([rate] { return PatchScratch(rate * rate); }) {
+  // Tessellation indexes vertices with uint32_t.
+  if (static_cast<uint64_t>(topology_.num_quads) * grid_.samples() > std::numeric_limits<uint32_t>::max())
+    throw InputError(quads.source, "cpatch-2pass at N = " + std::to_string(rate) + " on " +
+                                       std::to_string(topology_.num_quads) + " quads exceeds 2^32 output vertices");
   positions_.reserve(quads.positions.size());
   for (const Point3& p : quads.positions) positions_.push_back(to_vec3(p));
   points_.resize(topology_);
@@ -70,9 +79,8 @@ void CpatchCpuEvaluation::for_range(int count, int grain, const Body& body) {
     return;
   }
   auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, count, grain), [&](const tbb::blocked_range<int>& r) {
-      body(r.begin(), r.end(), thread_scratch_.local());
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, count, grain),
+                      [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end(), thread_scratch_.local()); });
   };
   if (arena_)
     arena_->execute(run);
@@ -132,8 +140,6 @@ PatchRecord CpatchCpuEvaluation::record(int quad) const {
   return r;
 }
 
-size_t CpatchCpuEvaluation::bytes_out() const {
-  return (out_.positions.size() + out_.normals.size()) * sizeof(Point3);
-}
+size_t CpatchCpuEvaluation::bytes_out() const { return (out_.positions.size() + out_.normals.size()) * sizeof(Point3); }
 
 }  // namespace sdb::cpatch

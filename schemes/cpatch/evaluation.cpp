@@ -116,10 +116,14 @@ void SampleGrid::build_quartic() {
 int SampleGrid::side_sample(int side, int m) const {
   const int last = rate_ - 1;
   switch (side) {
-    case 0: return m;                                // v = 0, u increasing
-    case 1: return m * rate_ + last;                 // u = 1, v increasing
-    case 2: return last * rate_ + (last - m);        // v = 1, u decreasing
-    default: return (last - m) * rate_;              // u = 0, v decreasing
+    case 0:
+      return m;  // v = 0, u increasing
+    case 1:
+      return m * rate_ + last;  // u = 1, v increasing
+    case 2:
+      return last * rate_ + (last - m);  // v = 1, u decreasing
+    default:
+      return (last - m) * rate_;  // u = 0, v decreasing
   }
 }
 
@@ -205,7 +209,8 @@ void evaluate_cpatch(const SampleGrid& grid, const Vec3f* record, PatchScratch& 
   float* __restrict vz = out.vz;
   for (int piece = 0; piece < 4; ++piece) {
     float x[kQuarticPoints], y[kQuarticPoints], z[kQuarticPoints];
-    for (int m = 0; m < kQuarticPoints; ++m) x[m] = pieces[piece][m].x, y[m] = pieces[piece][m].y, z[m] = pieces[piece][m].z;
+    for (int m = 0; m < kQuarticPoints; ++m)
+      x[m] = pieces[piece][m].x, y[m] = pieces[piece][m].y, z[m] = pieces[piece][m].z;
 #pragma omp simd
     for (int k = grid.piece_begin(piece); k < grid.piece_begin(piece + 1); ++k) {
       float sx = 0, sy = 0, sz = 0, sux = 0, suy = 0, suz = 0, svx = 0, svy = 0, svz = 0;

@@ -34,10 +34,11 @@ namespace sdb::cpatch {
 // (1/2, 1/2); its quartic Bezier points b^i_klm (k towards corner i, l towards corner i+1,
 // m towards the centre) are listed in this order.
 constexpr int kQuarticPoints = 15;
-constexpr std::array<std::array<int, 3>, kQuarticPoints> kQuarticIndex = {{{4, 0, 0}, {3, 1, 0}, {3, 0, 1}, {2, 2, 0},
-                                                                          {2, 1, 1}, {2, 0, 2}, {1, 3, 0}, {1, 2, 1},
-                                                                          {1, 1, 2}, {1, 0, 3}, {0, 4, 0}, {0, 3, 1},
-                                                                          {0, 2, 2}, {0, 1, 3}, {0, 0, 4}}};
+// clang-format off
+constexpr std::array<std::array<int, 3>, kQuarticPoints> kQuarticIndex = {{
+    {4, 0, 0}, {3, 1, 0}, {3, 0, 1}, {2, 2, 0}, {2, 1, 1}, {2, 0, 2}, {1, 3, 0}, {1, 2, 1},
+    {1, 1, 2}, {1, 0, 3}, {0, 4, 0}, {0, 3, 1}, {0, 2, 2}, {0, 1, 3}, {0, 0, 4}}};
+// clang-format on
 
 // Equations (3) and (4): the 4 x 15 Bezier points of a c-patch record's pieces, relative to the
 // patch origin p*_0 (the record's corner-0 control vertex).
@@ -82,9 +83,15 @@ constexpr int kLanes = 8;
 // Position and first derivatives of one patch at all samples, structure of arrays.
 struct PatchScratch {
   std::vector<float> data;
-  float* px = nullptr; float* py = nullptr; float* pz = nullptr;
-  float* ux = nullptr; float* uy = nullptr; float* uz = nullptr;
-  float* vx = nullptr; float* vy = nullptr; float* vz = nullptr;
+  float* px = nullptr;
+  float* py = nullptr;
+  float* pz = nullptr;
+  float* ux = nullptr;
+  float* uy = nullptr;
+  float* uz = nullptr;
+  float* vx = nullptr;
+  float* vy = nullptr;
+  float* vz = nullptr;
   explicit PatchScratch(int samples = 0) { resize(samples); }
   void resize(int samples);
 };
@@ -103,8 +110,9 @@ void evaluate_quad(const SampleGrid& grid, const Vec3f* record, bool is_cpatch, 
 
 // kLanes ordinary (bicubic) quads at once, one per SIMD lane: each quad's output is
 // bit-identical to evaluate_quad's, at a fraction of the instructions per sample.
-void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes], const uint8_t forward_sides[kLanes],
-                            Point3* const positions[kLanes], Point3* const normals[kLanes]);
+void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes],
+                            const uint8_t forward_sides[kLanes], Point3* const positions[kLanes],
+                            Point3* const normals[kLanes]);
 
 // The parts of evaluate_quad, exposed for tests.
 // Relative to p*_0: bicubic in grid order, c-patch in piece order.

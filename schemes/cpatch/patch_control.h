@@ -43,19 +43,19 @@ std::array<std::array<Vec3<T>, kQuarticPoints>, 4> expand(const PatchControl<T>&
     const Vec3<T> b310_next = quarter * (c.v[n] + three * c.t0[n]);  // b^{i+1}_310
     pieces[i] = {c.v[i],
                  b310,
-                 half * (b310 + b130_prev),       // b301
-                 half * (c.t0[i] + c.t1[n]),      // b220
-                 B(i),                            // b211
-                 half * (B(i) + C(i - 1)),        // b202
-                 b130,                            // b130
-                 C(i),                            // b121
-                 X(i),                            // b112
-                 half * (X(i) + X(i - 1)),        // b103
-                 c.v[n],                          // b040
-                 half * (b130 + b310_next),       // b031
-                 half * (C(i) + B(i + 1)),        // b022
-                 half * (X(i) + X(i + 1)),        // b013
-                 center};                         // b004
+                 half * (b310 + b130_prev),   // b301
+                 half * (c.t0[i] + c.t1[n]),  // b220
+                 B(i),                        // b211
+                 half * (B(i) + C(i - 1)),    // b202
+                 b130,                        // b130
+                 C(i),                        // b121
+                 X(i),                        // b112
+                 half * (X(i) + X(i - 1)),    // b103
+                 c.v[n],                      // b040
+                 half * (b130 + b310_next),   // b031
+                 half * (C(i) + B(i + 1)),    // b022
+                 half * (X(i) + X(i + 1)),    // b013
+                 center};                     // b004
   }
   return pieces;
 }

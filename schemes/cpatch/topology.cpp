@@ -54,11 +54,13 @@ void build_neighbourhoods(const ControlMesh& mesh, CpatchTopology& t) {
       const auto it = edges.find(edge_key(v, corner_vertex(c, 3)));
       if (it == edges.end())
         throw InputError(face_location(mesh, c / 4), "edge " + std::to_string(corner_vertex(c, 3)) + "-" +
-                                                         std::to_string(v) + " is a boundary edge; c-patches need a closed mesh");
+                                                         std::to_string(v) +
+                                                         " is a boundary edge; c-patches need a closed mesh");
       c = it->second;
     } while (c != first_corner[v] && static_cast<int>(fans[v].size()) <= incident[v]);
     if (static_cast<int>(fans[v].size()) != incident[v])
-      throw InputError(mesh.source, "vertex " + std::to_string(v) + " has more than one fan of quads (non-manifold vertex)");
+      throw InputError(mesh.source,
+                       "vertex " + std::to_string(v) + " has more than one fan of quads (non-manifold vertex)");
     if (incident[v] < 3)
       throw InputError(mesh.source, "vertex " + std::to_string(v) + " has valence " + std::to_string(incident[v]) +
                                         "; c-patches need valence 3 or more");
@@ -107,8 +109,10 @@ void build_valence_constants(CpatchTopology& t) {
 
 // Table 2's valence-dependent weights for corner i of a quad with corner valences n[0..3].
 CpatchCornerWeights corner_weights(const int n[4], int i) {
-  const double c_i = std::cos(2.0 * std::numbers::pi / n[i]), c_next = std::cos(2.0 * std::numbers::pi / n[(i + 1) % 4]);
-  const double s_i = std::sin(2.0 * std::numbers::pi / n[i]), s_next = std::sin(2.0 * std::numbers::pi / n[(i + 1) % 4]);
+  const double c_i = std::cos(2.0 * std::numbers::pi / n[i]),
+               c_next = std::cos(2.0 * std::numbers::pi / n[(i + 1) % 4]);
+  const double s_i = std::sin(2.0 * std::numbers::pi / n[i]),
+               s_next = std::sin(2.0 * std::numbers::pi / n[(i + 1) % 4]);
   return {static_cast<float>((1.0 + c_i) / 4.0), static_cast<float>((1.0 - c_next) / 8.0),
           static_cast<float>((1.0 + c_next) / 4.0), static_cast<float>((1.0 - c_i) / 8.0),
           static_cast<float>(3.0 / (4.0 * (s_i + s_next)))};

@@ -28,21 +28,21 @@ struct QuadCorner {
 
 // Per-valence constants of Tables 1 and 2, computed in double and rounded once.
 struct ValenceConstants {
-  float cos_n = 0.0f;              // c = cos(2 pi / n)
-  float sin_n = 0.0f;              // s = sin(2 pi / n)
-  float sigma = 0.0f;              // subdominant eigenvalue of Catmull-Clark
-  float tangent_scale = 0.0f;      // 1 / (n sigma), Table 1's projection factor
-  float limit_scale = 0.0f;        // 1 / (n (n + 5)), the limit-point stencil's normaliser
-  int trig_offset = 0;             // cos/sin(2 pi j / n) for j = 0..n-1 at trig_cos/sin[offset + j]
+  float cos_n = 0.0f;          // c = cos(2 pi / n)
+  float sin_n = 0.0f;          // s = sin(2 pi / n)
+  float sigma = 0.0f;          // subdominant eigenvalue of Catmull-Clark
+  float tangent_scale = 0.0f;  // 1 / (n sigma), Table 1's projection factor
+  float limit_scale = 0.0f;    // 1 / (n (n + 5)), the limit-point stencil's normaliser
+  int trig_offset = 0;         // cos/sin(2 pi j / n) for j = 0..n-1 at trig_cos/sin[offset + j]
 };
 
-// The six Table 2 weights of one c-patch corner i; they depend on the valences n_i and n_{i+1}.
+// The five Table 2 weights of one c-patch corner i; they depend on the valences n_i and n_{i+1}.
 struct CpatchCornerWeights {
-  float a_i = 0.0f;      // (1 + c^i) / 4        in b211^i
-  float b_next = 0.0f;   // (1 - c^{i+1}) / 8    in b211^i
-  float a_next = 0.0f;   // (1 + c^{i+1}) / 4    in b121^i
-  float b_i = 0.0f;      // (1 - c^i) / 8        in b121^i
-  float k = 0.0f;        // 3 / (4 (s^i + s^{i+1})), in both
+  float a_i = 0.0f;     // (1 + c^i) / 4        in b211^i
+  float b_next = 0.0f;  // (1 - c^{i+1}) / 8    in b211^i
+  float a_next = 0.0f;  // (1 + c^{i+1}) / 4    in b121^i
+  float b_i = 0.0f;     // (1 - c^i) / 8        in b121^i
+  float k = 0.0f;       // 3 / (4 (s^i + s^{i+1})), in both
 };
 
 struct CpatchTopology {
@@ -60,14 +60,14 @@ struct CpatchTopology {
   std::vector<ValenceConstants> valence_constants;
   std::vector<float> trig_cos, trig_sin;
 
-  std::vector<QuadCorner> corners;          // 4 per quad
-  std::vector<uint8_t> extraordinary;       // per quad: 1 when a corner has valence != 4
+  std::vector<QuadCorner> corners;     // 4 per quad
+  std::vector<uint8_t> extraordinary;  // per quad: 1 when a corner has valence != 4
   // Per quad, bit k set when side k (corner k -> corner k+1) runs from the lower to the higher
   // vertex index: the canonical direction in which both quads of an edge evaluate it.
   std::vector<uint8_t> forward_sides;
-  std::vector<int> ordinary_quads;          // quad indices, ascending
-  std::vector<int> extraordinary_quads;     // quad indices, ascending
-  std::vector<int> extraordinary_index;     // per quad: its index in extraordinary_quads, or -1
+  std::vector<int> ordinary_quads;       // quad indices, ascending
+  std::vector<int> extraordinary_quads;  // quad indices, ascending
+  std::vector<int> extraordinary_index;  // per quad: its index in extraordinary_quads, or -1
   // Per extraordinary quad (index into extraordinary_quads): its four corners' Table 2 weights.
   std::vector<CpatchCornerWeights> cpatch_weights;
 

@@ -16,14 +16,30 @@ struct Vec3 {
 using Vec3f = Vec3<float>;
 using Vec3d = Vec3<double>;
 
-template <class T> inline Vec3<T> operator+(Vec3<T> a, Vec3<T> b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-template <class T> inline Vec3<T> operator-(Vec3<T> a, Vec3<T> b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-template <class T> inline Vec3<T> operator*(T s, Vec3<T> a) { return {s * a.x, s * a.y, s * a.z}; }
-template <class T> inline Vec3<T>& operator+=(Vec3<T>& a, Vec3<T> b) { return a = a + b; }
-template <class T> inline Vec3<T> cross(Vec3<T> a, Vec3<T> b) {
+template <class T>
+inline Vec3<T> operator+(Vec3<T> a, Vec3<T> b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+inline Vec3<T> operator-(Vec3<T> a, Vec3<T> b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+inline Vec3<T> operator*(T s, Vec3<T> a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class T>
+inline Vec3<T>& operator+=(Vec3<T>& a, Vec3<T> b) {
+  return a = a + b;
+}
+template <class T>
+inline Vec3<T> cross(Vec3<T> a, Vec3<T> b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-template <class T> inline T dot(Vec3<T> a, Vec3<T> b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class T>
+inline T dot(Vec3<T> a, Vec3<T> b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 inline Vec3f to_vec3(const std::array<float, 3>& p) { return {p[0], p[1], p[2]}; }
 inline std::array<float, 3> to_point3(Vec3f v) { return {v.x, v.y, v.z}; }
