@@ -66,8 +66,8 @@ SDB_LANES void store_transposed(Lanes x, Lanes y, Lanes z, Point3* const outputs
   }
 }
 
-// The records' corner entries, one lane per quad: p*_i, v^i, t_0^i, t_1^i (relative to p*_i) and
-// f^i (relative to p*_0).
+// Figure 6's data, one lane per quad, corner i: p*_i and v^i, t_0^i, t_1^i, f^i relative to p*_i
+// (as VertexPoints holds them).
 struct LaneRecords {
   Vec3Lanes p[4], v[4], t0[4], t1[4], f[4];
 };
@@ -76,15 +76,17 @@ SDB_LANES void load_lane(Vec3Lanes& out, int l, const Vec3f& value) {
   out.x[l] = value.x, out.y[l] = value.y, out.z[l] = value.z;
 }
 
-SDB_LANES LaneRecords load_records(const Vec3f* const records[kLanes]) {
+SDB_LANES LaneRecords gather(const BicubicLaneSource& source) {
   LaneRecords r;
+  const VertexPoints& points = *source.points;
   for (int l = 0; l < kLanes; ++l)
     for (int i = 0; i < 4; ++i) {
-      load_lane(r.p[i], l, records[l][record_index(i, kP)]);
-      load_lane(r.v[i], l, records[l][record_index(i, kV)]);
-      load_lane(r.t0[i], l, records[l][record_index(i, kT0)]);
-      load_lane(r.t1[i], l, records[l][record_index(i, kT1)]);
-      load_lane(r.f[i], l, records[l][record_index(i, kF)]);
+      const QuadCorner& c = source.corners[l][i];
+      load_lane(r.p[i], l, source.positions[c.vertex]);
+      load_lane(r.v[i], l, points.limit[c.vertex]);
+      load_lane(r.t0[i], l, points.tangent[c.sector_slot]);
+      load_lane(r.t1[i], l, points.tangent[c.prev_edge_slot]);
+      load_lane(r.f[i], l, points.face[c.sector_slot]);
     }
   return r;
 }
@@ -99,19 +101,19 @@ struct LaneInput {
   Lanes origin_x, origin_y, origin_z;
 };
 
-// local_control + bicubic_control_points, lane by lane the same operations.
+// build_bicubic + local_control + bicubic_control_points, lane by lane the same operations.
 SDB_LANES LaneInput bicubic_lanes_input(const LaneRecords& r) {
-  Vec3Lanes v[4], t0[4], t1[4];
+  Vec3Lanes v[4], t0[4], t1[4], f[4];
   for (int i = 0; i < 4; ++i) {
     const Vec3Lanes shift = sub(r.p[i], r.p[0]);
-    v[i] = add(r.v[i], shift), t0[i] = add(r.t0[i], shift), t1[i] = add(r.t1[i], shift);
+    v[i] = add(r.v[i], shift), t0[i] = add(r.t0[i], shift), t1[i] = add(r.t1[i], shift), f[i] = add(r.f[i], shift);
   }
   LaneInput in;
   auto& g = in.g;
-  g[0][0] = v[0], g[1][0] = t0[0], g[0][1] = t1[0], g[1][1] = r.f[0];
-  g[3][0] = v[1], g[3][1] = t0[1], g[2][0] = t1[1], g[2][1] = r.f[1];
-  g[3][3] = v[2], g[2][3] = t0[2], g[3][2] = t1[2], g[2][2] = r.f[2];
-  g[0][3] = v[3], g[0][2] = t0[3], g[1][3] = t1[3], g[1][2] = r.f[3];
+  g[0][0] = v[0], g[1][0] = t0[0], g[0][1] = t1[0], g[1][1] = f[0];
+  g[3][0] = v[1], g[3][1] = t0[1], g[2][0] = t1[1], g[2][1] = f[1];
+  g[3][3] = v[2], g[2][3] = t0[2], g[3][2] = t1[2], g[2][2] = f[2];
+  g[0][3] = v[3], g[0][2] = t0[3], g[1][3] = t1[3], g[1][2] = f[3];
   in.origin_x = r.p[0].x, in.origin_y = r.p[0].y, in.origin_z = r.p[0].z;
   return in;
 }
@@ -200,10 +202,10 @@ SDB_LANES void border_lanes(const SampleGrid& grid, const LaneRecords& r, const 
 }  // namespace
 
 SDB_CPATCH_CLONES
-void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes],
+void evaluate_bicubic_lanes(const SampleGrid& grid, const BicubicLaneSource& source,
                             const uint8_t forward_sides[kLanes], Point3* const positions[kLanes],
                             Point3* const normals[kLanes]) {
-  const LaneRecords r = load_records(records);
+  const LaneRecords r = gather(source);
   evaluate_lanes(grid, bicubic_lanes_input(r), positions, normals);
   border_lanes(grid, r, forward_sides, positions);
 }

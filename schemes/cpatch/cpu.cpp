@@ -99,26 +99,24 @@ void CpatchCpuEvaluation::execute() {
   for_range(static_cast<int>(cpatches.size()), 256, [&](int begin, int end, PatchScratch&) {
     for (int e = begin; e < end; ++e) converter_.build_cpatch(positions_.data(), points_, e, cpatch_record(e));
   });
-  // Pass 2: per quad, N x N positions and normals; ordinary quads kLanes at a time, each
-  // assembling its bicubic record (Figure 6) just before.
+  // Pass 2: per quad, N x N positions and normals; ordinary quads kLanes at a time, gathering
+  // their Figure 6 data from the vertex points.
   const size_t per_quad = static_cast<size_t>(grid_.samples());
   const int groups = static_cast<int>(lane_groups_.size() / kLanes);
   for_range(groups, 16, [&](int begin, int end, PatchScratch&) {
     for (int g = begin; g < end; ++g) {
-      PatchRecord local[kLanes];
-      const Vec3f* records[kLanes];
+      BicubicLaneSource source{positions_.data(), &points_, {}};
       uint8_t sides[kLanes];
       Point3* positions[kLanes];
       Point3* normals[kLanes];
       for (int l = 0; l < kLanes; ++l) {
         const int q = lane_groups_[static_cast<size_t>(g) * kLanes + l];
-        converter_.build_bicubic(positions_.data(), points_, q, local[l].data());
-        records[l] = local[l].data();
+        source.corners[l] = &topology_.corners[4 * static_cast<size_t>(q)];
         sides[l] = topology_.forward_sides[q];
         positions[l] = &out_.positions[q * per_quad];
         normals[l] = &out_.normals[q * per_quad];
       }
-      evaluate_bicubic_lanes(grid_, records, sides, positions, normals);
+      evaluate_bicubic_lanes(grid_, source, sides, positions, normals);
     }
   });
   for_range(static_cast<int>(cpatches.size()), 64, [&](int begin, int end, PatchScratch& scratch) {

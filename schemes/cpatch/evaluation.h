@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "control_mesh.h"
+#include "conversion.h"
+#include "topology.h"
 #include "vec3.h"
 
 // The hot loops are built for AVX2 and for the x86-64 baseline, picked at load time; both give
@@ -108,9 +110,16 @@ inline Vec3f border_point(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, con
 void evaluate_quad(const SampleGrid& grid, const Vec3f* record, bool is_cpatch, uint8_t forward_sides,
                    PatchScratch& scratch, Point3* positions, Point3* normals);
 
-// kLanes ordinary (bicubic) quads at once, one per SIMD lane: each quad's output is
-// bit-identical to evaluate_quad's, at a fraction of the instructions per sample.
-void evaluate_bicubic_lanes(const SampleGrid& grid, const Vec3f* const records[kLanes],
+// kLanes ordinary (bicubic) quads at once, one per SIMD lane, gathering Figure 6's data straight
+// from the vertex points (the record build_bicubic would write, without writing it): each quad's
+// output is bit-identical to evaluate_quad's on that record, at a fraction of the instructions per
+// sample.
+struct BicubicLaneSource {
+  const Vec3f* positions = nullptr;        // control points
+  const VertexPoints* points = nullptr;    // Table 1 output
+  const QuadCorner* corners[kLanes] = {};  // each quad's four corners (CpatchTopology::corners)
+};
+void evaluate_bicubic_lanes(const SampleGrid& grid, const BicubicLaneSource& source,
                             const uint8_t forward_sides[kLanes], Point3* const positions[kLanes],
                             Point3* const normals[kLanes]);
 
