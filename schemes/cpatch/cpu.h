@@ -1,10 +1,10 @@
 // CpatchCpuEvaluation: the cpu and cpu-mt backends of cpatch-2pass. prepare() builds the
 // CpatchTopology, the SampleGrid for rate N and the output's triangles and SurfaceCoords;
 // execute() runs the per-frame passes on the current control positions: Table 1 per vertex,
-// Table 2 per extraordinary quad (its c-patch record), then the evaluation per quad; ordinary
-// quads are evaluated kLanes at a time, gathering Figure 6's data (copies of vertex points)
-// straight from the vertex points instead of streaming records through memory. cpu-mt runs each pass with
-// tbb::parallel_for over independent items, so its output is bit-identical to cpu's.
+// Table 2 per extraordinary quad (its c-patch record), then the evaluation per quad. Ordinary quads
+// are evaluated kLanes at a time and gather Figure 6's data straight from the vertex points
+// instead of streaming records through memory. cpu-mt runs each pass with tbb::parallel_for over
+// independent items, so its output is bit-identical to cpu's.
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
