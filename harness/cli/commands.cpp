@@ -139,11 +139,6 @@ int list() {
   return list_schemes_cmd();
 }
 
-int not_built(const std::string& verb) {
-  std::cerr << "subdivbench: '" << verb << "' is not built yet\n";
-  return 2;
-}
-
 }  // namespace
 
 void register_commands(CLI::App& app) {
@@ -160,11 +155,6 @@ void register_commands(CLI::App& app) {
   register_run_commands(app, verbs);
   register_gate_commands(app, verbs);
 
-  for (const char* verb : {"paper"}) {
-    auto* cmd = app.add_subcommand(verb, std::string("(not built yet) ") + verb);
-    cmd->allow_extras();
-    verbs[verb] = [v = std::string(verb)] { return not_built(v); };
-  }
 }
 
 int run_selected(const CLI::App& app) {

@@ -17,6 +17,7 @@
 #include "machine.h"
 #include "manifest.h"
 #include "measure.h"
+#include "paper_tables.h"
 #include "plan.h"
 #include "registry.h"
 #include "report.h"
@@ -33,6 +34,8 @@ struct GateOptions {
   bool callgrind = false, record = false;
   std::string scheme, mesh;
   int level = 0, iterations = 3, rounds = 0;
+  std::string paper_id;
+  bool quick = false;
 };
 GateOptions g;
 std::vector<std::string> bench_flags;  // passed to Google Benchmark
@@ -162,6 +165,22 @@ int gate() {
   return report.failed() ? 1 : 0;
 }
 
+int paper() {
+  if (g.paper_id.empty() || g.paper_id == "list") {
+    std::printf("%-24s %s\n", "id", "table");
+    for (const auto& t : paper_tables()) std::printf("%-24s %s\n", t.id.c_str(), t.title.c_str());
+    return 0;
+  }
+  for (const auto& t : paper_tables())
+    if (t.id == g.paper_id) {
+      PaperTableOptions options;
+      if (!g.out.empty()) options.out_dir = g.out;
+      options.quick = g.quick;
+      return t.run(options, std::cout);
+    }
+  throw InputError(g.paper_id, "no such paper table (see `subdivbench paper list`)");
+}
+
 int report() {
   if (g.inputs.empty()) throw InputError("report", "--in FILE is required");
   for (const auto& in : g.inputs) read_results(in);  // refuses unknown schemas with file named
@@ -199,6 +218,12 @@ void register_gate_commands(CLI::App& app, std::map<std::string, std::function<i
   r->add_option("--in", g.inputs, "results.json (repeatable)")->required();
   r->add_option("--out", g.out, "output folder");
   verbs["report"] = report;
+
+  auto* p = app.add_subcommand("paper", "A paper's table, the paper's figures and ours side by side");
+  p->add_option("id", g.paper_id, "table id, or `list`");
+  p->add_option("--out", g.out, "folder for the table and its pictures (default results/paper)");
+  p->add_flag("--quick", g.quick, "fewer and smaller cells (what the tests run)");
+  verbs["paper"] = paper;
 
   auto* w = app.add_subcommand("workload", "");  // hidden: what the callgrind gate counts
   w->group("");
