@@ -51,7 +51,9 @@ std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file) 
         }
         return n;
       }
-  const double bw = row.backend == "cpu-mt" ? file.machine.write_bandwidth_mt_gbs : file.machine.write_bandwidth_gbs;
+  const double bw = row.backend == "cpu-mt"   ? file.machine.write_bandwidth_mt_gbs
+                    : row.backend == "vulkan" ? file.machine.gpu_write_bandwidth_gbs
+                                              : file.machine.write_bandwidth_gbs;
   if (bw <= 0) return std::nullopt;
   Normalised n{{}, "bandwidth probe"};
   for (double s : t.samples) n.samples.push_back(s * bw);

@@ -1,6 +1,7 @@
 #include "machine.h"
 
 #include "device_info.h"
+#include "gpu.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -88,6 +89,33 @@ double measure_write_bandwidth(int threads) {
   volatile float sink = buffer[n / 2];  // keep the stores observable
   (void)sink;
   return bytes / best / 1e9;
+}
+
+}  // namespace sdb
+
+namespace sdb {
+
+double measure_gpu_write_bandwidth() {
+  try {
+    auto ctx = gpu::shared_context();
+    const uint64_t bytes = std::min<uint64_t>(uint64_t(256) << 20, ctx->limits().max_memory_allocation_size / 2);
+    gpu::Buffer buffer = gpu::Buffer::device(*ctx, bytes, gpu::BufferUsage::Storage, "bandwidth probe");
+    gpu::GpuTimer timer(*ctx);
+    if (!timer.supported()) return 0;
+    double best_ms = 1e30;
+    for (int pass = 0; pass < 5; ++pass) {
+      ctx->run([&](gpu::Commands& cmd) {
+        timer.reset(cmd);
+        timer.begin(cmd, gpu::PassKind::Kernel, "fill");
+        cmd.fill(buffer, static_cast<uint32_t>(pass + 1));
+        timer.end(cmd);
+      });
+      if (auto t = timer.read(); t && t->kernel_ms > 0) best_ms = std::min(best_ms, t->kernel_ms);
+    }
+    return best_ms < 1e30 ? bytes / (best_ms * 1e-3) / 1e9 : 0;
+  } catch (const std::exception&) {
+    return 0;  // no device: vulkan rows have no bandwidth fraction
+  }
 }
 
 }  // namespace sdb

@@ -12,4 +12,7 @@ MachineInfo describe_machine();
 // cache, best of a few passes; `threads` > 1 splits the buffer across TBB workers.
 double measure_write_bandwidth(int threads);
 
+// The same for the Vulkan device: a buffer fill timed by timestamp queries; 0 without a device.
+double measure_gpu_write_bandwidth();
+
 }  // namespace sdb

@@ -12,6 +12,7 @@
 #include <regex>
 
 #include "deviation.h"
+#include "deviation_ply.h"
 #include "errors.h"
 #include "facts.h"
 #include "manifest.h"
@@ -158,6 +159,7 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
   }
   if (rule == SubdivisionRule::CatmullClark || facts.all_triangles) {
     const DeviationReport d = measure_deviation(t, ctx.reference(ref_mesh, rule));
+    if (!o.deviation_ply.empty()) write_deviation_ply(t, d, o.deviation_ply);
     row.deviation = {true,  d.pos_max_pct,    d.pos_mean_pct,   d.pos_rms_pct, d.pos_p95_pct, d.pos_max_rel_diag,
                      d.normal_max_deg, d.normal_mean_deg, -1};
     if (o.hausdorff && rule == SubdivisionRule::CatmullClark) row.deviation.hausdorff_rel = hausdorff(t, ctx.dense_reference(ref_mesh)).max();

@@ -32,6 +32,7 @@ struct MeasureOptions {
   long rays = 100000;  // random lines; as many again aimed at base-face borders
   uint64_t seed = 1;
   int threads = 0;  // cpu-mt
+  std::string deviation_ply;  // when set: per-vertex deviation of the output written there
 };
 
 // Meshes, accepted meshes and reference surfaces shared by the rows of one run.

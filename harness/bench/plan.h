@@ -12,7 +12,8 @@ struct Selection {
   std::vector<std::string> schemes, meshes, backends;
   std::vector<int> levels;
   bool all_corpus = false;  // the default set takes the real corpus meshes; this adds OpenSubdiv's shapes
-  long max_triangles = 8'000'000;  // default set only: skip outputs larger than this
+  long max_triangles = 2'000'000;  // default levels only: skip outputs larger than this
+  bool headline = true;  // default set: also the runs the issues name as benchmark figures
 };
 
 struct Plan {

@@ -53,6 +53,7 @@ int bench() {
   MachineInfo machine = describe_machine();
   machine.write_bandwidth_gbs = measure_write_bandwidth(1);
   machine.write_bandwidth_mt_gbs = measure_write_bandwidth(std::max(1, machine.cores));
+  if (!machine.vulkan_device.empty()) machine.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
   MeasureContext ctx(machine);
   Selection sel{g.schemes, g.meshes, g.backends, g.levels};
   Plan plan;

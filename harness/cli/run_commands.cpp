@@ -22,9 +22,9 @@ namespace {
 struct RunOptions {
   std::vector<std::string> schemes, meshes, backends;
   std::vector<int> levels;
-  std::string scheme, mesh, backend = "cpu", out = "results/latest";
+  std::string scheme, mesh, backend = "cpu", out = "results/latest", deviation_ply;
   int level = 0, reps = 5;
-  long rays = 100000;
+  long rays = 50000;
   uint64_t seed = 1;
   bool json = false, all_corpus = false, no_validate = false, no_report = false;
 };
@@ -41,6 +41,7 @@ MachineInfo machine_with_bandwidth() {
   MachineInfo m = describe_machine();
   m.write_bandwidth_gbs = measure_write_bandwidth(1);
   m.write_bandwidth_mt_gbs = measure_write_bandwidth(static_cast<int>(std::max(1, m.cores)));
+  if (!m.vulkan_device.empty()) m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
   return m;
 }
 
@@ -74,6 +75,7 @@ int validate() {
   if (!backend) throw InputError(o.backend, "no such backend (cpu, cpu-mt, vulkan)");
   MeasureOptions m = measure_options();
   m.time = false;
+  m.deviation_ply = o.deviation_ply;
   const RunRow row = measure_run({o.scheme, o.mesh, *backend, o.level}, m, ctx);
   if (o.json) std::cout << row_json(row) << "\n";
   else print_row(row);
@@ -92,9 +94,11 @@ int run() {
   ResultsFile results;
   results.machine = ctx.machine();
   results.created = utc_now();
-  std::printf("%zu runs; machine: %s, %d cores, write bandwidth %.1f GB/s (1 thread), %.1f GB/s (all)\n",
+  std::printf("%zu runs; machine: %s, %d cores, write bandwidth %.1f GB/s (1 thread), %.1f GB/s (all)%s\n",
               plan.runs.size(), results.machine.cpu_model.c_str(), results.machine.cores,
-              results.machine.write_bandwidth_gbs, results.machine.write_bandwidth_mt_gbs);
+              results.machine.write_bandwidth_gbs, results.machine.write_bandwidth_mt_gbs,
+              results.machine.vulkan_device.empty() ? ""
+                  : (", " + results.machine.vulkan_device + " " + std::to_string(results.machine.gpu_write_bandwidth_gbs).substr(0, 5) + " GB/s").c_str());
   bool failed = false;
   for (const RunSpec& spec : plan.runs) {
     results.runs.push_back(measure_run(spec, measure_options(), ctx));
@@ -128,12 +132,13 @@ void register_run_commands(CLI::App& app, std::map<std::string, std::function<in
   v->add_option("--rays", o.rays, "random lines (as many again aimed at patch borders)");
   v->add_option("--seed", o.seed, "seed of the ray generator");
   v->add_flag("--json", o.json, "print the row as JSON (results.json row format)");
+  v->add_option("--deviation-out", o.deviation_ply, "write the output with per-vertex deviation as a PLY file");
   verbs["validate"] = validate;
 
   auto* r = app.add_subcommand("run", "Run, validate and time schemes; write results.json and the report");
   add_selection(r);
   r->add_option("--reps", o.reps, "timed repetitions per run");
-  r->add_option("--rays", o.rays, "random lines per run (as many again aimed at patch borders)");
+  r->add_option("--rays", o.rays, "random lines per run, as many again aimed at patch borders (default 50000)");
   r->add_option("--out", o.out, "output folder");
   r->add_flag("--no-validate", o.no_validate, "time only");
   r->add_flag("--no-report", o.no_report, "write results.json only");
