@@ -1,11 +1,13 @@
 #include "registry.h"
 
+#include "peers.h"
+
 namespace sdb {
 
 const std::vector<std::unique_ptr<Scheme>>& all_schemes() {
   static const std::vector<std::unique_ptr<Scheme>> schemes = [] {
-    std::vector<std::unique_ptr<Scheme>> list;
-    // Schemes register here, peers first, as they are built.
+    std::vector<std::unique_ptr<Scheme>> list = make_peer_schemes();
+    // Paper schemes register here as they are built.
     return list;
   }();
   return schemes;

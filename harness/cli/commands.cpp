@@ -12,12 +12,12 @@
 #include "facts.h"
 #include "manifest.h"
 #include "registry.h"
+#include "run_commands.h"
 
 namespace sdb::cli {
 namespace {
 
 struct Options {
-  std::string out = "results/latest";
   std::string list_what = "schemes";
   std::string mesh;
   bool json = false;
@@ -135,16 +135,6 @@ int list() {
   return list_schemes_cmd();
 }
 
-// Until benchmarks exist, `run` says what it would run and writes nothing.
-int run_plan() {
-  if (all_schemes().empty()) {
-    std::printf("no schemes are built yet: nothing to run, nothing written to %s\n", opts.out.c_str());
-    return 0;
-  }
-  std::cerr << "subdivbench: 'run' is not built yet\n";
-  return 2;
-}
-
 int not_built(const std::string& verb) {
   std::cerr << "subdivbench: '" << verb << "' is not built yet\n";
   return 2;
@@ -163,11 +153,9 @@ void register_commands(CLI::App& app) {
   info_cmd->add_flag("--json", opts.json, "print one JSON object");
   verbs["info"] = info;
 
-  auto* run_cmd = app.add_subcommand("run", "Run schemes on meshes and write results.json and reports");
-  run_cmd->add_option("--out", opts.out, "output folder");
-  verbs["run"] = run_plan;
+  register_run_commands(app, verbs);
 
-  for (const char* verb : {"validate", "bench", "gate", "report", "paper"}) {
+  for (const char* verb : {"bench", "gate", "report", "paper"}) {
     auto* cmd = app.add_subcommand(verb, std::string("(not built yet) ") + verb);
     cmd->allow_extras();
     verbs[verb] = [v = std::string(verb)] { return not_built(v); };

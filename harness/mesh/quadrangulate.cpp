@@ -9,9 +9,8 @@ ControlMesh quadrangulate(const ControlMesh& mesh) {
   OpenSubdiv::Far::TopologyRefiner::UniformOptions options(1);
   options.fullTopologyInLastLevel = true;
   refiner->RefineUniform(options);
-  ControlMesh out = refined_level(*refiner, mesh, 1);
-  out.source = mesh.source + " (one Catmull-Clark step)";
-  return out;
+  // Same source: face lines still point at the input file (refined_level keeps them per parent).
+  return refined_level(*refiner, mesh, 1);
 }
 
 }  // namespace sdb

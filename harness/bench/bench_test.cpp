@@ -1,0 +1,106 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "errors.h"
+#include "machine.h"
+#include "measure.h"
+#include "plan.h"
+#include "results.h"
+
+using namespace sdb;
+namespace fs = std::filesystem;
+
+namespace {
+
+MeasureOptions quick() {
+  MeasureOptions o;
+  o.reps = 2;
+  o.min_time_s = 0.001;
+  o.rays = 20000;
+  return o;
+}
+
+}  // namespace
+
+TEST(Results, RoundTripAndRefuseUnknownSchema) {
+  ResultsFile r;
+  r.machine.cpu_model = "test cpu";
+  r.created = "2026-11-21T00:00:00Z";
+  RunRow row;
+  row.scheme = "osd-bfr";
+  row.mesh = "torus";
+  row.time_ms.samples = {1.0, 2.0, 3.0};
+  row.gpu_time_ms = TimeStats{1, 0.5, 2, 3, {0.5, 1, 2}};
+  row.deviation.measured = true;
+  row.deviation.pos_max_pct = 0.25;
+  r.runs.push_back(row);
+  const fs::path p = fs::temp_directory_path() / "sdb_results_test.json";
+  write_results(r, p.string());
+  const ResultsFile back = read_results(p.string());
+  ASSERT_EQ(back.runs.size(), 1u);
+  EXPECT_EQ(back.runs[0].time_ms.samples, row.time_ms.samples);
+  EXPECT_DOUBLE_EQ(back.runs[0].deviation.pos_max_pct, 0.25);
+  ASSERT_TRUE(back.runs[0].gpu_time_ms.has_value());
+  EXPECT_EQ(back.machine.cpu_model, "test cpu");
+
+  std::ofstream(p) << R"({"schema": 99, "runs": []})";
+  try {
+    read_results(p.string());
+    FAIL() << "unknown schema accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown results schema 99"), std::string::npos);
+  }
+  std::ofstream(p) << "{ not json";
+  EXPECT_THROW(read_results(p.string()), InputError);
+}
+
+TEST(Measure, ValidatesOnceAndTimesAPeer) {
+  MeasureContext ctx(describe_machine());
+  const RunRow row = measure_run({"osd-bfr", "torus-8x8", Backend::Cpu, 5}, quick(), ctx);
+  EXPECT_EQ(row.status, "ok") << row.message;
+  EXPECT_EQ(row.triangles, 64 * 2 * 16);
+  EXPECT_EQ(row.tessellation, 4);
+  EXPECT_EQ(row.watertight.open_edges, 0);
+  EXPECT_EQ(row.watertight.ray_cracks, 0);
+  EXPECT_EQ(row.watertight.rays, 40000);
+  ASSERT_TRUE(row.deviation.measured);
+  EXPECT_LE(row.deviation.pos_max_rel_diag, 1e-5);
+  EXPECT_GE(row.deviation.hausdorff_rel, 0.0);
+  EXPECT_EQ(row.time_ms.reps, 2);
+  EXPECT_EQ(row.time_ms.samples.size(), 2u);
+  EXPECT_GT(row.time_ms.median, 0.0);
+  EXPECT_GT(row.triangle_rate_mtris, 0.0);
+  EXPECT_EQ(row.bytes_out, static_cast<long>(row.vertices * 24));
+}
+
+TEST(Measure, UnsupportedBackendIsAStatusNotAFailure) {
+  MeasureContext ctx(describe_machine());
+  const RunRow row = measure_run({"osd-uniform", "cube", Backend::CpuMt, 2}, quick(), ctx);
+  EXPECT_EQ(row.status, "unsupported");
+  EXPECT_FALSE(row.message.empty());
+}
+
+TEST(Plan, DefaultSetSkipsRefusedMeshesAndHonoursTheBudget) {
+  MeasureContext ctx(describe_machine());
+  Selection sel;
+  sel.schemes = {"osd-uniform-loop"};
+  const Plan plan = make_plan(sel, ctx);
+  ASSERT_FALSE(plan.runs.empty());
+  bool icosphere = false;
+  for (const auto& r : plan.runs) {
+    EXPECT_NE(r.mesh, "cube") << "Loop refuses quads: skipped in the default set";
+    icosphere |= r.mesh == "icosphere";
+  }
+  EXPECT_TRUE(icosphere);
+  Selection big;
+  big.schemes = {"osd-bfr"};
+  big.meshes = {"frog-party"};
+  big.max_triangles = 1'000'000;
+  for (const auto& r : make_plan(big, ctx).runs) EXPECT_LE(r.level, 17) << "11628 quads at N=17 is 6M triangles";
+  Selection pair;
+  pair.schemes = {"osd-uniform-loop"};
+  pair.meshes = {"cube"};
+  EXPECT_THROW(make_plan(pair, ctx), InputError) << "an explicit refused pair is bad input";
+}

@@ -1,0 +1,86 @@
+#include "machine.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace sdb {
+namespace {
+
+std::string first_line_of(const char* command) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command, "r"), pclose);
+  if (!pipe) return "";
+  std::array<char, 256> buf{};
+  if (!fgets(buf.data(), buf.size(), pipe.get())) return "";
+  std::string s = buf.data();
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+double memory_gib() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  long kb = 0;
+  in >> key >> kb;
+  return kb / 1048576.0;
+}
+
+}  // namespace
+
+MachineInfo describe_machine() {
+  MachineInfo m;
+  m.cpu_model = cpu_model();
+  m.cores = static_cast<int>(std::thread::hardware_concurrency());
+  m.memory_gib = memory_gib();
+  m.compiler = std::string("g++ ") + __VERSION__;
+  m.build_type = SDB_BUILD_TYPE;
+  m.git_commit = first_line_of("git -C " SDB_SOURCE_DIR " rev-parse --short HEAD 2>/dev/null");
+  if (!first_line_of("git -C " SDB_SOURCE_DIR " status --porcelain --untracked-files=no 2>/dev/null").empty())
+    m.git_commit += "-dirty";
+  return m;
+}
+
+double measure_write_bandwidth(int threads) {
+  long llc = sysconf(_SC_LEVEL3_CACHE_SIZE);
+  const size_t bytes = std::max<size_t>(size_t(256) << 20, 4 * static_cast<size_t>(std::max(llc, 0L)));
+  const size_t n = bytes / sizeof(float);
+  std::vector<float> buffer(n);  // touched once here so page faults are not timed
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::max(1, threads));
+  double best = 1e30;
+  for (int pass = 0; pass < 5; ++pass) {
+    const float value = static_cast<float>(pass + 1);
+    const auto start = std::chrono::steady_clock::now();
+    if (threads <= 1) {
+      std::fill(buffer.begin(), buffer.end(), value);
+    } else {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, n, size_t(1) << 20), [&](const tbb::blocked_range<size_t>& r) {
+        std::fill(buffer.begin() + static_cast<long>(r.begin()), buffer.begin() + static_cast<long>(r.end()), value);
+      });
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::min(best, s);
+  }
+  volatile float sink = buffer[n / 2];  // keep the stores observable
+  (void)sink;
+  return bytes / best / 1e9;
+}
+
+}  // namespace sdb

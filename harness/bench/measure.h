@@ -1,0 +1,64 @@
+// One measured run: a (scheme, backend, mesh, level) prepared once, validated once outside the
+// timed loop, then timed by Google Benchmark. Produces a results.json row.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "limit_evaluator.h"
+#include "results.h"
+#include "scheme.h"
+
+namespace sdb {
+
+struct RunSpec {
+  std::string scheme, mesh;
+  Backend backend = Backend::Cpu;
+  int level = 0;
+  std::string name() const;  // scheme/backend/mesh/level: Google Benchmark's name and filter key
+};
+
+struct MeasureOptions {
+  int reps = 5;
+  double min_time_s = 0.05;  // per repetition
+  bool time = true;          // false: record the one validated execution instead of benchmarking
+  bool validate = true;
+  bool hausdorff = true;
+  long rays = 100000;  // random lines; as many again aimed at base-face borders
+  uint64_t seed = 1;
+  int threads = 0;  // cpu-mt
+};
+
+// Meshes, accepted meshes and reference surfaces shared by the rows of one run.
+class MeasureContext {
+ public:
+  explicit MeasureContext(MachineInfo machine) : machine_(std::move(machine)) {}
+  const ControlMesh& mesh(const std::string& name);
+  // The mesh as the scheme takes it (quadrangulated when it asks); throws InputError if refused.
+  std::shared_ptr<const ControlMesh> accepted(const std::string& name, const Scheme& scheme);
+  const LimitEvaluator& reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
+  // A dense Catmull-Clark tessellation of the limit (osd-bfr), for Hausdorff distances.
+  const Tessellation& dense_reference(const std::shared_ptr<const ControlMesh>& mesh);
+  const MachineInfo& machine() const { return machine_; }
+
+ private:
+  MachineInfo machine_;
+  std::map<std::string, ControlMesh> meshes_;
+  std::map<std::string, std::shared_ptr<const ControlMesh>> accepted_;
+  std::map<const ControlMesh*, std::unique_ptr<LimitEvaluator>> references_;
+  std::map<const ControlMesh*, Tessellation> dense_;
+  std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
+};
+
+// Runs one spec start to finish. Throws InputError when the mesh is refused or the spec unknown;
+// returns a row with status "unsupported" when the scheme declines the backend or level.
+RunRow measure_run(const RunSpec& spec, const MeasureOptions& options, MeasureContext& context);
+
+// Validation only (exact weld, rays, deviation, Hausdorff) of one evaluation's output.
+void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& reference_mesh,
+                   SubdivisionRule rule, const MeasureOptions& options, MeasureContext& context);
+
+}  // namespace sdb

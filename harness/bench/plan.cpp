@@ -1,0 +1,88 @@
+#include "plan.h"
+
+#include <algorithm>
+
+#include "errors.h"
+#include "facts.h"
+#include "manifest.h"
+#include "registry.h"
+
+namespace sdb {
+namespace {
+
+// Output size of a run, to keep the default set within a budget: a quad gives 2 s^2 triangles,
+// a Loop triangle s^2, an n-gon's n sub-quads n s^2 / 2 (s = segments per edge).
+long estimated_triangles(const ControlMesh& accepted, const SchemeInfo& info, int level) {
+  const long seg = segments_per_edge(info.level_kind, level);
+  long doubled = 0;  // twice the count, to keep it integral
+  for (int n : accepted.face_sizes)
+    doubled += n == 4 ? 4 : (n == 3 && info.reference == SubdivisionRule::Loop ? 2 : n);
+  return doubled * seg * seg / 2;
+}
+
+}  // namespace
+
+std::vector<Backend> available_backends() {
+  std::vector<Backend> b = {Backend::Cpu, Backend::CpuMt};
+  // The Vulkan backend joins once harness/gpu reports a device (see list backends).
+  return b;
+}
+
+std::vector<std::string> default_meshes(bool all_corpus) {
+  std::vector<std::string> out;
+  for (const auto& e : list_meshes()) {
+    if (e.kind == "builtin") out.push_back(e.name);
+    else if (all_corpus || e.name.rfind("opensubdiv/", 0) != 0) out.push_back(e.name);
+  }
+  return out;
+}
+
+Plan make_plan(const Selection& sel, MeasureContext& ctx) {
+  Plan plan;
+  std::vector<const Scheme*> schemes;
+  if (sel.schemes.empty()) {
+    for (const auto& s : all_schemes()) schemes.push_back(s.get());
+  } else {
+    for (const auto& name : sel.schemes) {
+      const Scheme* s = find_scheme(name);
+      if (!s) throw InputError(name, "no such scheme (see `subdivbench list schemes`)");
+      schemes.push_back(s);
+    }
+  }
+  std::vector<Backend> backends;
+  for (const auto& b : sel.backends) {
+    auto parsed = parse_backend(b);
+    if (!parsed) throw InputError(b, "no such backend (cpu, cpu-mt, vulkan)");
+    backends.push_back(*parsed);
+  }
+  const std::vector<Backend> available = available_backends();
+  const bool explicit_pair = sel.schemes.size() == 1 && sel.meshes.size() == 1;
+  const std::vector<std::string> meshes = sel.meshes.empty() ? default_meshes(sel.all_corpus) : sel.meshes;
+  for (const Scheme* s : schemes) {
+    const SchemeInfo& info = s->info();
+    for (const auto& mesh : meshes) {
+      std::shared_ptr<const ControlMesh> accepted;
+      try {
+        accepted = ctx.accepted(mesh, *s);
+      } catch (const InputError& e) {
+        if (explicit_pair) throw;
+        if (!sel.meshes.empty()) plan.notes.push_back("skipped " + info.name + " on " + mesh + ": " + e.what());
+        continue;
+      }
+      for (Backend b : info.backends) {
+        if (!backends.empty() && std::find(backends.begin(), backends.end(), b) == backends.end()) continue;
+        if (std::find(available.begin(), available.end(), b) == available.end()) {
+          plan.notes.push_back("skipped " + info.name + " on " + std::string(to_string(b)) + ": backend unavailable");
+          continue;
+        }
+        for (int level : sel.levels.empty() ? info.default_levels : sel.levels) {
+          if (sel.levels.empty() && estimated_triangles(*accepted, info, level) > sel.max_triangles) continue;
+          plan.runs.push_back({info.name, mesh, b, level});
+        }
+      }
+    }
+  }
+  return plan;
+}
+
+}  // namespace sdb

@@ -1,0 +1,153 @@
+#include "results.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "errors.h"
+
+namespace sdb {
+
+using nlohmann::json;
+
+void to_json(json& j, const TimeStats& t) {
+  j = {{"median", t.median}, {"min", t.min}, {"max", t.max}, {"reps", t.reps}, {"samples", t.samples}};
+}
+void from_json(const json& j, TimeStats& t) {
+  t.median = j.at("median"), t.min = j.at("min"), t.max = j.at("max");
+  t.reps = j.value("reps", 0);
+  t.samples = j.value("samples", std::vector<double>{});
+}
+
+void to_json(json& j, const RunRow& r) {
+  j = {{"scheme", r.scheme},
+       {"backend", r.backend},
+       {"device", r.device},
+       {"mesh", r.mesh},
+       {"mesh_faces", r.mesh_faces},
+       {"mesh_vertices", r.mesh_vertices},
+       {"extraordinary_fraction", r.extraordinary_fraction},
+       {"level", r.level},
+       {"tessellation", r.tessellation},
+       {"triangles", r.triangles},
+       {"vertices", r.vertices},
+       {"time_ms", r.time_ms},
+       {"upload_ms", r.upload_ms},
+       {"readback_ms", r.readback_ms},
+       {"triangle_rate_mtris", r.triangle_rate_mtris},
+       {"bytes_out", r.bytes_out},
+       {"bandwidth_fraction", r.bandwidth_fraction},
+       {"watertight",
+        {{"open_edges", r.watertight.open_edges},
+         {"rays", r.watertight.rays},
+         {"ray_cracks", r.watertight.ray_cracks},
+         {"seed", r.watertight.seed}}},
+       {"status", r.status},
+       {"message", r.message}};
+  if (r.gpu_time_ms) j["gpu_time_ms"] = *r.gpu_time_ms;
+  if (!r.gpu_passes.empty()) {
+    json passes = json::array();
+    for (const auto& p : r.gpu_passes) passes.push_back({{"label", p.label}, {"ms", p.ms}});
+    j["gpu_passes"] = passes;
+  }
+  if (r.deviation.measured) {
+    const DeviationFigures& d = r.deviation;
+    j["deviation"] = {{"pos_max_pct", d.pos_max_pct},       {"pos_mean_pct", d.pos_mean_pct},
+                      {"pos_rms_pct", d.pos_rms_pct},       {"pos_p95_pct", d.pos_p95_pct},
+                      {"pos_max_rel_diag", d.pos_max_rel_diag}, {"normal_max_deg", d.normal_max_deg},
+                      {"normal_mean_deg", d.normal_mean_deg},   {"hausdorff_rel", d.hausdorff_rel}};
+  } else {
+    j["deviation"] = nullptr;
+  }
+}
+
+void from_json(const json& j, RunRow& r) {
+  r.scheme = j.at("scheme"), r.backend = j.at("backend"), r.device = j.value("device", "");
+  r.mesh = j.at("mesh");
+  r.mesh_faces = j.value("mesh_faces", 0), r.mesh_vertices = j.value("mesh_vertices", 0);
+  r.extraordinary_fraction = j.value("extraordinary_fraction", 0.0);
+  r.level = j.at("level"), r.tessellation = j.value("tessellation", 0);
+  r.triangles = j.value("triangles", 0L), r.vertices = j.value("vertices", 0L);
+  r.time_ms = j.at("time_ms").get<TimeStats>();
+  if (j.contains("gpu_time_ms")) r.gpu_time_ms = j["gpu_time_ms"].get<TimeStats>();
+  r.upload_ms = j.value("upload_ms", 0.0), r.readback_ms = j.value("readback_ms", 0.0);
+  if (j.contains("gpu_passes"))
+    for (const auto& p : j["gpu_passes"]) r.gpu_passes.push_back({p.at("label"), p.at("ms")});
+  r.triangle_rate_mtris = j.value("triangle_rate_mtris", 0.0);
+  r.bytes_out = j.value("bytes_out", 0L);
+  r.bandwidth_fraction = j.value("bandwidth_fraction", 0.0);
+  if (j.contains("watertight")) {
+    const json& w = j["watertight"];
+    r.watertight = {w.value("open_edges", -1L), w.value("rays", 0L), w.value("ray_cracks", -1L), w.value("seed", uint64_t(0))};
+  }
+  if (j.contains("deviation") && !j["deviation"].is_null()) {
+    const json& d = j["deviation"];
+    r.deviation.measured = true;
+    r.deviation.pos_max_pct = d.value("pos_max_pct", 0.0), r.deviation.pos_mean_pct = d.value("pos_mean_pct", 0.0);
+    r.deviation.pos_rms_pct = d.value("pos_rms_pct", 0.0), r.deviation.pos_p95_pct = d.value("pos_p95_pct", 0.0);
+    r.deviation.pos_max_rel_diag = d.value("pos_max_rel_diag", 0.0);
+    r.deviation.normal_max_deg = d.value("normal_max_deg", 0.0), r.deviation.normal_mean_deg = d.value("normal_mean_deg", 0.0);
+    r.deviation.hausdorff_rel = d.value("hausdorff_rel", -1.0);
+  }
+  r.status = j.value("status", "ok"), r.message = j.value("message", "");
+}
+
+void to_json(json& j, const MachineInfo& m) {
+  j = {{"cpu_model", m.cpu_model},       {"cores", m.cores},
+       {"memory_gib", m.memory_gib},     {"vulkan_device", m.vulkan_device},
+       {"vulkan_driver", m.vulkan_driver}, {"vulkan_api", m.vulkan_api},
+       {"compiler", m.compiler},         {"build_type", m.build_type},
+       {"git_commit", m.git_commit},     {"write_bandwidth_gbs", m.write_bandwidth_gbs},
+       {"write_bandwidth_mt_gbs", m.write_bandwidth_mt_gbs}};
+}
+void from_json(const json& j, MachineInfo& m) {
+  m.cpu_model = j.value("cpu_model", ""), m.cores = j.value("cores", 0), m.memory_gib = j.value("memory_gib", 0.0);
+  m.vulkan_device = j.value("vulkan_device", ""), m.vulkan_driver = j.value("vulkan_driver", "");
+  m.vulkan_api = j.value("vulkan_api", "");
+  m.compiler = j.value("compiler", ""), m.build_type = j.value("build_type", ""), m.git_commit = j.value("git_commit", "");
+  m.write_bandwidth_gbs = j.value("write_bandwidth_gbs", 0.0);
+  m.write_bandwidth_mt_gbs = j.value("write_bandwidth_mt_gbs", 0.0);
+}
+
+std::string row_json(const RunRow& row, int indent) { return json(row).dump(indent); }
+
+void write_results(const ResultsFile& r, const std::string& path) {
+  const json j = {{"schema", r.schema}, {"machine", r.machine}, {"created", r.created}, {"runs", r.runs}};
+  const std::string tmp = path + ".partial";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw InputError(path, "cannot write results");
+    out << j.dump(2) << "\n";
+    if (!out) throw InputError(path, "write failed");
+  }
+  // Written whole or not at all: a crash never leaves a partial file under the real name.
+  std::rename(tmp.c_str(), path.c_str());
+}
+
+ResultsFile read_results(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open results file");
+  json j;
+  try {
+    in >> j;
+  } catch (const json::parse_error& e) {
+    throw InputError(path, std::string("malformed JSON: ") + e.what());
+  }
+  if (!j.contains("schema") || !j["schema"].is_number_integer())
+    throw InputError(path, "not a subdivbench results file (no integer 'schema')");
+  if (j["schema"].get<int>() != kResultsSchema)
+    throw InputError(path, "unknown results schema " + std::to_string(j["schema"].get<int>()) + " (this build reads " +
+                               std::to_string(kResultsSchema) + ")");
+  ResultsFile r;
+  try {
+    r.schema = j["schema"];
+    r.machine = j.value("machine", json::object()).get<MachineInfo>();
+    r.created = j.value("created", "");
+    r.runs = j.at("runs").get<std::vector<RunRow>>();
+  } catch (const json::exception& e) {
+    throw InputError(path, std::string("malformed results: ") + e.what());
+  }
+  return r;
+}
+
+}  // namespace sdb

@@ -1,0 +1,81 @@
+// results.json: the contract between runs, reports, the gate and paper tables (ARCHITECTURE.md).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sdb {
+
+inline constexpr int kResultsSchema = 1;
+
+struct TimeStats {
+  double median = 0, min = 0, max = 0;
+  int reps = 0;
+  std::vector<double> samples;  // one per repetition, in run order (the gate's U test reads these)
+};
+
+struct WatertightFigures {
+  long open_edges = -1;  // -1: not checked
+  long rays = 0;
+  long ray_cracks = -1;  // -1: not checked (open surfaces have no parity argument)
+  uint64_t seed = 0;
+};
+
+struct DeviationFigures {
+  bool measured = false;
+  double pos_max_pct = 0, pos_mean_pct = 0, pos_rms_pct = 0, pos_p95_pct = 0;
+  double pos_max_rel_diag = 0;
+  double normal_max_deg = 0, normal_mean_deg = 0;
+  double hausdorff_rel = -1;  // -1: not measured
+};
+
+struct GpuPass {
+  std::string label;
+  double ms = 0;
+};
+
+struct RunRow {
+  std::string scheme, backend, device, mesh;
+  int mesh_faces = 0, mesh_vertices = 0;
+  double extraordinary_fraction = 0;
+  int level = 0;
+  int tessellation = 0;  // segments per base-face edge the level stands for
+  long triangles = 0, vertices = 0;
+  TimeStats time_ms;                     // wall time of Evaluation::execute()
+  std::optional<TimeStats> gpu_time_ms;  // vulkan: kernel time from timestamp queries
+  double upload_ms = 0, readback_ms = 0;
+  std::vector<GpuPass> gpu_passes;
+  double triangle_rate_mtris = 0;  // from the median time (GPU time for vulkan)
+  long bytes_out = 0;
+  double bandwidth_fraction = 0;  // rate x bytes per triangle / the machine's write bandwidth
+  WatertightFigures watertight;
+  DeviationFigures deviation;
+  std::string status = "ok";  // "ok" | "failed" | "unsupported"
+  std::string message;
+};
+
+struct MachineInfo {
+  std::string cpu_model;
+  int cores = 0;
+  double memory_gib = 0;
+  std::string vulkan_device, vulkan_driver, vulkan_api;
+  std::string compiler, build_type, git_commit;
+  double write_bandwidth_gbs = 0;     // one thread, streaming store
+  double write_bandwidth_mt_gbs = 0;  // all threads
+};
+
+struct ResultsFile {
+  int schema = kResultsSchema;
+  MachineInfo machine;
+  std::string created;  // ISO 8601, UTC
+  std::vector<RunRow> runs;
+};
+
+std::string row_json(const RunRow& row, int indent = 2);
+void write_results(const ResultsFile& results, const std::string& path);
+// Throws InputError for unreadable files, malformed JSON or an unknown schema.
+ResultsFile read_results(const std::string& path);
+
+}  // namespace sdb

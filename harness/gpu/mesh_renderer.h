@@ -1,0 +1,66 @@
+// Drawing a Tessellation (or a scheme's own position/normal/index buffers) into a RenderTarget:
+// headlight Lambert shading on the normals, two-sided, and a camera that frames the bounding box.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "buffer.h"
+#include "commands.h"
+#include "context.h"
+#include "image.h"
+#include "pipeline.h"
+#include "render_target.h"
+#include "tessellation.h"
+
+namespace sdb::gpu {
+
+// Column-major 4x4 matrices; Vulkan clip space (y down, depth 0..1).
+struct Camera {
+  std::array<float, 16> view{};
+  std::array<float, 16> projection{};
+};
+
+// Looks at the box's centre from a fixed oblique direction (y up), far enough that its bounding
+// sphere fits a 35-degree vertical field of view (and the horizontal one when aspect < 1).
+Camera frame_bounds(const Point3& lo, const Point3& hi, float aspect);
+Camera frame_tessellation(const Tessellation& tess, float aspect);
+std::array<float, 16> multiply(const std::array<float, 16>& a, const std::array<float, 16>& b);
+
+// Buffers to draw: float3 positions and float3 unit normals, tightly packed (12-byte stride),
+// and uint32 triangle indices. The buffers need Vertex (positions, normals) and Index usage.
+struct MeshView {
+  const Buffer* positions = nullptr;
+  const Buffer* normals = nullptr;
+  const Buffer* indices = nullptr;
+  uint32_t index_count = 0;
+  uint64_t positions_offset = 0;
+  uint64_t normals_offset = 0;
+  uint64_t indices_offset = 0;
+};
+
+struct GpuMesh {
+  Buffer positions, normals, indices;
+  uint32_t index_count = 0;
+  MeshView view() const { return {&positions, &normals, &indices, index_count}; }
+};
+
+// Device buffers holding the tessellation (blocking upload). std::invalid_argument when normals
+// or triangles are missing.
+GpuMesh upload_mesh(Context& ctx, const Tessellation& tess);
+
+class MeshRenderer {
+ public:
+  explicit MeshRenderer(Context& ctx, bool wireframe = false);
+  // Inside RenderTarget::begin/end.
+  void draw(Commands& cmd, const MeshView& mesh, const Camera& camera,
+            std::array<float, 3> colour = {0.80f, 0.72f, 0.60f}) const;
+
+ private:
+  GraphicsPipeline pipeline_;
+};
+
+// One picture for reports: uploads, renders on white and reads back (blocking).
+Image render_image(Context& ctx, const Tessellation& tess, uint32_t width = 1024, uint32_t height = 768);
+
+}  // namespace sdb::gpu

@@ -1,0 +1,21 @@
+#version 450
+// Position and normal to view space for headlight shading; see mesh_renderer.cpp for the block.
+
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+
+layout(push_constant) uniform Push {
+  mat4 mvp;
+  vec4 view_rows[3];  // the view matrix's first three rows
+  vec4 colour;
+} pc;
+
+layout(location = 0) out vec3 view_position;
+layout(location = 1) out vec3 view_normal;
+
+void main() {
+  vec4 p = vec4(position, 1.0);
+  view_position = vec3(dot(pc.view_rows[0], p), dot(pc.view_rows[1], p), dot(pc.view_rows[2], p));
+  view_normal = vec3(dot(pc.view_rows[0].xyz, normal), dot(pc.view_rows[1].xyz, normal), dot(pc.view_rows[2].xyz, normal));
+  gl_Position = pc.mvp * p;
+}

@@ -1,0 +1,36 @@
+// GoogleTest support for tests that need a Vulkan device, for this module and for schemes.
+//
+//   class MyTest : public sdb::gpu::testing::VulkanTest {};
+//   TEST_F(MyTest, Works) { sdb::gpu::Context& c = ctx(); ... }
+//
+// A VulkanTest is skipped, with the reason, when there is no device; it fails when the
+// validation layer reports an error during the test. The context is gpu::shared_context(),
+// created with validation on (when the layer is installed), so scheme code that calls
+// shared_context() runs under the same checks. At the end the binary prints
+// "vulkan tests run on <device>: N" (or why none ran).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "context.h"
+
+namespace sdb::gpu::testing {
+
+// The shared context, created on first use for tests; null when there is no device.
+Context* test_context();
+const std::string& unavailable_reason();
+
+class VulkanTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+  Context& ctx() { return *ctx_; }
+
+ private:
+  Context* ctx_ = nullptr;
+  uint64_t errors_before_ = 0;
+};
+
+}  // namespace sdb::gpu::testing

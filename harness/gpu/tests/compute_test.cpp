@@ -1,0 +1,119 @@
+// A 3x3 mask applied on the device equals the CPU's result bit for bit; a recorded command
+// buffer can be submitted again; specialization constants reach the shader.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "gpu.h"
+#include "gpu_test_shaders.h"
+#include "testing.h"
+
+namespace sdb::gpu {
+namespace {
+
+class ComputeTest : public testing::VulkanTest {};
+
+struct MaskPush {
+  float weights[9];
+  uint32_t width;
+  uint32_t height;
+};
+
+// Same order as mask3x3.comp: rows top to bottom, each left to right, multiply then add, each
+// rounded to float (this file is built with -ffp-contract=off, so no FMA here either).
+std::vector<float> mask_on_cpu(const std::vector<float>& src, uint32_t w, uint32_t h, const float* weights) {
+  std::vector<float> dst(src.size());
+  for (int y = 0; y < int(h); ++y)
+    for (int x = 0; x < int(w); ++x) {
+      float sum = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int sx = std::clamp(x + dx, 0, int(w) - 1);
+          const int sy = std::clamp(y + dy, 0, int(h) - 1);
+          const float product = weights[(dy + 1) * 3 + (dx + 1)] * src[size_t(sy) * w + sx];
+          sum = sum + product;
+        }
+      dst[size_t(y) * w + x] = sum;
+    }
+  return dst;
+}
+
+// Values in [1e-3, 1): no subnormals, which a GPU may flush to zero.
+std::vector<float> random_image(uint32_t w, uint32_t h) {
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<float> dist(1e-3f, 1.0f);
+  std::vector<float> v(size_t(w) * h);
+  for (float& x : v) x = dist(rng);
+  return v;
+}
+
+TEST_F(ComputeTest, Mask3x3MatchesCpuBitForBit) {
+  const uint32_t w = 333, h = 217;  // not multiples of the 8x8 work group
+  const std::vector<float> image = random_image(w, h);
+  const MaskPush push{{0.07f, 0.13f, 0.05f, 0.11f, 0.28f, 0.09f, 0.06f, 0.12f, 0.09f}, w, h};
+
+  ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("mask3x3.comp"),
+                                   {Binding::StorageBuffer, Binding::StorageBuffer}, sizeof(MaskPush)});
+  Buffer src = device_buffer_with(ctx(), image, BufferUsage::Storage, "src");
+  Buffer dst = Buffer::device(ctx(), src.size(), BufferUsage::Storage, "dst");
+  DescriptorSet set(pipeline, {src.range(), dst.range()});
+  ctx().run([&](Commands& cmd) {
+    cmd.bind(pipeline, set);
+    cmd.push(push);
+    cmd.dispatch((w + 7) / 8, (h + 7) / 8);
+  });
+  const std::vector<float> gpu = download_as<float>(ctx(), dst, image.size());
+  const std::vector<float> cpu = mask_on_cpu(image, w, h, push.weights);
+
+  size_t differing = 0, first = 0;
+  for (size_t i = 0; i < cpu.size(); ++i)
+    if (std::memcmp(&cpu[i], &gpu[i], sizeof(float)) != 0 && differing++ == 0) first = i;
+  EXPECT_EQ(differing, 0u) << "first difference at pixel " << first << ": cpu " << cpu[first] << ", gpu "
+                           << gpu[first];
+}
+
+TEST_F(ComputeTest, RecordingSubmitsAgainAndSpecializationConstantsApply) {
+  const uint32_t count = 1000;
+  std::vector<float> values(count);
+  for (uint32_t i = 0; i < count; ++i) values[i] = float(i);
+  const float factor = 2.0f;
+  uint32_t factor_bits;
+  std::memcpy(&factor_bits, &factor, sizeof factor_bits);
+  ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("scale.comp"), {Binding::StorageBuffer}, 4, {{0, factor_bits}}});
+  Buffer data = device_buffer_with(ctx(), values, BufferUsage::Storage, "data");
+  DescriptorSet set(pipeline, {data.range()});
+  const Recording recording = ctx().record([&](Commands& cmd) {
+    cmd.bind(pipeline, set);
+    cmd.push(count);
+    cmd.dispatch(groups_for(count, 64, ctx().limits()));
+  });
+  for (int i = 0; i < 3; ++i) ctx().submit(recording);
+  const std::vector<float> out = download_as<float>(ctx(), data, count);
+  for (uint32_t i = 0; i < count; ++i) ASSERT_EQ(out[i], 8.0f * float(i)) << "element " << i;
+}
+
+TEST_F(ComputeTest, WrongBindingsAreRefusedBeforeVulkanSeesThem) {
+  ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("scale.comp"), {Binding::StorageBuffer}, 4});
+  Buffer uniform_only = Buffer::device(ctx(), 256, BufferUsage::Uniform, "uniform only");
+  Buffer storage = Buffer::device(ctx(), 256, BufferUsage::Storage, "storage");
+  EXPECT_THROW(DescriptorSet(pipeline, {uniform_only.range()}), std::invalid_argument);
+  EXPECT_THROW(DescriptorSet(pipeline, {storage.range(), storage.range()}), std::invalid_argument);
+  EXPECT_THROW(DescriptorSet(pipeline, {storage.range(300)}), std::invalid_argument);
+  ctx().run([&](Commands& cmd) {
+    cmd.bind(pipeline);
+    EXPECT_THROW(cmd.push_constants(&pipeline, 8), std::invalid_argument);  // declared 4 bytes
+  });
+}
+
+TEST(EmbeddedShaders, LookupByFileName) {
+  EXPECT_THROW(gpu_test_shaders::get("missing.comp"), std::out_of_range);
+  EXPECT_EQ(gpu_test_shaders::all().size(), 8u);
+  EXPECT_EQ(gpu_test_shaders::get("mask3x3.comp").words[0], 0x07230203u);  // SPIR-V magic
+}
+
+}  // namespace
+}  // namespace sdb::gpu

@@ -1,0 +1,46 @@
+// Small RAII layer over Embree 3: a process-wide device and a static triangle scene that answers
+// "every crossing along a line" (for the ray-crack check) and "closest point" (for Hausdorff).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "control_mesh.h"
+
+namespace sdb {
+
+// The process-wide Embree device.
+RTCDevice embree_device();
+// Throws std::runtime_error with `what` if Embree reported an error on this thread.
+void check_embree(const char* what);
+
+class EmbreeTriangleScene {
+ public:
+  // positions: xyz per vertex; triangles: three indices each.
+  EmbreeTriangleScene(const std::vector<Point3>& positions, const std::vector<uint32_t>& triangles);
+  ~EmbreeTriangleScene();
+  EmbreeTriangleScene(const EmbreeTriangleScene&) = delete;
+  EmbreeTriangleScene& operator=(const EmbreeTriangleScene&) = delete;
+
+  struct LineCrossings {
+    int count = 0;
+    // A hit closer to a triangle's edge or vertex than its barycentrics can be trusted (at least
+    // `edge_eps`, more for grazing lines and far origins): whether the line crosses there,
+    // touches a ridge or passes between two triangles is not decidable in float.
+    bool ambiguous = false;
+  };
+  // Every crossing of origin + t * dir for t in [0, tfar]. Thread-safe.
+  LineCrossings crossings(const float origin[3], const float dir[3], float tfar, float edge_eps) const;
+
+  // Closest point on the surface to p; returns the distance. Thread-safe.
+  double closest_distance(const double p[3]) const;
+
+ private:
+  RTCScene scene_ = nullptr;
+  std::vector<Point3> positions_;
+  std::vector<uint32_t> triangles_;
+};
+
+}  // namespace sdb

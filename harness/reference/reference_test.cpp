@@ -1,0 +1,191 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "deviation.h"
+#include "errors.h"
+#include "facts.h"
+#include "generators.h"
+#include "limit_evaluator.h"
+#include "manifest.h"
+#include "peers.h"
+#include "quadrangulate.h"
+#include "watertight.h"
+
+using namespace sdb;
+
+namespace {
+
+const Scheme& peer(const std::string& name) {
+  static const auto peers = make_peer_schemes();
+  for (const auto& p : peers)
+    if (p->info().name == name) return *p;
+  throw std::logic_error("no peer " + name);
+}
+
+Tessellation run_peer(const std::string& name, const ControlMesh& mesh, int level, Backend b = Backend::Cpu) {
+  const Scheme& s = peer(name);
+  const ControlMesh accepted = accept_mesh(mesh, s.info());
+  auto e = s.prepare(accepted, {b, level, 0});
+  e->execute();
+  Tessellation t = e->result();
+  if (!t.reference) t.reference = std::make_shared<ControlMesh>(accepted);
+  return t;
+}
+
+bool corpus_present() { return corpus_dir().has_value(); }
+
+double diag(const ControlMesh& m) {
+  double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
+  for (const auto& p : m.positions)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(p[k])), hi[k] = std::max(hi[k], double(p[k]));
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+}  // namespace
+
+// On an all-regular mesh the limit is a bicubic B-spline: the three peers and the reference agree
+// to float precision at the same SurfaceCoord.
+TEST(Peers, AgreeWithTheReferenceOnTheRegularTorus) {
+  const ControlMesh torus = gen::torus(12, 20);
+  const LimitEvaluator ref(torus, SubdivisionRule::CatmullClark);
+  for (const auto& [name, level] : std::vector<std::pair<std::string, int>>{
+           {"osd-uniform", 3}, {"osd-bfr", 9}, {"embree-subdiv", 9}}) {
+    const DeviationReport d = measure_deviation(run_peer(name, torus, level), ref);
+    EXPECT_LE(d.pos_max_rel_diag, 1e-5) << name;
+    EXPECT_LE(d.normal_max_deg, 1e-2) << name;
+    EXPECT_GT(d.vertices, 0) << name;
+  }
+}
+
+// The reference near extraordinary vertices: Bfr refines irregular faces towards the corner to
+// the approximation level L. Levels 9 and 10 must agree to double precision at the corner and at
+// ptex distance >= 2^-8 from it (every sample a scheme takes); inside, the residual is bounded.
+TEST(LimitEvaluator, ApproximationLevelsAgreeAwayFromTheExtraordinaryCorner) {
+  std::vector<ControlMesh> meshes = {gen::pole(7), gen::pole(3)};
+  if (corpus_present()) meshes.push_back(load_mesh("opensubdiv/catmark_pole64"));
+  for (const ControlMesh& m : meshes) {
+    const LimitEvaluator fine(m, SubdivisionRule::CatmullClark, {10, 10});
+    const LimitEvaluator coarse(m, SubdivisionRule::CatmullClark, {9, 9});
+    double outside = 0, inside = 0;
+    for (int f = 0; f < fine.num_ptex_faces(); ++f)
+      for (float t : {0.0f, 1.0f / 1024, 1.0f / 512, 1.0f / 256, 1.0f / 64, 0.25f})
+        for (const auto& [u, v] : {std::pair{t, 0.0f}, std::pair{t, t}, std::pair{1 - t, 1 - t}, std::pair{0.0f, 1 - t}}) {
+          const auto a = fine.evaluate({uint32_t(f), u, v}), b = coarse.evaluate({uint32_t(f), u, v});
+          double& worst = (t == 0 || t >= 1.0f / 256) ? outside : inside;
+          for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a.position[k] - b.position[k]));
+        }
+    EXPECT_LE(outside / diag(m), 1e-12) << m.name;
+    EXPECT_LE(inside / diag(m), 1e-3) << m.name;
+  }
+}
+
+// Derivatives are with respect to ptex (u,v), also on the sub-faces of n-gons.
+TEST(LimitEvaluator, DerivativesMatchFiniteDifferencesOnNgonSubfaces) {
+  ControlMesh m = gen::cube();
+  // Two pentagons: the midpoint of edge (0,1) inserted into both faces that share it.
+  m.positions.push_back({0, -1, -1});
+  m.face_sizes = {5, 4, 5, 4, 4, 4};
+  m.face_vertices = {0, 3, 2, 1, 8, 4, 5, 6, 7, 0, 8, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7};
+  ASSERT_TRUE(compute_facts(m).closed);
+  const LimitEvaluator ref(m, SubdivisionRule::CatmullClark);
+  ASSERT_EQ(ref.num_ptex_faces(), 5 + 1 + 5 + 1 + 1 + 1);
+  const double h = 1e-5;
+  for (int f = 0; f < ref.num_ptex_faces(); ++f) {
+    const SurfaceCoord c{uint32_t(f), 0.4f, 0.3f};
+    const auto s = ref.evaluate(c);
+    const auto su = ref.evaluate({c.face, float(c.u + h), c.v}), sv = ref.evaluate({c.face, c.u, float(c.v + h)});
+    const double hu = double(float(c.u + h)) - c.u, hv = double(float(c.v + h)) - c.v;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR((su.position[k] - s.position[k]) / hu, s.du[k], 1e-2) << "ptex " << f;
+      EXPECT_NEAR((sv.position[k] - s.position[k]) / hv, s.dv[k], 1e-2) << "ptex " << f;
+    }
+  }
+}
+
+// Uniform refinement tracks SurfaceCoords through n-gon sub-faces and triangles (Spot has both):
+// osd-uniform's limit points sit on the reference at their coords.
+TEST(Peers, UniformCoordsLandOnTheLimitOfSpot) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const ControlMesh spot = load_mesh("crane/spot_control");
+  const LimitEvaluator ref(spot, SubdivisionRule::CatmullClark);
+  for (int level : {1, 2, 3}) {
+    const DeviationReport d = measure_deviation(run_peer("osd-uniform", spot, level), ref);
+    EXPECT_LE(d.pos_max_rel_diag, 1e-5) << "level " << level;
+    EXPECT_LE(d.normal_max_deg, 0.05) << "level " << level;
+  }
+  // osd-bfr evaluates the n-gons through Bfr's sub-face parametrization: same surface.
+  const DeviationReport b = measure_deviation(run_peer("osd-bfr", spot, 5), ref);
+  EXPECT_LE(b.pos_max_rel_diag, 1e-4);
+}
+
+TEST(Peers, LoopUniformMatchesTheLoopLimit) {
+  const ControlMesh ico = gen::icosphere(1);
+  const LimitEvaluator ref(ico, SubdivisionRule::Loop);
+  const DeviationReport d = measure_deviation(run_peer("osd-uniform-loop", ico, 3), ref);
+  EXPECT_LE(d.pos_max_rel_diag, 1e-5);
+  EXPECT_LE(d.normal_max_deg, 0.05);
+}
+
+// Uniform refinement + PrimvarRefiner::Limit is exact only once the depth exceeds every
+// semi-sharp crease (Far's limit masks treat sharpness left at the last level as infinite); these
+// shapes have sharpness up to 5, so depth 6.
+TEST(Peers, OsdUniformHonoursCreasesAndHolesBeyondTheirSharpness) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  for (const char* name : {"opensubdiv/catmark_cube_creases1", "opensubdiv/catmark_hole_test1",
+                           "opensubdiv/catmark_edgecorner", "opensubdiv/catmark_cube_corner4"}) {
+    const ControlMesh m = load_mesh(name);
+    EXPECT_LE(measure_deviation(run_peer("osd-uniform", m, 6), LimitEvaluator(m, SubdivisionRule::CatmullClark))
+                  .pos_max_rel_diag,
+              1e-5)
+        << name;
+  }
+  // Below that depth the peer's error is real and large: the reason for the rule above.
+  const ControlMesh creased = load_mesh("opensubdiv/catmark_cube_creases1");
+  EXPECT_GT(measure_deviation(run_peer("osd-uniform", creased, 3), LimitEvaluator(creased, SubdivisionRule::CatmullClark))
+                .pos_max_rel_diag,
+            1e-3);
+  // Chaikin creases: Far's uniform path and Bfr disagree by a steady ~4.5e-4 of the diagonal at
+  // depths 5..7 (measured; Bfr matches the reference to 1e-7). Kept as a bound, reported in README.
+  const ControlMesh chaikin = load_mesh("opensubdiv/catmark_chaikin1");
+  const LimitEvaluator ref(chaikin, SubdivisionRule::CatmullClark);
+  EXPECT_LE(measure_deviation(run_peer("osd-uniform", chaikin, 6), ref).pos_max_rel_diag, 1e-3);
+  EXPECT_LE(measure_deviation(run_peer("osd-bfr", chaikin, 9), ref).pos_max_rel_diag, 1e-6);
+}
+
+// osd-bfr raises Bfr's approximation level to what its rate samples, so it lands on the limit
+// even next to high-valence vertices (Bfr's default level 2 misses by up to 1e-2 of the diagonal).
+// The bound is float evaluation (1.5e-6 measured at valence 64) under the 1e-5 used throughout.
+TEST(Peers, OsdBfrIsExactAtItsSamplesNearExtraordinaryVertices) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  for (const char* name : {"opensubdiv/catmark_hole_test1", "opensubdiv/catmark_pole64", "crane/blub_control"})
+    for (int rate : {5, 17, 33}) {
+      const ControlMesh m = load_mesh(name);
+      EXPECT_LE(measure_deviation(run_peer("osd-bfr", m, rate), LimitEvaluator(m, SubdivisionRule::CatmullClark))
+                    .pos_max_rel_diag,
+                1e-5)
+          << name << " N=" << rate;
+    }
+}
+
+TEST(Peers, MultithreadedIsIdenticalToOneThread) {
+  const ControlMesh m = gen::random_quads(600, 0.6);
+  for (const char* name : {"osd-bfr", "embree-subdiv"}) {
+    const Tessellation a = run_peer(name, m, 9, Backend::Cpu), b = run_peer(name, m, 9, Backend::CpuMt);
+    EXPECT_EQ(a.positions, b.positions) << name;
+    EXPECT_EQ(a.normals, b.normals) << name;
+  }
+}
+
+// Peers share border points, so every closed input gives a closed tessellation.
+TEST(Peers, ClosedBuiltinsGiveClosedTessellations) {
+  for (const char* mesh : {"cube", "quadsphere", "pole3", "pole8", "creased-cube", "frog-standin"})
+    for (const auto& [name, level] : std::vector<std::pair<std::string, int>>{
+             {"osd-uniform", 2}, {"osd-bfr", 5}, {"embree-subdiv", 5}}) {
+      const Tessellation t = run_peer(name, load_mesh(mesh), level);
+      EXPECT_EQ(count_open_edges(t), 0) << name << " on " << mesh;
+      const RayCrackReport r = ray_crack_check(t, {20000, 20000, 7});
+      EXPECT_EQ(r.cracks, 0) << name << " on " << mesh;
+    }
+}

@@ -1,0 +1,20 @@
+// SurfaceCoords of the vertices of a uniformly refined mesh: which ptex face and (u,v) of the
+// base mesh each level-k vertex lies at. Needed by every recursive scheme (osd-uniform, mesh
+// fragments, MiPGH) to compare with the reference at the same surface point.
+#pragma once
+
+#include <opensubdiv/far/topologyRefiner.h>
+
+#include <vector>
+
+#include "osd_topology.h"
+#include "tessellation.h"
+
+namespace sdb {
+
+// One SurfaceCoord per vertex of level `level` (refiner refined uniformly at least that far).
+// Vertices on ptex borders get the coord of one of their faces.
+std::vector<SurfaceCoord> uniform_vertex_coords(const OpenSubdiv::Far::TopologyRefiner& refiner,
+                                                SubdivisionRule rule, int level);
+
+}  // namespace sdb

@@ -1,0 +1,144 @@
+#include "deviation.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "embree_scene.h"
+
+namespace sdb {
+namespace {
+
+double diagonal(const std::vector<Point3>& p) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const auto& q : p)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(q[k])), hi[k] = std::max(hi[k], double(q[k]));
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+struct Stats {
+  double max = 0, mean = 0, rms = 0, p95 = 0;
+};
+
+Stats stats_of(std::vector<double> v) {
+  Stats s;
+  if (v.empty()) return s;
+  double sum = 0, sq = 0;
+  for (double x : v) sum += x, sq += x * x, s.max = std::max(s.max, x);
+  s.mean = sum / v.size();
+  s.rms = std::sqrt(sq / v.size());
+  const size_t k = static_cast<size_t>(std::ceil(0.95 * v.size())) - 1;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  s.p95 = v[k];
+  return s;
+}
+
+// Vertices used by at least one triangle: unreferenced ones (inside holes) have no surface.
+std::vector<char> referenced(const Tessellation& t) {
+  std::vector<char> used(t.positions.size(), 0);
+  for (uint32_t i : t.triangles) used[i] = 1;
+  return used;
+}
+
+}  // namespace
+
+DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& ref) {
+  DeviationReport r;
+  const size_t n = t.positions.size();
+  r.vertex_pct.assign(n, 0.0f);
+  r.vertex_deg.assign(n, 0.0f);
+  const std::vector<char> used = referenced(t);
+  std::vector<double> dist(n, 0.0), abs_dist(n, 0.0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      if (!used[i]) continue;
+      const SurfaceCoord c = t.coords[i];
+      const LimitSample s = ref.evaluate(c);
+      double d2 = 0, dot = 0, nn = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double e = double(t.positions[i][k]) - s.position[k];
+        d2 += e * e;
+        dot += double(t.normals[i][k]) * s.normal[k];
+        nn += double(t.normals[i][k]) * t.normals[i][k];
+      }
+      abs_dist[i] = std::sqrt(d2);
+      dist[i] = 100.0 * abs_dist[i] / ref.local_size(static_cast<int>(c.face));
+      const double cosine = nn > 0 ? std::clamp(dot / std::sqrt(nn), -1.0, 1.0) : -1.0;
+      r.vertex_pct[i] = static_cast<float>(dist[i]);
+      r.vertex_deg[i] = static_cast<float>(std::acos(cosine) * 180.0 / M_PI);
+    }
+  });
+  std::vector<double> pct, deg;
+  double max_abs = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (used[i]) pct.push_back(dist[i]), deg.push_back(r.vertex_deg[i]), max_abs = std::max(max_abs, abs_dist[i]);
+  const Stats p = stats_of(pct), a = stats_of(deg);
+  r.pos_max_pct = p.max, r.pos_mean_pct = p.mean, r.pos_rms_pct = p.rms, r.pos_p95_pct = p.p95;
+  r.normal_max_deg = a.max, r.normal_mean_deg = a.mean, r.normal_rms_deg = a.rms, r.normal_p95_deg = a.p95;
+  const double diag = diagonal(ref.mesh().positions);
+  r.pos_max_rel_diag = diag > 0 ? max_abs / diag : 0;
+  r.vertices = static_cast<long>(pct.size());
+  return r;
+}
+
+namespace {
+
+// Metro samples a surface at its vertices and at area-weighted random points of its triangles;
+// returns distances to `target` of `samples` such points (at least every vertex).
+std::vector<double> one_sided(const Tessellation& source, const EmbreeTriangleScene& target, long random_samples,
+                              uint64_t seed) {
+  std::vector<std::array<double, 3>> points;
+  const std::vector<char> used = referenced(source);
+  for (size_t i = 0; i < source.positions.size(); ++i)
+    if (used[i]) points.push_back({source.positions[i][0], source.positions[i][1], source.positions[i][2]});
+  std::vector<double> cumulative;
+  double area = 0;
+  const auto& P = source.positions;
+  for (size_t i = 0; i + 2 < source.triangles.size(); i += 3) {
+    const auto &a = P[source.triangles[i]], &b = P[source.triangles[i + 1]], &c = P[source.triangles[i + 2]];
+    const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+    const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+    area += 0.5 * std::sqrt(x * x + y * y + z * z);
+    cumulative.push_back(area);
+  }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (long s = 0; s < random_samples && area > 0; ++s) {
+    const size_t tri = std::lower_bound(cumulative.begin(), cumulative.end(), U(rng) * area) - cumulative.begin();
+    double r1 = U(rng), r2 = U(rng);
+    if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
+    const size_t i = 3 * std::min(tri, cumulative.size() - 1);
+    const auto &a = P[source.triangles[i]], &b = P[source.triangles[i + 1]], &c = P[source.triangles[i + 2]];
+    points.push_back({a[0] + r1 * (double(b[0]) - a[0]) + r2 * (double(c[0]) - a[0]),
+                      a[1] + r1 * (double(b[1]) - a[1]) + r2 * (double(c[1]) - a[1]),
+                      a[2] + r1 * (double(b[2]) - a[2]) + r2 * (double(c[2]) - a[2])});
+  }
+  std::vector<double> d(points.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 512), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) d[i] = target.closest_distance(points[i].data());
+  });
+  return d;
+}
+
+}  // namespace
+
+HausdorffReport hausdorff(const Tessellation& output, const Tessellation& reference) {
+  HausdorffReport h;
+  const double diag = diagonal(reference.positions);
+  if (diag <= 0 || output.triangles.empty() || reference.triangles.empty()) return h;
+  const EmbreeTriangleScene out_scene(output.positions, output.triangles);
+  const EmbreeTriangleScene ref_scene(reference.positions, reference.triangles);
+  const long samples = 100000;
+  const Stats f = stats_of(one_sided(output, ref_scene, samples, 1));
+  const Stats b = stats_of(one_sided(reference, out_scene, samples, 2));
+  h.forward_mean = f.mean / diag, h.forward_rms = f.rms / diag, h.forward_max = f.max / diag;
+  h.backward_mean = b.mean / diag, h.backward_rms = b.rms / diag, h.backward_max = b.max / diag;
+  h.samples = 2 * samples;
+  return h;
+}
+
+}  // namespace sdb
