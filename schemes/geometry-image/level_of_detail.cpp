@@ -38,7 +38,8 @@ std::vector<Point3> subdivide_linearly(const std::vector<Point3>& c, int n) {
       if (x % 2 == 0 && y % 2 == 0) out = at(cx, cy);
       else if (y % 2 == 0) out = midpoint(at(cx, cy), at(cx + 1, cy));
       else if (x % 2 == 0) out = midpoint(at(cx, cy), at(cx, cy + 1));
-      else out = midpoint(at(cx, cy), at(cx + 1, cy + 1));  // on the diagonal
+      else if (anti_diagonal(cx, cy, n)) out = midpoint(at(cx + 1, cy), at(cx, cy + 1));  // on the diagonal
+      else out = midpoint(at(cx, cy), at(cx + 1, cy + 1));
     }
   return f;
 }

@@ -1,8 +1,8 @@
 // Continuous level of detail (Section 5, "Continuous level-of-detail" and "Subsampling images").
 //
 // p^{k+alpha}, 0 < alpha <= 1, blends p^{k+1} with the linear subdivision of p^k, both on the
-// grid of level k+1 and triangulated with every diagonal along (x, y)-(x+1, y+1) so that no
-// diagonal flips between levels. As the paper does, p^k is not computed separately: its samples
+// grid of level k+1 and triangulated with fixed diagonal directions (one per quadrant,
+// tessellation_grid.h) so that no diagonal flips between levels. As the paper does, p^k is not computed separately: its samples
 // are gathered from p^{k+1} by subsampling (the limit points of g^k's vertices are the limit points
 // of their children in g^{k+1}). Normals are blended the same way, then made unit (Tessellation
 // asks for unit normals; the paper leaves them unnormalised for Gouraud shading).
@@ -29,7 +29,7 @@ struct LimitGrid {
 // at (n - 1) / 2, stay on the coarse grid and it is a geometry image again.
 LimitGrid subsample(const LimitGrid& fine);
 // Linear subdivision of the triangulated grid: edge midpoints, and for each quad the midpoint of
-// its diagonal. Size 2n - 1.
+// its diagonal (grid_triangles' choice). Size 2n - 1.
 LimitGrid linear_subdivide(const LimitGrid& coarse);
 // (1 - alpha) linear_subdivide(subsample(fine)) + alpha fine, normals made unit.
 LimitGrid blend_levels(const LimitGrid& fine, double alpha);

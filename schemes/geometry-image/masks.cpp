@@ -212,7 +212,9 @@ void normal_pass(const PaddedImage& src, Point3* normals, RowRange rows) {
         // that is not tiny; unlike a max() or a select it lets the loop vectorise.
         const float len2 = cx * cx + cy * cy + cz * cz + kTiny;
         const float inv = 1.0f / std::sqrt(len2);
-        nn[0][i] = cx * inv, nn[1][i] = cy * inv, nn[2][i] = cz * inv;
+        // + 0.0f turns -0 into +0: a zero tangent component is +0 on both sides of the cut
+        // (x - x is +0), so a product with it can be -0 on one side and +0 on the other.
+        nn[0][i] = cx * inv + 0.0f, nn[1][i] = cy * inv + 0.0f, nn[2][i] = cz * inv + 0.0f;
       }
       for (int i = 0; i < count; ++i) out[start + i] = {nn[0][i], nn[1][i], nn[2][i]};
     }

@@ -20,7 +20,9 @@
 // swaps the two members of each pair, and IEEE addition is commutative, so identified samples
 // get bit-identical values (the tangents get exactly negated values, and their cross product the
 // same normal); by induction over passes every level keeps the cut symmetry bit for bit, border
-// included. A GPU port must keep this order and forbid reassociation (GLSL `precise`).
+// included. The normal pass adds +0 to its results, because a zero tangent component is +0 on
+// both sides (x - x) and its products may differ in the sign of zero. A GPU port must keep this
+// order and forbid reassociation and contraction into fma (GLSL `precise`).
 #pragma once
 
 #include <array>

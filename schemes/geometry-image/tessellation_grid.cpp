@@ -12,7 +12,10 @@ std::vector<uint32_t> grid_triangles(int n) {
   for (int y = 0; y + 1 < n; ++y)
     for (int x = 0; x + 1 < n; ++x) {
       const uint32_t v00 = y * n + x, v10 = v00 + 1, v01 = v00 + n, v11 = v01 + 1;
-      tris.insert(tris.end(), {v00, v10, v11, v00, v11, v01});
+      if (anti_diagonal(x, y, n))
+        tris.insert(tris.end(), {v00, v10, v01, v10, v11, v01});
+      else
+        tris.insert(tris.end(), {v00, v10, v11, v00, v11, v01});
     }
   return tris;
 }

@@ -36,10 +36,12 @@ GeometryImageCreator::GeometryImageCreator(const ControlMesh& mesh, CreationOpti
 GeometryImageCreator::~GeometryImageCreator() = default;
 
 uint64_t GeometryImageCreator::cache_key() const {
-  char settings[128];
-  std::snprintf(settings, sizeof settings, "gim-create-v%d fairness=%.9g sweeps=%d tol=%.9g tris=%zu",
-                kCreationVersion, options_.fit.fairness, options_.parametrization.max_sweeps,
-                options_.parametrization.tolerance, options_.parametrization.min_triangles);
+  const SphericalParametrizationOptions& p = options_.parametrization;
+  char settings[256];
+  std::snprintf(settings, sizeof settings,
+                "gim-create-v%d fairness=%.9g tris=%zu rounds=%d inverse=%.9g sweeps=%d tol=%.9g", kCreationVersion,
+                options_.fit.fairness, p.min_triangles, p.reweighting_rounds, p.inverse_weight, p.max_sweeps,
+                p.tolerance);
   return mix_key(content_hash(mesh_), settings);
 }
 

@@ -32,9 +32,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 struct TriangleMetric {
   double area = 0;
   double edge2[3] = {0, 0, 0};
+  double inverse = 0;  // weight of the inverse-stretch term (see stretch_energy)
 };
 
-std::vector<TriangleMetric> triangle_metrics(const TriangleMesh& mesh) {
+std::vector<TriangleMetric> triangle_metrics(const TriangleMesh& mesh, double inverse_weight = 0) {
   std::vector<TriangleMetric> out(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
@@ -46,12 +47,24 @@ std::vector<TriangleMetric> triangle_metrics(const TriangleMesh& mesh) {
     out[t].edge2[1] = dot(sub(a, c), sub(a, c));
     out[t].edge2[2] = dot(sub(b, a), sub(b, a));
   }
+  if (inverse_weight > 0) {
+    double total = 0;
+    for (const TriangleMetric& m : out) total += m.area;
+    const double scale = total * total / (64 * std::numbers::pi * std::numbers::pi);
+    for (TriangleMetric& m : out)
+      if (m.area > 0) m.inverse = inverse_weight * scale / (m.area * m.area);
+  }
   return out;
 }
 
-// A (|J|_F^2 / 2) for the affine map from the chord triangle (q0, q1, q2) to the surface
-// triangle: |J|_F^2 = sum_k cot(alpha_k) |e_k|^2 / (2 A_param) with cot(alpha_k) = (d.d') /
-// (2 A_param) at param corner k. Infinite when the chord triangle faces inwards.
+// A (|J|^2 + w |J^-1|^2) / 2 for the affine map J from the chord triangle (q0, q1, q2) to the
+// surface triangle, with the sphere scaled to the surface's area; infinite when the chord
+// triangle faces inwards. |J|^2 = sum_k cot(alpha_k) |e_k|^2 / (2 A_param), cot(alpha_k) =
+// (d.d') / (2 A_param) at param corner k, so |J|^2 = s / N with N = (2 A_param)^2. The first term
+// is Sander et al.'s L2 stretch (undersampling); the second, |J^-1|^2 = |J|^2 / det(J)^2 for a
+// 2 x 2 map, penalises the opposite (a spherical triangle much larger or more elongated than its
+// surface triangle) and keeps relaxation out of local minima with slivers. Up to a constant
+// factor, A |J^-1|^2 / 2 = A s / 2 * S^2 / (64 pi^2 A^2): linear in s (m.inverse holds the factor).
 double stretch_energy(const Vec& q0, const Vec& q1, const Vec& q2, const TriangleMetric& m) {
   if (det3(q0, q1, q2) <= 0.0) return kInfinity;
   const Vec d01 = sub(q1, q0), d02 = sub(q2, q0), d12 = sub(q2, q1);
@@ -59,7 +72,7 @@ double stretch_energy(const Vec& q0, const Vec& q1, const Vec& q2, const Triangl
   const double area2x4 = dot(n, n);  // (2 A_param)^2
   if (area2x4 <= 0.0) return kInfinity;
   const double s = dot(d01, d02) * m.edge2[0] - dot(d01, d12) * m.edge2[1] + dot(d02, d12) * m.edge2[2];
-  return m.area * s / area2x4 * 0.5;  // |J|^2 = s / (4 A^2) = s / area2x4
+  return m.area * 0.5 * s * (1.0 / area2x4 + m.inverse);
 }
 
 double chord_area(const Vec& a, const Vec& b, const Vec& c) { return 0.5 * norm(cross(sub(b, a), sub(c, a))); }
@@ -228,7 +241,8 @@ class StarEnergy {
       const Vec grad_s = add(scale(sub(scale(q0, 2.0), add(q1, q2)), e0), scale(d12, e1 - e2));
       const Vec grad_n = scale(cross(sub(q1, q2), n), 2.0);
       const double c = 0.5 * metric_[t].area;
-      g = add(g, scale(sub(scale(grad_s, 1.0 / big_n), scale(grad_n, s / (big_n * big_n))), c));
+      const Vec term = sub(scale(grad_s, 1.0 / big_n + metric_[t].inverse), scale(grad_n, s / (big_n * big_n)));
+      g = add(g, scale(term, c));
     }
     return g;
   }
@@ -307,7 +321,7 @@ namespace {
 
 // Step 4 on one level; returns the sweeps made.
 int relax(const TriangleMesh& mesh, std::vector<Vec>& sphere, const SphericalParametrizationOptions& options) {
-  const std::vector<TriangleMetric> metric = triangle_metrics(mesh);
+  const std::vector<TriangleMetric> metric = triangle_metrics(mesh, options.inverse_weight);
   const std::vector<std::vector<int>> vt = vertex_triangles(mesh);
   const std::vector<std::vector<int>> nb = vertex_neighbours(mesh);
   StarEnergy energy(mesh, metric, sphere);
@@ -330,7 +344,7 @@ SphericalParametrization SphericalParametrization::compute(const TriangleMesh& i
   SphericalParametrization out;
   out.surface = input;
   while (out.surface.triangles.size() < options.min_triangles) out.surface = refine_midpoints(out.surface);
-  const TriangleMesh& mesh = out.surface;
+  const TriangleMesh mesh = out.surface;
   const std::vector<TriangleMetric> metric = triangle_metrics(mesh);
   const std::vector<std::vector<int>> vt = vertex_triangles(mesh);
   const std::vector<std::vector<int>> nb = vertex_neighbours(mesh);
@@ -363,8 +377,8 @@ SphericalParametrization SphericalParametrization::compute(const TriangleMesh& i
     sigma = vertex_stretch(mesh, metric, out.sphere);
   }
   out.sweeps = relax(mesh, out.sphere, options);
-  out.stretch = l2_stretch(mesh, out.sphere);
-  out.folded_triangles = count_folded(mesh, out.sphere);
+  out.stretch = l2_stretch(out.surface, out.sphere);
+  out.folded_triangles = count_folded(out.surface, out.sphere);
   return out;
 }
 

@@ -16,10 +16,13 @@
 //      towards each vertex are divided by a power of its stretch and steps 1-3 repeated, keeping
 //      the best map. Each round is a global solve, so area moves across the whole mesh at once.
 //   5. Relaxation that lowers Sander et al.'s L2 stretch of the map sphere -> surface (the metric
-//      Praun and Hoppe minimise) vertex by vertex (Gauss-Seidel): a backtracking line search
-//      down the analytic gradient in the tangent plane. The energy grows without bound as a
-//      spherical triangle's area goes to zero and a move that would fold a triangle is refused,
-//      so the map stays an embedding.
+//      Praun and Hoppe minimise), plus inverse_weight times the same measure of the inverse map:
+//      L2 stretch alone penalises only undersampling and leaves local minima with sliver-shaped
+//      spherical triangles, which the fit then cannot follow (on Spot the inverse term halves
+//      the Hausdorff distance of the fitted surface). Vertex by vertex (Gauss-Seidel), a
+//      backtracking line search down the analytic gradient in the tangent plane. The energy grows
+//      without bound as a spherical triangle's area goes to zero and a move that would fold a
+//      triangle is refused, so the map stays an embedding.
 // Spherical triangles are measured by their chords (flat triangles through the three points);
 // "folded" means a chord triangle facing inwards, which would break the ray-cast sampling.
 #pragma once
@@ -34,6 +37,7 @@ struct SphericalParametrizationOptions {
   size_t min_triangles = 1000;  // step 0
   int reweighting_rounds = 20;  // step 4
   int max_sweeps = 2000;        // step 5
+  double inverse_weight = 0.5;  // step 5
   // Stop when a sweep lowers the stretch energy by less than this fraction.
   double tolerance = 1e-5;
 };

@@ -3,6 +3,9 @@
 //   gim_tool export MESH N OUT.obj  write the image's g0 as OBJ (subdivbench takes it as that image)
 //   gim_tool time MESH K [REPS]     rough single-thread timing of execute(), beside OpenSubdiv
 //                                   uniform refinement with limit projection on the same g0
+//   gim_tool hausdorff MESH N...    two-sided Hausdorff distance of fitted surfaces to MESH
+// For experiments, $GIM_FAIRNESS, $GIM_TOL, $GIM_SWEEPS, $GIM_MINTRI, $GIM_RW and $GIM_INVERSE override
+// the creation settings (the cache key follows them).
 #include <opensubdiv/far/primvarRefiner.h>
 
 #include <algorithm>
@@ -16,6 +19,8 @@
 
 #include "closed_mesh.h"
 #include "creation/create.h"
+#include "creation/triangle_mesh.h"
+#include "deviation.h"
 #include "geometry_image.h"
 #include "manifest.h"
 #include "mesh_io.h"
@@ -84,8 +89,41 @@ double time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
       reps);
 }
 
+CreationOptions options_from_environment() {
+  CreationOptions o;
+  if (const char* f = std::getenv("GIM_FAIRNESS")) o.fit.fairness = std::atof(f);
+  if (const char* f = std::getenv("GIM_TOL")) o.parametrization.tolerance = std::atof(f);
+  if (const char* f = std::getenv("GIM_SWEEPS")) o.parametrization.max_sweeps = std::atoi(f);
+  if (const char* f = std::getenv("GIM_MINTRI")) o.parametrization.min_triangles = std::atoi(f);
+  if (const char* f = std::getenv("GIM_RW")) o.parametrization.reweighting_rounds = std::atoi(f);
+  if (const char* f = std::getenv("GIM_INVERSE")) o.parametrization.inverse_weight = std::atof(f);
+  return o;
+}
+
+int hausdorff_table(const std::string& name, const std::vector<int>& sizes) {
+  const ControlMesh mesh = load_mesh(name);
+  GeometryImageCreator creator(mesh, options_from_environment());
+  Tessellation input;
+  input.positions = mesh.positions;
+  for (const auto& f : triangulate(mesh).triangles)
+    for (int v : f) input.triangles.push_back(static_cast<uint32_t>(v));
+  const auto scheme = make_geometry_image_scheme();
+  for (int n : sizes) {
+    const CreatedImage made = creator.create(n);
+    int level = 0;
+    while (level_size(n, level) < 500) ++level;
+    auto eval = scheme->prepare(closed_mesh(made.image, "g0", ""), {Backend::Cpu, level, 0});
+    eval->execute();
+    const HausdorffReport h = hausdorff(eval->result(), input);
+    std::printf("%s m=%d k=%d: Hausdorff %.4f (forward %.4f, backward %.4f; mean %.5f / %.5f) of the diagonal, fit %.0f ms\n",
+                name.c_str(), n, level, h.max(), h.forward_max, h.backward_max, h.forward_mean, h.backward_mean,
+                made.report.fit_ms);
+  }
+  return 0;
+}
+
 int create(const std::string& name, const std::vector<int>& sizes) {
-  GeometryImageCreator creator(load_mesh(name));
+  GeometryImageCreator creator(load_mesh(name), options_from_environment());
   if (std::getenv("GIM_TOOL_PARAM")) {
     const SphericalParametrization& p = creator.parametrization();
     std::printf("%s: %zu vertices, centred stretch %.3f, relaxed %.3f after %d sweeps, %d folded\n", name.c_str(),
@@ -132,13 +170,18 @@ int main(int argc, char** argv) {
       for (size_t i = 2; i < args.size(); ++i) sizes.push_back(std::stoi(args[i]));
       return create(args[1], sizes);
     }
+    if (args.size() >= 3 && args[0] == "hausdorff") {
+      std::vector<int> sizes;
+      for (size_t i = 2; i < args.size(); ++i) sizes.push_back(std::stoi(args[i]));
+      return hausdorff_table(args[1], sizes);
+    }
     if (args.size() == 4 && args[0] == "export") {
       const CreatedImage made = create_geometry_image(load_mesh(args[1]), {.size = std::stoi(args[2])});
       write_obj(closed_mesh(made.image, args[1] + "-gim", args[3]), args[3]);
       return 0;
     }
     if (args.size() >= 3 && args[0] == "time") return time(args[1], std::stoi(args[2]), args.size() > 3 ? std::stoi(args[3]) : 21);
-    std::fprintf(stderr, "usage: gim_tool create MESH N... | export MESH N OUT.obj | time MESH K [REPS]\n");
+    std::fprintf(stderr, "usage: gim_tool create MESH N... | hausdorff MESH N... | export MESH N OUT.obj | time MESH K [REPS]\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
