@@ -20,7 +20,7 @@ struct GeometryImageOptions {
   // Samples a side of images fitted to ordinary meshes. 0: $SUBDIVBENCH_GIM_SIZE when set (an odd
   // number, 5..1025), else kDefaultFitSize, 2^6 + 1, which subsamples down to the octahedron.
   int fit_size = 0;
-  gim::PassPlan plan = gim::PassPlan::FusedSplitAverage;
+  gim::PassPlan plan = gim::PassPlan::Fused;
 };
 
 // fit_size resolved as above; throws InputError for a malformed $SUBDIVBENCH_GIM_SIZE.

@@ -91,7 +91,7 @@ int lowest_level(int n) {
 
 LimitGrid limit_grid(const GeometryImage& image, int k) {
   if (k < lowest_level(image.size)) throw std::invalid_argument("level below what this image subsamples to");
-  Subdivider subdivider(image.size, std::max(k, 0), PassPlan::FusedSplitAverage);
+  Subdivider subdivider(image.size, std::max(k, 0), PassPlan::Fused);
   LimitGrid grid;
   grid.size = subdivider.size(std::max(k, 0));
   grid.positions.resize(static_cast<size_t>(grid.size) * grid.size);

@@ -146,38 +146,54 @@ void split_average_pass(const PaddedImage& src, PaddedImage& dst, RowRange rows)
 // stride, vectorised), then interleaved into the Point3 output.
 constexpr int kChunk = 256;
 
-void limit_pass(const PaddedImage& src, Point3* positions, RowRange rows) {
-  const int s = src.side, n = s - 2;
-  float chunk[3][kChunk];
-  for (int y = rows.begin; y < rows.end; ++y) {
-    Point3* out = positions + static_cast<size_t>(y) * n;
-    for (int start = 0; start < n; start += kChunk) {
-      const int count = std::min(kChunk, n - start);
-      for (int c = 0; c < 3; ++c) {
-        const Rows3 r = rows_at(src.plane(c), s, y + 1);
-        const float *up = r.up + start + 1, *mid = r.mid + start + 1, *down = r.down + start + 1;
-        float* dst = chunk[c];
-        for (int i = 0; i < count; ++i) {
-          const float edges = (mid[i - 1] + mid[i + 1]) + (up[i] + down[i]);
-          const float corners = (up[i - 1] + down[i + 1]) + (up[i + 1] + down[i - 1]);
-          dst[i] = ((16.0f * mid[i] + 4.0f * edges) + corners) * (1.0f / 36.0f);
-        }
-      }
-      for (int i = 0; i < count; ++i) out[start + i] = {chunk[0][i], chunk[1][i], chunk[2][i]};
-    }
+namespace {
+
+// Rows y-1, y, y+1 of one plane around padded row y + 1, at the chunk's first sample.
+inline Rows3 chunk_rows(const PaddedImage& src, int c, int y, int start) {
+  const Rows3 r = rows_at(src.plane(c), src.side, y + 1);
+  return {r.up + start + 1, r.mid + start + 1, r.down + start + 1};
+}
+
+// E of one plane along a chunk.
+inline void limit_chunk(const Rows3& r, int count, float* dst) {
+  const float *up = r.up, *mid = r.mid, *down = r.down;
+  for (int i = 0; i < count; ++i) {
+    const float edges = (mid[i - 1] + mid[i + 1]) + (up[i] + down[i]);
+    const float corners = (up[i - 1] + down[i + 1]) + (up[i + 1] + down[i - 1]);
+    dst[i] = ((16.0f * mid[i] + 4.0f * edges) + corners) * (1.0f / 36.0f);
   }
 }
 
-namespace {
-
-// 6 T_s and 6 T_t of one plane along a chunk (pointers at the chunk's first sample). A half turn
-// negates each difference and swaps the two outer ones, so the sum is negated exactly.
-inline void tangents(const Rows3& r, int count, float* ts, float* tt) {
+// 6 T_s and 6 T_t of one plane along a chunk. A half turn negates each difference and swaps the
+// two outer ones, so the sum is negated exactly.
+inline void tangent_chunk(const Rows3& r, int count, float* ts, float* tt) {
   const float *up = r.up, *mid = r.mid, *down = r.down;
   for (int i = 0; i < count; ++i) {
     ts[i] = 4.0f * (mid[i + 1] - mid[i - 1]) + ((up[i + 1] - up[i - 1]) + (down[i + 1] - down[i - 1]));
     tt[i] = 4.0f * (down[i] - up[i]) + ((down[i - 1] - up[i - 1]) + (down[i + 1] - up[i + 1]));
   }
+}
+
+// unit(T_s x T_t) along a chunk, planes in and out.
+inline void normal_chunk(const float (*ts)[kChunk], const float (*tt)[kChunk], int count, float (*nn)[kChunk]) {
+  constexpr float kTiny = std::numeric_limits<float>::min();
+  for (int i = 0; i < count; ++i) {
+    const float cx = ts[1][i] * tt[2][i] - ts[2][i] * tt[1][i];
+    const float cy = ts[2][i] * tt[0][i] - ts[0][i] * tt[2][i];
+    const float cz = ts[0][i] * tt[1][i] - ts[1][i] * tt[0][i];
+    // + FLT_MIN keeps a zero cross product (only at the cut vertices, which
+    // cut_vertex_normal_pass overwrites) finite and is below half an ulp of any length that is
+    // not tiny; unlike a max() or a select it lets the loop vectorise.
+    const float len2 = cx * cx + cy * cy + cz * cz + kTiny;
+    const float inv = 1.0f / std::sqrt(len2);
+    // + 0.0f turns -0 into +0: a zero tangent component is +0 on both sides of the cut (x - x is
+    // +0), so a product with it can be -0 on one side and +0 on the other.
+    nn[0][i] = cx * inv + 0.0f, nn[1][i] = cy * inv + 0.0f, nn[2][i] = cz * inv + 0.0f;
+  }
+}
+
+inline void interleave(const float (*planes)[kChunk], int count, Point3* out) {
+  for (int i = 0; i < count; ++i) out[i] = {planes[0][i], planes[1][i], planes[2][i]};
 }
 
 inline Point3 unit_cross(const float a[3], const float b[3]) {
@@ -191,34 +207,46 @@ inline Point3 unit_cross(const float a[3], const float b[3]) {
 
 }  // namespace
 
+// The E and T passes work through a row in chunks: each plane into a small SoA buffer (unit
+// stride, vectorised), then interleaved into the Point3 output.
+void limit_pass(const PaddedImage& src, Point3* positions, RowRange rows) {
+  const int n = src.side - 2;
+  float p[3][kChunk];
+  for (int y = rows.begin; y < rows.end; ++y)
+    for (int start = 0; start < n; start += kChunk) {
+      const int count = std::min(kChunk, n - start);
+      for (int c = 0; c < 3; ++c) limit_chunk(chunk_rows(src, c, y, start), count, p[c]);
+      interleave(p, count, positions + static_cast<size_t>(y) * n + start);
+    }
+}
+
 void normal_pass(const PaddedImage& src, Point3* normals, RowRange rows) {
-  constexpr float kTiny = std::numeric_limits<float>::min();
-  const int s = src.side, n = s - 2;
+  const int n = src.side - 2;
   float ts[3][kChunk], tt[3][kChunk], nn[3][kChunk];
-  for (int y = rows.begin; y < rows.end; ++y) {
-    Point3* out = normals + static_cast<size_t>(y) * n;
+  for (int y = rows.begin; y < rows.end; ++y)
+    for (int start = 0; start < n; start += kChunk) {
+      const int count = std::min(kChunk, n - start);
+      for (int c = 0; c < 3; ++c) tangent_chunk(chunk_rows(src, c, y, start), count, ts[c], tt[c]);
+      normal_chunk(ts, tt, count, nn);
+      interleave(nn, count, normals + static_cast<size_t>(y) * n + start);
+    }
+}
+
+void limit_normal_pass(const PaddedImage& src, Point3* positions, Point3* normals, RowRange rows) {
+  const int n = src.side - 2;
+  float p[3][kChunk], ts[3][kChunk], tt[3][kChunk], nn[3][kChunk];
+  for (int y = rows.begin; y < rows.end; ++y)
     for (int start = 0; start < n; start += kChunk) {
       const int count = std::min(kChunk, n - start);
       for (int c = 0; c < 3; ++c) {
-        const Rows3 r = rows_at(src.plane(c), s, y + 1);
-        tangents({r.up + start + 1, r.mid + start + 1, r.down + start + 1}, count, ts[c], tt[c]);
+        const Rows3 r = chunk_rows(src, c, y, start);
+        limit_chunk(r, count, p[c]);
+        tangent_chunk(r, count, ts[c], tt[c]);
       }
-      for (int i = 0; i < count; ++i) {
-        const float cx = ts[1][i] * tt[2][i] - ts[2][i] * tt[1][i];
-        const float cy = ts[2][i] * tt[0][i] - ts[0][i] * tt[2][i];
-        const float cz = ts[0][i] * tt[1][i] - ts[1][i] * tt[0][i];
-        // + FLT_MIN keeps a zero cross product (only at the cut vertices, which
-        // cut_vertex_normal_pass overwrites) finite and is below half an ulp of any length
-        // that is not tiny; unlike a max() or a select it lets the loop vectorise.
-        const float len2 = cx * cx + cy * cy + cz * cz + kTiny;
-        const float inv = 1.0f / std::sqrt(len2);
-        // + 0.0f turns -0 into +0: a zero tangent component is +0 on both sides of the cut
-        // (x - x is +0), so a product with it can be -0 on one side and +0 on the other.
-        nn[0][i] = cx * inv + 0.0f, nn[1][i] = cy * inv + 0.0f, nn[2][i] = cz * inv + 0.0f;
-      }
-      for (int i = 0; i < count; ++i) out[start + i] = {nn[0][i], nn[1][i], nn[2][i]};
+      normal_chunk(ts, tt, count, nn);
+      interleave(p, count, positions + static_cast<size_t>(y) * n + start);
+      interleave(nn, count, normals + static_cast<size_t>(y) * n + start);
     }
-  }
 }
 
 std::array<CutVertexStencil, 4> cut_vertex_stencils(int n) {

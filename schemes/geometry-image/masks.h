@@ -9,7 +9,8 @@
 //     split L:          S -> 2S - 1   (bilinear quadrisection of the whole padded image)
 //     average A + crop: M -> M - 2    (the averaging mask, dropping the outer ring it cannot reach)
 //     fused L + A:      S -> 2S - 3   (the bicubic subdivision masks; equals A[L[.]] up to rounding)
-//     limit E, normal:  S -> (S - 2)^2 positions / normals (Point3, row-major, vertex y * n + x)
+//     limit E, normal:  S -> (S - 2)^2 positions / normals (Point3, row-major, vertex y * n + x),
+//                       as two passes or one fused pass with identical results
 // so level k of an n0 x n0 image has n_k = (n0 - 1) 2^k + 1 samples a side and S_k = n_k + 2.
 // The border of g^{k+1} comes out of the masks applied to g^k's border; it is never re-padded.
 //
@@ -70,6 +71,9 @@ void limit_pass(const PaddedImage& src, Point3* positions, RowRange rows);
 // Tangents T_s (1/6 [-1 0 1; -4 0 4; -1 0 1], s along columns) and T_t (its transpose) and
 // n = unit(T_s x T_t); the scale 1/6 is left out since only the direction is kept.
 void normal_pass(const PaddedImage& src, Point3* normals, RowRange rows);
+// E and the normals in one pass, reading g^k once (bit-identical to limit_pass + normal_pass).
+void limit_normal_pass(const PaddedImage& src, Point3* positions, Point3* normals, RowRange rows);
+
 // At the cut vertices a, b, c, d both tangent masks give exactly zero for any image (equation 1
 // is point-symmetric about them), so the normal pass leaves them undefined. With equation (2)
 // holding, the limit tangent plane there is spanned by the subdominant left eigenvectors of the

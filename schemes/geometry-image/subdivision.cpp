@@ -18,7 +18,7 @@ void Subdivider::run(const Point3* control, Point3* positions, Point3* normals, 
   for (int k = 0; k < levels_; ++k) {
     const PaddedImage& src = images_[k];
     PaddedImage& dst = images_[k + 1];
-    if (plan_ == PassPlan::FusedSplitAverage) {
+    if (plan_ == PassPlan::Fused) {
       auto fused = [&](RowRange r) { split_average_pass(src, dst, r); };
       rows.for_rows(dst.side, fused);
     } else {
@@ -32,10 +32,15 @@ void Subdivider::run(const Point3* control, Point3* positions, Point3* normals, 
   }
   const PaddedImage& last = images_[levels_];
   const int n = last.side - 2;
-  auto limit = [&](RowRange r) { limit_pass(last, positions, r); };
-  rows.for_rows(n, limit);
-  auto normal = [&](RowRange r) { normal_pass(last, normals, r); };
-  rows.for_rows(n, normal);
+  if (plan_ == PassPlan::Fused) {
+    auto frame = [&](RowRange r) { limit_normal_pass(last, positions, normals, r); };
+    rows.for_rows(n, frame);
+  } else {
+    auto limit = [&](RowRange r) { limit_pass(last, positions, r); };
+    rows.for_rows(n, limit);
+    auto normal = [&](RowRange r) { normal_pass(last, normals, r); };
+    rows.for_rows(n, normal);
+  }
   cut_vertex_normal_pass(last, cut_stencils_, normals);
 }
 

@@ -1,8 +1,10 @@
 // Subdivider: the per-frame work of Section 5, g0 -> g1 -> ... -> gk -> (p^k, n^k), as a fixed
-// sequence of MaskPasses over buffers sized once. Two plans: one pass per mask as the paper's
-// Radeon implementation (pad, then L and A per level, then E and the normals), or the fused L+A
-// pass the paper anticipates for GPUs with more texture reads. Both keep the cut symmetry bit
-// for bit; they differ from each other by rounding only.
+// sequence of MaskPasses over buffers sized once. Two plans:
+//   PerMask: one pass per mask, as the paper's Radeon implementation: pad; L, A per level; E; T.
+//   Fused:   the fusions the paper anticipates for GPUs with more texture reads: L+A in one pass
+//            per level, and E with the normals in one pass.
+// Both finish with the cut-vertex normal pass, keep the cut symmetry bit for bit, and differ from
+// each other by the rounding of L+A only (the fused E+T pass is bit-identical to E then T).
 #pragma once
 
 #include <cstddef>
@@ -14,7 +16,7 @@
 
 namespace sdb::gim {
 
-enum class PassPlan { PerMask, FusedSplitAverage };
+enum class PassPlan { PerMask, Fused };
 
 // A non-owning reference to a callable taking a RowRange (no allocation, unlike std::function).
 class RowBody {

@@ -124,9 +124,9 @@ TEST(MaskPass, LimitAndTangentMasksReproduceALinearImage) {
                     base[c] + ds[c] * (col + 1) * 0.5 + dt[c] * (row + 1) * 0.5, 4e-6);
 }
 
-TEST(MaskPass, FusedSplitAverageEqualsSplitThenAverage) {
+TEST(MaskPass, FusedEqualsSplitThenAverage) {
   const GeometryImage image = wobbly_image(9);
-  Subdivider per_mask(9, 4, PassPlan::PerMask), fused(9, 4, PassPlan::FusedSplitAverage);
+  Subdivider per_mask(9, 4, PassPlan::PerMask), fused(9, 4, PassPlan::Fused);
   const SubdivisionRun a = subdivide(image, per_mask);
   const SubdivisionRun b = subdivide(image, fused);
   for (int k = 0; k <= 4; ++k) {
@@ -141,7 +141,7 @@ TEST(MaskPass, FusedSplitAverageEqualsSplitThenAverage) {
 }
 
 TEST(MaskPass, CutSymmetryHoldsBitForBitAfterEveryPass) {
-  for (PassPlan plan : {PassPlan::PerMask, PassPlan::FusedSplitAverage})
+  for (PassPlan plan : {PassPlan::PerMask, PassPlan::Fused})
     for (const GeometryImage& image : {wobbly_image(9), wobbly_image(17, 3), analytic_image(AnalyticShape::Ellipsoid, 31)}) {
       const int levels = image.size > 20 ? 4 : 5;
       Subdivider s(image.size, levels, plan);
@@ -157,7 +157,7 @@ TEST(MaskPass, CutSymmetryHoldsBitForBitAfterEveryPass) {
 TEST(MaskPass, NormalsAreUnitAndOutwardIncludingAtTheCutVertices) {
   const GeometryImage sphere = analytic_image(AnalyticShape::Sphere, 31);
   for (int k = 0; k <= 3; ++k) {
-    Subdivider s(31, k, PassPlan::FusedSplitAverage);
+    Subdivider s(31, k, PassPlan::Fused);
     const SubdivisionRun r = subdivide(sphere, s);
     const int n = s.size(k);
     double worst = 1;
@@ -172,5 +172,20 @@ TEST(MaskPass, NormalsAreUnitAndOutwardIncludingAtTheCutVertices) {
       const Point3 &p = r.positions[c.y * n + c.x], &q = r.normals[c.y * n + c.x];
       EXPECT_GT((p[0] * q[0] + p[1] * q[1] + p[2] * q[2]) / std::hypot(p[0], p[1], p[2]), 0.999) << "level " << k;
     }
+  }
+}
+
+TEST(MaskPass, FusedLimitNormalPassEqualsTheSeparatePasses) {
+  Subdivider s(17, 2, PassPlan::PerMask);
+  subdivide(wobbly_image(17), s);
+  const PaddedImage& g = s.level(2);
+  const int n = g.side - 2;
+  std::vector<Point3> p1(n * n), n1(n * n), p2(n * n), n2(n * n);
+  limit_pass(g, p1.data(), {0, n});
+  normal_pass(g, n1.data(), {0, n});
+  limit_normal_pass(g, p2.data(), n2.data(), {0, n});
+  for (int i = 0; i < n * n; ++i) {
+    ASSERT_TRUE(bits_equal(p1[i], p2[i]));
+    ASSERT_TRUE(bits_equal(n1[i], n2[i]));
   }
 }

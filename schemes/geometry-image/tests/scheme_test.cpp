@@ -93,7 +93,7 @@ TEST(GeometryImageScheme, SubdividesAnAnalyticImageIntoTheOpenedGrid) {
 
 TEST(GeometryImageScheme, CpuAndCpuMtGiveIdenticalNumbers) {
   const ControlMesh mesh = load_mesh("gim-ellipsoid-31");
-  for (PassPlan plan : {PassPlan::FusedSplitAverage, PassPlan::PerMask}) {
+  for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
     const auto scheme = make_geometry_image_scheme({.fit_size = 0, .plan = plan});
     std::unique_ptr<Evaluation> one, many;
     const Tessellation& a = run(*scheme, mesh, Backend::Cpu, 4, one);

@@ -31,7 +31,11 @@ using namespace sdb::gim;
 
 namespace {
 
-double median_ms(const std::function<void()>& work, int reps) {
+struct Timing {
+  double median = 0, min = 0;
+};
+
+Timing time_ms(const std::function<void()>& work, int reps) {
   std::vector<double> t;
   work();  // warm up
   for (int r = 0; r < reps; ++r) {
@@ -40,7 +44,7 @@ double median_ms(const std::function<void()>& work, int reps) {
     t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  return {t[t.size() / 2], t.front()};
 }
 
 struct Vertex3 {
@@ -55,7 +59,7 @@ struct Vertex3 {
 
 // The same work as the harness's osd-uniform peer: PrimvarRefiner::Interpolate per level, Limit
 // with tangents, unit normals.
-double time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
+Timing time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
   namespace Far = OpenSubdiv::Far;
   auto refiner = make_refiner(g0, SubdivisionRule::CatmullClark);
   Far::TopologyRefiner::UniformOptions options(level);
@@ -67,7 +71,7 @@ double time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
   std::vector<Vertex3> pos(nv), du(nv), dv(nv);
   std::vector<Point3> normals(nv);
   triangles = 2L * refiner->GetLevel(level).GetNumFaces();
-  return median_ms(
+  return time_ms(
       [&] {
         for (size_t v = 0; v < g0.positions.size(); ++v)
           for (int k = 0; k < 3; ++k) levels[0][v].p[k] = g0.positions[v][k];
@@ -142,20 +146,23 @@ int create(const std::string& name, const std::vector<int>& sizes) {
 
 int time(const std::string& name, int level, int reps) {
   const ControlMesh mesh = load_mesh(name);
-  const auto scheme = make_geometry_image_scheme();
-  for (Backend b : {Backend::Cpu, Backend::CpuMt}) {
-    auto eval = scheme->prepare(mesh, {b, level, 0});
-    const double ms = median_ms([&] { eval->execute(); }, reps);
-    const double tris = static_cast<double>(eval->result().num_triangles());
-    std::printf("geometry-image %-6s k=%d: %.3f ms, %.0f triangles, %.1f M tri/s\n", std::string(to_string(b)).c_str(),
-                level, ms, tris, tris / ms / 1e3);
+  for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
+    const auto scheme = make_geometry_image_scheme({.fit_size = 0, .plan = plan});
+    for (Backend b : {Backend::Cpu, Backend::CpuMt}) {
+      auto eval = scheme->prepare(mesh, {b, level, 0});
+      const Timing t = time_ms([&] { eval->execute(); }, reps);
+      const double tris = static_cast<double>(eval->result().num_triangles());
+      std::printf("geometry-image %-8s %-6s k=%d: median %.3f ms (min %.3f), %.0f triangles, %.1f M tri/s\n",
+                  plan == PassPlan::Fused ? "fused" : "per-mask", std::string(to_string(b)).c_str(), level, t.median,
+                  t.min, tris, tris / t.median / 1e3);
+    }
   }
   const auto image = image_from_closed_mesh(mesh);
   if (image) {
     long tris = 0;
-    const double ms = time_osd(closed_mesh(*image, "g0", ""), level, reps, tris);
-    std::printf("osd-uniform    cpu    k=%d: %.3f ms, %ld triangles, %.1f M tri/s\n", level, ms, tris,
-                static_cast<double>(tris) / ms / 1e3);
+    const Timing t = time_osd(closed_mesh(*image, "g0", ""), level, reps, tris);
+    std::printf("osd-uniform             cpu    k=%d: median %.3f ms (min %.3f), %ld triangles, %.1f M tri/s\n", level,
+                t.median, t.min, tris, static_cast<double>(tris) / t.median / 1e3);
   }
   return 0;
 }
