@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "errors.h"
 #include "surface_sampler.h"
 
 namespace sdb::gim {
@@ -50,9 +51,14 @@ const SphericalParametrization& GeometryImageCreator::parametrization() {
     const auto start = std::chrono::steady_clock::now();
     parametrization_ = SphericalParametrization::compute(surface_, options_.parametrization);
     parametrize_ms_ = ms_since(start);
-    if (parametrization_->folded_triangles > 0)
-      throw std::runtime_error("spherical parametrization of '" + mesh_.name + "' folded " +
-                               std::to_string(parametrization_->folded_triangles) + " triangles");
+    if (parametrization_->folded_triangles > 0) {
+      const std::string count = std::to_string(parametrization_->folded_triangles) + " of " +
+                                std::to_string(parametrization_->surface.triangles.size());
+      throw InputError(mesh_.source.empty() ? mesh_.name : mesh_.source,
+                       "geometry-image creation could not embed '" + mesh_.name + "' in the sphere: " + count +
+                           " triangles collapse in its Tutte embedding (a shape this elongated needs a "
+                           "parametrization method that this scheme does not have)");
+    }
   }
   return *parametrization_;
 }

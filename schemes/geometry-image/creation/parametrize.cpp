@@ -173,11 +173,12 @@ int count_folded(const TriangleMesh& mesh, const std::vector<Vec>& sphere) {
 // Step 3: Moebius centring. phi_c(x) = (1 - |c|^2)(x - c) / |x - c|^2 - c maps the sphere onto
 // itself, c to the origin of the ball, and spreads points near c / |c| apart. It maps circles to
 // circles, not chords to chords, so on a coarse mesh a chord triangle can turn over: the
-// centring stops at the last fold-free state and leaves the rest to the relaxation.
+// centring stops before a step that would fold one and leaves the rest to the relaxation.
 void moebius_centre(const TriangleMesh& mesh, std::vector<Vec>& sphere, const std::vector<double>& weight) {
   double total = 0;
   for (double w : weight) total += w;
   std::vector<Vec> previous;
+  const int folded_before = count_folded(mesh, sphere);
   for (int iteration = 0; iteration < 500; ++iteration) {
     previous = sphere;
     Vec mu{0, 0, 0};
@@ -190,7 +191,7 @@ void moebius_centre(const TriangleMesh& mesh, std::vector<Vec>& sphere, const st
       const Vec d = sub(x, c);
       x = normalized(sub(scale(d, (1 - c2) / dot(d, d)), c));
     }
-    if (count_folded(mesh, sphere) > 0) {
+    if (count_folded(mesh, sphere) > folded_before) {
       sphere = previous;
       return;
     }
@@ -366,7 +367,17 @@ SphericalParametrization SphericalParametrization::compute(const TriangleMesh& i
     std::vector<Vec> sphere = tutte_on_sphere(mesh, vt, pole, trial);
     moebius_centre(mesh, sphere, area);
     const double stretch = l2_stretch(mesh, sphere);
-    if (round == 0) out.centred_stretch = stretch;
+    if (round == 0) {
+      out.centred_stretch = stretch;
+      // A very elongated shape compresses part of the Tutte embedding beyond double precision
+      // (its triangles collapse); nothing below can undo that.
+      if (!(stretch < kInfinity)) {
+        out.folded_triangles = count_folded(mesh, sphere);
+        out.sphere = std::move(sphere);
+        out.stretch = kInfinity;
+        return out;
+      }
+    }
     if (!(stretch < best)) {
       exponent *= 0.5;
       continue;
