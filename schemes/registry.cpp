@@ -1,5 +1,6 @@
 #include "registry.h"
 
+#include "cpatch.h"
 #include "peers.h"
 
 namespace sdb {
@@ -7,7 +8,7 @@ namespace sdb {
 const std::vector<std::unique_ptr<Scheme>>& all_schemes() {
   static const std::vector<std::unique_ptr<Scheme>> schemes = [] {
     std::vector<std::unique_ptr<Scheme>> list = make_peer_schemes();
-    // Paper schemes register here as they are built.
+    for (auto& s : make_cpatch_schemes()) list.push_back(std::move(s));
     return list;
   }();
   return schemes;

@@ -68,3 +68,31 @@ TEST(Cli, ListMeshesShowsBuiltinsAndCorpus) {
     EXPECT_NE(r.out.find("crane/spot_control"), std::string::npos);
   }
 }
+
+// Missing Vulkan means the backend is reported unavailable, not a failure.
+TEST(Cli, ListBackendsWithoutAVulkanDriverIsNotAnError) {
+  const auto r = run_cli("list backends", "VK_ICD_FILENAMES=/nonexistent");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("vulkan   unavailable  no Vulkan device"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cpu      available"), std::string::npos) << r.out;
+}
+
+// A scheme that cannot take a mesh refuses it with the file and line, exit code 2.
+TEST(Cli, SchemeRefusesNonManifoldMeshWithFileAndLine) {
+  const fs::path p = write_file("fan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
+  const auto r = run_cli("validate --scheme embree-subdiv --mesh " + p.string() + " --level 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("fan.obj:8: non-manifold edge (1,2) shared by 3 faces; embree-subdiv needs"), std::string::npos) << r.err;
+  const fs::path d = write_file("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\nf 1 3 3 2\n");
+  const auto r2 = run_cli("validate --scheme embree-subdiv --mesh " + d.string() + " --level 3");
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_NE(r2.err.find("degenerate.obj:6: vertex 3 repeated in one face"), std::string::npos) << r2.err;
+}
+
+TEST(Cli, ValidateJsonIsAResultsRow) {
+  const auto r = run_cli("validate --scheme osd-bfr --mesh torus-8x8 --level 5 --rays 20000 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"\"scheme\": \"osd-bfr\"", "\"ray_cracks\": 0", "\"open_edges\": 0", "\"rays\": 40000",
+                          "\"pos_max_pct\"", "\"status\": \"ok\"", "\"tessellation\": 4"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+}

@@ -1,5 +1,7 @@
 #include "machine.h"
 
+#include "device_info.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -52,6 +54,11 @@ MachineInfo describe_machine() {
   m.memory_gib = memory_gib();
   m.compiler = std::string("g++ ") + __VERSION__;
   m.build_type = SDB_BUILD_TYPE;
+  if (const gpu::DeviceInfo vk = gpu::probe(); vk.available) {
+    m.vulkan_device = vk.name;
+    m.vulkan_driver = vk.driver_name + " " + vk.driver_info + " (" + vk.driver_version + ")";
+    m.vulkan_api = vk.api_version;
+  }
   m.git_commit = first_line_of("git -C " SDB_SOURCE_DIR " rev-parse --short HEAD 2>/dev/null");
   if (!first_line_of("git -C " SDB_SOURCE_DIR " status --porcelain --untracked-files=no 2>/dev/null").empty())
     m.git_commit += "-dirty";

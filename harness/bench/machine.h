@@ -5,7 +5,7 @@
 
 namespace sdb {
 
-// CPU, memory, compiler, build type, git commit. Vulkan fields are left to the caller.
+// CPU, memory, compiler, build type, git commit, and the Vulkan device a run would use.
 MachineInfo describe_machine();
 
 // Achievable write bandwidth in GB/s: sequential stores over a buffer several times the last-level

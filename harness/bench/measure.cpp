@@ -1,11 +1,14 @@
 #include "measure.h"
 
 #include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <numeric>
+#include <random>
 #include <regex>
 
 #include "deviation.h"
@@ -39,6 +42,23 @@ class CollectingReporter : public benchmark::BenchmarkReporter {
   std::map<std::string, Samples> samples;
 };
 
+// Shows runs on a display reporter (the console) while collecting them.
+class TeeReporter : public CollectingReporter {
+ public:
+  explicit TeeReporter(benchmark::BenchmarkReporter* display) : display_(display) {}
+  bool ReportContext(const Context& c) override { return display_ ? display_->ReportContext(c) : true; }
+  void ReportRuns(const std::vector<Run>& runs) override {
+    CollectingReporter::ReportRuns(runs);
+    if (display_) display_->ReportRuns(runs);
+  }
+  void Finalize() override {
+    if (display_) display_->Finalize();
+  }
+
+ private:
+  benchmark::BenchmarkReporter* display_;
+};
+
 TimeStats stats_of(const std::vector<double>& v) {
   TimeStats t;
   if (v.empty()) return t;
@@ -56,13 +76,23 @@ std::string regex_escape(const std::string& s) {
   return std::regex_replace(s, special, R"(\$&)");
 }
 
+}  // namespace
+
+// The `cpu` backend means one thread for every scheme: work that libraries fan out through TBB
+// (Embree's geometry commit, say) stays in a one-thread arena.
+void execute_on(Evaluation& e, Backend backend) {
+  if (backend != Backend::Cpu) {
+    e.execute();
+    return;
+  }
+  static thread_local tbb::task_arena one_thread(1);
+  one_thread.execute([&] { e.execute(); });
+}
+
 bool planted_slowdown(const std::string& scheme) {
-  // Test hook for the gate: doubles the work of one scheme (see tests/gate_test.cpp).
   const char* env = std::getenv("SUBDIVBENCH_PLANT_SLOWDOWN");
   return env && scheme == env;
 }
-
-}  // namespace
 
 std::string RunSpec::name() const {
   return scheme + "/" + std::string(to_string(backend)) + "/" + mesh + "/" + std::to_string(level);
@@ -134,60 +164,19 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
   }
 }
 
-RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
-  const Scheme* scheme = find_scheme(spec.scheme);
-  if (!scheme) throw InputError(spec.scheme, "no such scheme (see `subdivbench list schemes`)");
-  RunRow row;
-  row.scheme = spec.scheme;
-  row.backend = std::string(to_string(spec.backend));
-  row.mesh = spec.mesh;
-  row.level = spec.level;
-  row.device = spec.backend == Backend::Vulkan ? ctx.machine().vulkan_device : ctx.machine().cpu_model;
-  const SchemeInfo& info = scheme->info();
-  row.tessellation = segments_per_edge(info.level_kind, spec.level);
-  const RunRequest request{spec.backend, spec.level, o.threads};
-  if (auto why = scheme->unsupported(request)) {
-    row.status = "unsupported";
-    row.message = *why;
-    return row;
-  }
-  const auto accepted = ctx.accepted(spec.mesh, *scheme);
-  const MeshFacts facts = compute_facts(ctx.mesh(spec.mesh));
-  row.mesh_faces = facts.faces;
-  row.mesh_vertices = facts.vertices;
-  row.extraordinary_fraction = facts.all_triangles ? facts.extraordinary_vertex_fraction : facts.extraordinary_quad_fraction;
-  if (!accepted->warnings.empty() && accepted->warnings.back().rfind("quadrangulated", 0) == 0)
-    row.message = "quadrangulated by one Catmull-Clark step";
+namespace {
 
-  std::unique_ptr<Evaluation> eval = scheme->prepare(*accepted, request);
-  const auto start = std::chrono::steady_clock::now();
-  eval->execute();
-  const double once_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const Tessellation& out = eval->result();
-  row.triangles = static_cast<long>(out.num_triangles());
-  row.vertices = static_cast<long>(out.num_vertices());
-  row.bytes_out = static_cast<long>(eval->bytes_out());
-  if (o.validate) {
-    const auto ref_mesh = out.reference ? out.reference : accepted;
-    validate_into(row, out, ref_mesh, info.reference, o, ctx);
-  }
-
-  const bool gpu = spec.backend == Backend::Vulkan;
-  if (!o.time) {
-    row.time_ms = stats_of({once_ms});
-    if (auto g = eval->gpu_times(); gpu && g) row.gpu_time_ms = stats_of({g->kernel_ms});
-    const double ms = row.gpu_time_ms ? row.gpu_time_ms->median : once_ms;
-    row.triangle_rate_mtris = ms > 0 ? row.triangles / (ms * 1e3) : 0;
-    return row;
-  }
-  const bool slow = planted_slowdown(spec.scheme);
-  Evaluation* e = eval.get();
-  auto* bench = benchmark::RegisterBenchmark(spec.name().c_str(), [e, gpu, slow](benchmark::State& state) {
+benchmark::internal::Benchmark* register_timing(const std::string& name, std::function<Evaluation*()> eval,
+                                                Backend backend) {
+  const bool slow = planted_slowdown(name.substr(0, name.find('/')));
+  const bool gpu = backend == Backend::Vulkan;
+  auto* bench = benchmark::RegisterBenchmark(name.c_str(), [eval, gpu, slow, backend](benchmark::State& state) {
+    Evaluation* e = eval();
     double wall = 0;
     for (auto _ : state) {
       const auto t0 = std::chrono::steady_clock::now();
-      e->execute();
-      if (slow) e->execute();
+      execute_on(*e, backend);
+      if (slow) execute_on(*e, backend);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       wall += ms;
       if (gpu) {
@@ -196,31 +185,166 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
       }
     }
     state.counters["wall_ms"] = benchmark::Counter(wall, benchmark::Counter::kAvgIterations);
+    state.counters["triangles"] = static_cast<double>(e->result().num_triangles());
+    state.counters["vertices"] = static_cast<double>(e->result().num_vertices());
+    state.counters["rate"] = benchmark::Counter(static_cast<double>(e->result().num_triangles()),
+                                                benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["bytes"] = benchmark::Counter(static_cast<double>(e->bytes_out()),
+                                                 benchmark::Counter::kIsIterationInvariantRate, benchmark::Counter::kIs1024);
   });
-  bench->Unit(benchmark::kMillisecond)->Repetitions(o.reps)->MinTime(o.min_time_s);
+  bench->Unit(benchmark::kMillisecond);
   if (gpu) bench->UseManualTime();
-  CollectingReporter collector;
-  // Google Benchmark appends /min_time:.../repeats:... to the name it filters on.
-  benchmark::RunSpecifiedBenchmarks(&collector, "^" + regex_escape(spec.name()) + "(/|$)");
-  benchmark::ClearRegisteredBenchmarks();
-  const auto& s = collector.samples[spec.name()];
-  if (!s.error.empty()) throw std::runtime_error(spec.name() + ": " + s.error);
+  return bench;
+}
+
+void fill_timing(RunRow& row, const CollectingReporter::Samples& s, Evaluation* e, bool gpu, const MachineInfo& machine) {
+  if (!s.error.empty()) throw std::runtime_error(row.scheme + "/" + row.mesh + ": " + s.error);
   row.time_ms = stats_of(s.wall_ms);
   if (gpu) {
     row.gpu_time_ms = stats_of(s.time_ms);
     if (auto g = e->gpu_times()) {
       row.upload_ms = g->upload_ms;
       row.readback_ms = g->readback_ms;
+      row.gpu_passes.clear();
       for (const auto& p : g->passes) row.gpu_passes.push_back({p.label, p.ms});
     }
   }
   const double ms = gpu ? row.gpu_time_ms->median : row.time_ms.median;
   row.triangle_rate_mtris = ms > 0 ? row.triangles / (ms * 1e3) : 0;
-  const double bandwidth = spec.backend == Backend::CpuMt ? ctx.machine().write_bandwidth_mt_gbs
-                                                          : ctx.machine().write_bandwidth_gbs;
-  if (bandwidth > 0 && row.triangles > 0 && ms > 0)
-    row.bandwidth_fraction = (row.bytes_out / (ms * 1e-3)) / (bandwidth * 1e9);
+  const double bandwidth = row.backend == "cpu-mt" ? machine.write_bandwidth_mt_gbs
+                           : row.backend == "vulkan" ? machine.gpu_write_bandwidth_gbs
+                                                     : machine.write_bandwidth_gbs;
+  if (bandwidth > 0 && row.triangles > 0 && ms > 0) row.bandwidth_fraction = (row.bytes_out / (ms * 1e-3)) / (bandwidth * 1e9);
+}
+
+// The row's metadata; "unsupported" when the scheme declines the request. Throws InputError when
+// the scheme refuses the mesh.
+RunRow describe_run(const RunSpec& spec, const Scheme& scheme, const MeasureOptions& o, MeasureContext& ctx,
+                    std::shared_ptr<const ControlMesh>* accepted) {
+  RunRow row;
+  row.scheme = spec.scheme;
+  row.backend = std::string(to_string(spec.backend));
+  row.mesh = spec.mesh;
+  row.level = spec.level;
+  row.device = spec.backend == Backend::Vulkan ? ctx.machine().vulkan_device : ctx.machine().cpu_model;
+  const SchemeInfo& info = scheme.info();
+  row.tessellation = segments_per_edge(info.level_kind, spec.level);
+  if (auto why = scheme.unsupported({spec.backend, spec.level, o.threads})) {
+    row.status = "unsupported";
+    row.message = *why;
+    return row;
+  }
+  *accepted = ctx.accepted(spec.mesh, scheme);
+  const MeshFacts facts = compute_facts(ctx.mesh(spec.mesh));
+  row.mesh_faces = facts.faces;
+  row.mesh_vertices = facts.vertices;
+  row.extraordinary_fraction = facts.all_triangles ? facts.extraordinary_vertex_fraction : facts.extraordinary_quad_fraction;
+  const auto& w = (*accepted)->warnings;
+  if (!w.empty() && w.back().rfind("quadrangulated", 0) == 0) row.message = "quadrangulated by one Catmull-Clark step";
   return row;
+}
+
+void record_output(RunRow& row, Evaluation& e) {
+  const Tessellation& out = e.result();
+  row.triangles = static_cast<long>(out.num_triangles());
+  row.vertices = static_cast<long>(out.num_vertices());
+  row.bytes_out = static_cast<long>(e.bytes_out());
+}
+
+}  // namespace
+
+RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
+  const Scheme* scheme = find_scheme(spec.scheme);
+  if (!scheme) throw InputError(spec.scheme, "no such scheme (see `subdivbench list schemes`)");
+  std::shared_ptr<const ControlMesh> accepted;
+  RunRow row = describe_run(spec, *scheme, o, ctx, &accepted);
+  if (row.status == "unsupported") return row;
+  const RunRequest request{spec.backend, spec.level, o.threads};
+  std::unique_ptr<Evaluation> eval = scheme->prepare(*accepted, request);
+  const auto start = std::chrono::steady_clock::now();
+  execute_on(*eval, spec.backend);
+  const double once_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  record_output(row, *eval);
+  if (o.validate) {
+    const Tessellation& out = eval->result();
+    validate_into(row, out, out.reference ? out.reference : accepted, scheme->info().reference, o, ctx);
+  }
+  const bool gpu = spec.backend == Backend::Vulkan;
+  if (!o.time) {
+    CollectingReporter::Samples once;
+    once.wall_ms = {once_ms};
+    if (auto g = eval->gpu_times()) once.time_ms = {g->kernel_ms};
+    fill_timing(row, once, eval.get(), gpu && !once.time_ms.empty(), ctx.machine());
+    return row;
+  }
+  Evaluation* e = eval.get();
+  register_timing(spec.name(), [e] { return e; }, spec.backend)->Repetitions(o.reps)->MinTime(o.min_time_s);
+  CollectingReporter collector;
+  // Google Benchmark appends /min_time:.../repeats:... to the name it filters on.
+  benchmark::RunSpecifiedBenchmarks(&collector, "^" + regex_escape(spec.name()) + "(/|$)");
+  benchmark::ClearRegisteredBenchmarks();
+  fill_timing(row, collector.samples[spec.name()], e, gpu, ctx.machine());
+  return row;
+}
+
+std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& o, MeasureContext& ctx,
+                               benchmark::BenchmarkReporter* display, int rounds) {
+  struct Lazy {
+    RunRow row;
+    std::shared_ptr<const ControlMesh> mesh;
+    const Scheme* scheme;
+    RunRequest request;
+    std::unique_ptr<Evaluation> eval;
+    Evaluation* get() {  // prepared on first use, so that only what the filter selects is built
+      if (!eval) eval = scheme->prepare(*mesh, request);
+      return eval.get();
+    }
+  };
+  std::vector<std::unique_ptr<Lazy>> runs;
+  for (const RunSpec& spec : specs) {
+    const Scheme* scheme = find_scheme(spec.scheme);
+    if (!scheme) throw InputError(spec.scheme, "no such scheme (see `subdivbench list schemes`)");
+    auto lazy = std::make_unique<Lazy>();
+    lazy->row = describe_run(spec, *scheme, o, ctx, &lazy->mesh);
+    lazy->scheme = scheme;
+    lazy->request = {spec.backend, spec.level, o.threads};
+    runs.push_back(std::move(lazy));
+  }
+  auto register_all = [&](const std::vector<size_t>& order, int repetitions) {
+    for (size_t i : order) {
+      Lazy* l = runs[i].get();
+      if (l->row.status == "unsupported") continue;
+      auto* b = register_timing(specs[i].name(), [l] { return l->get(); }, specs[i].backend);
+      if (repetitions > 0) b->Repetitions(repetitions);
+    }
+  };
+  std::vector<size_t> order(runs.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  TeeReporter tee(rounds > 0 ? nullptr : display);
+  if (rounds <= 0) {
+    register_all(order, 0);  // repetitions and interleaving from Google Benchmark's flags
+    benchmark::RunSpecifiedBenchmarks(&tee);
+    benchmark::ClearRegisteredBenchmarks();
+  } else {
+    // Every round runs each benchmark once, in a fresh random order: sample r of a scheme and of
+    // its peer are measured close in time, so the gate can pair them.
+    std::mt19937 shuffle(12345);
+    for (int r = 0; r < rounds; ++r) {
+      std::shuffle(order.begin(), order.end(), shuffle);
+      register_all(order, 1);
+      benchmark::RunSpecifiedBenchmarks(&tee);
+      benchmark::ClearRegisteredBenchmarks();
+    }
+  }
+  std::vector<RunRow> rows;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    Lazy& l = *runs[i];
+    if (!l.eval) continue;  // filtered out or unsupported
+    record_output(l.row, *l.eval);
+    fill_timing(l.row, tee.samples[specs[i].name()], l.eval.get(), l.request.backend == Backend::Vulkan, ctx.machine());
+    rows.push_back(std::move(l.row));
+  }
+  return rows;
 }
 
 }  // namespace sdb

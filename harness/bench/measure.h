@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <benchmark/benchmark.h>
+
 #include "limit_evaluator.h"
 #include "results.h"
 #include "scheme.h"
@@ -53,9 +55,24 @@ class MeasureContext {
   std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
 };
 
+// Evaluation::execute() as a backend means it: on `cpu`, inside a one-thread TBB arena.
+void execute_on(Evaluation& e, Backend backend);
+
+// Test hook for the gate (tests/gate_test.cpp): true when $SUBDIVBENCH_PLANT_SLOWDOWN names this
+// scheme; the benchmark loop and the callgrind workload then execute it twice per iteration.
+bool planted_slowdown(const std::string& scheme);
+
 // Runs one spec start to finish. Throws InputError when the mesh is refused or the spec unknown;
 // returns a row with status "unsupported" when the scheme declines the backend or level.
 RunRow measure_run(const RunSpec& spec, const MeasureOptions& options, MeasureContext& context);
+
+// Registers every spec with Google Benchmark (prepared lazily on first use) and runs them under
+// the flags benchmark::Initialize parsed (filter, min time). rounds == 0: repetitions and random
+// interleaving from the flags too. rounds > 0: that many rounds, each running every benchmark
+// once in a fresh random order, so that sample r of every row was measured in round r (the
+// gate pairs them). Rows carry timing only; `display` (may be null) shows flag-mode runs.
+std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& options,
+                               MeasureContext& context, benchmark::BenchmarkReporter* display, int rounds = 0);
 
 // Validation only (exact weld, rays, deviation, Hausdorff) of one evaluation's output.
 void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& reference_mesh,

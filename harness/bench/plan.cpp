@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "device_info.h"
 #include "errors.h"
 #include "facts.h"
 #include "manifest.h"
@@ -24,7 +25,7 @@ long estimated_triangles(const ControlMesh& accepted, const SchemeInfo& info, in
 
 std::vector<Backend> available_backends() {
   std::vector<Backend> b = {Backend::Cpu, Backend::CpuMt};
-  // The Vulkan backend joins once harness/gpu reports a device (see list backends).
+  if (gpu::probe().available) b.push_back(Backend::Vulkan);
   return b;
 }
 

@@ -98,7 +98,7 @@ void to_json(json& j, const MachineInfo& m) {
        {"vulkan_driver", m.vulkan_driver}, {"vulkan_api", m.vulkan_api},
        {"compiler", m.compiler},         {"build_type", m.build_type},
        {"git_commit", m.git_commit},     {"write_bandwidth_gbs", m.write_bandwidth_gbs},
-       {"write_bandwidth_mt_gbs", m.write_bandwidth_mt_gbs}};
+       {"write_bandwidth_mt_gbs", m.write_bandwidth_mt_gbs}, {"gpu_write_bandwidth_gbs", m.gpu_write_bandwidth_gbs}};
 }
 void from_json(const json& j, MachineInfo& m) {
   m.cpu_model = j.value("cpu_model", ""), m.cores = j.value("cores", 0), m.memory_gib = j.value("memory_gib", 0.0);
@@ -107,12 +107,13 @@ void from_json(const json& j, MachineInfo& m) {
   m.compiler = j.value("compiler", ""), m.build_type = j.value("build_type", ""), m.git_commit = j.value("git_commit", "");
   m.write_bandwidth_gbs = j.value("write_bandwidth_gbs", 0.0);
   m.write_bandwidth_mt_gbs = j.value("write_bandwidth_mt_gbs", 0.0);
+  m.gpu_write_bandwidth_gbs = j.value("gpu_write_bandwidth_gbs", 0.0);
 }
 
 std::string row_json(const RunRow& row, int indent) { return json(row).dump(indent); }
 
 void write_results(const ResultsFile& r, const std::string& path) {
-  const json j = {{"schema", r.schema}, {"machine", r.machine}, {"created", r.created}, {"runs", r.runs}};
+  const json j = {{"schema", r.schema}, {"machine", r.machine}, {"created", r.created}, {"rounds", r.rounds}, {"runs", r.runs}};
   const std::string tmp = path + ".partial";
   {
     std::ofstream out(tmp);
@@ -143,6 +144,7 @@ ResultsFile read_results(const std::string& path) {
     r.schema = j["schema"];
     r.machine = j.value("machine", json::object()).get<MachineInfo>();
     r.created = j.value("created", "");
+    r.rounds = j.value("rounds", 0);
     r.runs = j.at("runs").get<std::vector<RunRow>>();
   } catch (const json::exception& e) {
     throw InputError(path, std::string("malformed results: ") + e.what());

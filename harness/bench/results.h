@@ -64,10 +64,13 @@ struct MachineInfo {
   std::string compiler, build_type, git_commit;
   double write_bandwidth_gbs = 0;     // one thread, streaming store
   double write_bandwidth_mt_gbs = 0;  // all threads
+  double gpu_write_bandwidth_gbs = 0;  // the Vulkan device: a buffer fill timed by timestamps
 };
 
 struct ResultsFile {
   int schema = kResultsSchema;
+  // > 0: written by `bench --rounds`; sample r of every row was measured in round r.
+  int rounds = 0;
   MachineInfo machine;
   std::string created;  // ISO 8601, UTC
   std::vector<RunRow> runs;

@@ -8,10 +8,12 @@
 #include <map>
 #include <thread>
 
+#include "device_info.h"
 #include "errors.h"
 #include "facts.h"
 #include "manifest.h"
 #include "registry.h"
+#include "gate_commands.h"
 #include "run_commands.h"
 
 namespace sdb::cli {
@@ -125,7 +127,9 @@ int list_backends_cmd() {
   std::printf("%-8s %-12s %s\n", "backend", "status", "detail");
   std::printf("%-8s %-12s %s\n", "cpu", "available", "one thread");
   std::printf("%-8s %-12s %u hardware threads (TBB)\n", "cpu-mt", "available", std::thread::hardware_concurrency());
-  std::printf("%-8s %-12s %s\n", "vulkan", "unavailable", "Vulkan backend not built yet");
+  const gpu::DeviceInfo vk = gpu::probe();
+  std::printf("%-8s %-12s %s\n", "vulkan", vk.available ? "available" : "unavailable",
+              vk.available ? gpu::summary(vk).c_str() : vk.reason.c_str());
   return 0;
 }
 
@@ -133,11 +137,6 @@ int list() {
   if (opts.list_what == "meshes") return list_meshes_cmd();
   if (opts.list_what == "backends") return list_backends_cmd();
   return list_schemes_cmd();
-}
-
-int not_built(const std::string& verb) {
-  std::cerr << "subdivbench: '" << verb << "' is not built yet\n";
-  return 2;
 }
 
 }  // namespace
@@ -154,12 +153,8 @@ void register_commands(CLI::App& app) {
   verbs["info"] = info;
 
   register_run_commands(app, verbs);
+  register_gate_commands(app, verbs);
 
-  for (const char* verb : {"bench", "gate", "report", "paper"}) {
-    auto* cmd = app.add_subcommand(verb, std::string("(not built yet) ") + verb);
-    cmd->allow_extras();
-    verbs[verb] = [v = std::string(verb)] { return not_built(v); };
-  }
 }
 
 int run_selected(const CLI::App& app) {

@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <iostream>
 
 #include "commands.h"
@@ -13,9 +15,13 @@ int main(int argc, char** argv) {
   CLI::App app{"subdivbench: GPU subdivision methods on identical meshes, measured and validated"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Every verb's options");
+  std::string device;
+  app.add_option("--device", device, "Vulkan device: a substring of its name (or $SUBDIVBENCH_VK_DEVICE)");
   sdb::cli::register_commands(app);
   try {
     app.parse(argc, argv);
+    // Device choice reads the variable wherever a Context or probe is made.
+    if (!device.empty()) setenv("SUBDIVBENCH_VK_DEVICE", device.c_str(), 1);
     return sdb::cli::run_selected(app);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -1,0 +1,42 @@
+// The performance gate: compares a current results.json with a baseline on figures that a slower
+// or busier machine does not move: each repetition's time over the osd-bfr peer's median time on
+// the same mesh, tessellation and backend in the same run (peers themselves: time x the machine's
+// write bandwidth, the calibration probe). A benchmark regresses when the change is beyond its
+// threshold AND a two-sided Mann-Whitney U test says it is significant.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "results.h"
+
+namespace sdb {
+
+struct GateConfig {
+  double alpha = 0.05;
+  int min_repetitions = 9;
+  double default_threshold = 0.25;  // relative slowdown of the normalised figure
+  std::vector<std::pair<std::string, double>> thresholds;  // (name regex, threshold), first match wins
+};
+
+// Reads ci/gate.json; throws InputError on a malformed file.
+GateConfig read_gate_config(const std::string& path);
+
+struct GateEntry {
+  std::string name;        // scheme/backend/mesh/level
+  std::string normaliser;  // "osd-bfr" or "bandwidth probe"
+  double change = 0;       // median normalised figure, current / baseline - 1
+  double p_value = 1;
+  double threshold = 0;
+  bool regression = false, improvement = false;
+};
+
+struct GateReport {
+  std::vector<GateEntry> entries;
+  std::vector<std::string> problems;  // benchmarks that cannot be judged (too few repetitions, ...)
+  bool failed() const;
+};
+
+GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, const GateConfig& config);
+
+}  // namespace sdb

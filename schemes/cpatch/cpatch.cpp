@@ -1,0 +1,83 @@
+#include "cpatch.h"
+
+#include "cpu.h"
+
+namespace sdb {
+namespace {
+
+constexpr const char* kPaper = "Ni, Yeo, Myles, Goel, Peters 2008, GPU Smoothing of Quad Meshes";
+
+// Section 1: any polygon mesh becomes a quad mesh by one Catmull-Clark step; Section 2 needs
+// every vertex surrounded by quads, hence closed; creases and holes are not part of the paper.
+MeshRequirements cpatch_requirements() {
+  MeshRequirements r;
+  r.faces = MeshRequirements::Faces::QuadsOnly;
+  r.quadrangulate = true;
+  r.manifold = true;
+  r.closed = true;
+  r.creases = false;
+  r.holes = false;
+  return r;
+}
+
+SchemeInfo make_info(const char* name, const char* description, std::vector<Backend> backends,
+                     std::vector<int> levels) {
+  SchemeInfo info;
+  info.name = name;
+  info.paper = kPaper;
+  info.description = description;
+  info.reference = SubdivisionRule::CatmullClark;
+  info.level_kind = LevelKind::Rate;
+  info.backends = std::move(backends);
+  info.default_levels = std::move(levels);
+  info.accepts = cpatch_requirements();
+  return info;
+}
+
+class CpatchTwoPassScheme final : public Scheme {
+ public:
+  const SchemeInfo& info() const override { return cpatch_2pass_info(); }
+
+  std::optional<std::string> unsupported(const RunRequest& request) const override {
+    if (request.backend == Backend::Vulkan) return "cpatch-2pass has no vulkan backend yet";
+    if (request.level < 2) return "rate N = " + std::to_string(request.level) + " is below 2 (N x N samples per quad)";
+    return std::nullopt;
+  }
+
+  std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
+    if (auto why = unsupported(request)) throw std::invalid_argument(*why);
+    return std::make_unique<cpatch::CpatchCpuEvaluation>(mesh, request.level, request.backend == Backend::CpuMt,
+                                                         request.threads);
+  }
+};
+
+}  // namespace
+
+const SchemeInfo& cpatch_2pass_info() {
+  static const SchemeInfo info = make_info(
+      "cpatch-2pass", "bicubic patches on ordinary quads, c-patches on extraordinary ones; convert, then evaluate",
+      {Backend::Cpu, Backend::CpuMt}, {2, 5, 9, 17, 33});
+  return info;
+}
+
+const SchemeInfo& cpatch_1pass_info() {
+  static const SchemeInfo info =
+      make_info("cpatch-1pass", "c-patches converted and evaluated in one geometry-shader pass (paper: N <= 8)",
+                {Backend::Vulkan}, {2, 5, 8});
+  return info;
+}
+
+const SchemeInfo& cpatch_tess_info() {
+  static const SchemeInfo info =
+      make_info("cpatch-tess", "c-patches evaluated by the hardware tessellator (the paper's Section 6 outlook)",
+                {Backend::Vulkan}, {2, 5, 9, 17, 33});
+  return info;
+}
+
+std::vector<std::unique_ptr<Scheme>> make_cpatch_schemes() {
+  std::vector<std::unique_ptr<Scheme>> schemes;
+  schemes.push_back(std::make_unique<CpatchTwoPassScheme>());
+  return schemes;
+}
+
+}  // namespace sdb

@@ -1,0 +1,24 @@
+// The c-patch schemes: Ni, Yeo, Myles, Goel, Peters 2008, "GPU Smoothing of Quad Meshes".
+// Ordinary quads become bicubic Bezier patches, extraordinary quads c-patches (24 coefficients,
+// four quartic triangular pieces); see README.md in this folder.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "scheme.h"
+
+namespace sdb {
+
+// cpatch-2pass: conversion pass (Tables 1, 2) then evaluation pass (Table 3); cpu and cpu-mt.
+const SchemeInfo& cpatch_2pass_info();
+// cpatch-1pass (conversion and evaluation in one geometry-shader pass, Section 4) and cpatch-tess
+// (evaluation in a tessellation-evaluation shader, Section 6's outlook): Vulkan only, declared
+// here for the Vulkan module and kept out of make_cpatch_schemes() until they have a backend.
+const SchemeInfo& cpatch_1pass_info();
+const SchemeInfo& cpatch_tess_info();
+
+// The schemes with a backend today: cpatch-2pass.
+std::vector<std::unique_ptr<Scheme>> make_cpatch_schemes();
+
+}  // namespace sdb
