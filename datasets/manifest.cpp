@@ -6,6 +6,7 @@
 #include <functional>
 #include <regex>
 
+#include "analytic.h"
 #include "errors.h"
 #include "generators.h"
 #include "mesh_io.h"
@@ -46,6 +47,11 @@ const std::vector<Builtin>& builtins() {
        [] { return gen::random_quads(1292, 0.59, 1); }},
       {"frog-party", "nine frog stand-ins (the paper's Frog Party)",
        [] { return gen::party(gen::random_quads(1292, 0.59, 1), 9); }},
+      // Analytic geometry images (schemes/geometry-image/analytic.h); any odd size via gim-sphere-N.
+      {"gim-sphere-31", "geometry image 31x31 of the unit sphere: its closed control mesh g0 (the paper's Table 2 size)",
+       [] { return *gim::analytic_mesh_from_name("gim-sphere-31"); }},
+      {"gim-ellipsoid-31", "geometry image 31x31 of an ellipsoid (radii 1.2, 0.8, 0.6): its control mesh g0",
+       [] { return *gim::analytic_mesh_from_name("gim-ellipsoid-31"); }},
   };
   return list;
 }
@@ -60,6 +66,7 @@ std::optional<ControlMesh> parametrised(const std::string& name) {
   if (std::regex_match(name, m, std::regex(R"(open-patch-(\d+)x(\d+))"))) return gen::open_patch(i(1), i(2));
   if (std::regex_match(name, m, std::regex(R"(random-(\d+)-(\d+)(?:-(\d+))?)")))
     return gen::random_quads(i(1), i(2) / 100.0, m[3].matched ? i(3) : 1);
+  if (auto image = gim::analytic_mesh_from_name(name)) return image;  // gim-sphere-N, gim-ellipsoid-N
   return std::nullopt;
 }
 

@@ -1,0 +1,135 @@
+#include "create.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "errors.h"
+#include "surface_sampler.h"
+
+namespace sdb::gim {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+uint64_t mix_key(uint64_t h, const std::string& text) {
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+GeometryImageCreator::GeometryImageCreator(const ControlMesh& mesh, CreationOptions options)
+    : mesh_(mesh), options_(std::move(options)) {
+  require_closed_genus0(mesh_);
+  surface_ = triangulate(mesh_);
+}
+
+GeometryImageCreator::~GeometryImageCreator() = default;
+
+uint64_t GeometryImageCreator::cache_key() const {
+  const SphericalParametrizationOptions& p = options_.parametrization;
+  char settings[256];
+  std::snprintf(settings, sizeof settings,
+                "gim-create-v%d fairness=%.9g tris=%zu rounds=%d inverse=%.9g sweeps=%d tol=%.9g", kCreationVersion,
+                options_.fit.fairness, p.min_triangles, p.reweighting_rounds, p.inverse_weight, p.max_sweeps,
+                p.tolerance);
+  return mix_key(content_hash(mesh_), settings);
+}
+
+const SphericalParametrization& GeometryImageCreator::parametrization() {
+  if (!parametrization_) {
+    const auto start = std::chrono::steady_clock::now();
+    parametrization_ = SphericalParametrization::compute(surface_, options_.parametrization);
+    parametrize_ms_ = ms_since(start);
+    if (parametrization_->folded_triangles > 0) {
+      const std::string count = std::to_string(parametrization_->folded_triangles) + " of " +
+                                std::to_string(parametrization_->surface.triangles.size());
+      throw InputError(mesh_.source.empty() ? mesh_.name : mesh_.source,
+                       "geometry-image creation could not embed '" + mesh_.name + "' in the sphere: " + count +
+                           " triangles collapse in its Tutte embedding (a shape this elongated needs a "
+                           "parametrization method that this scheme does not have)");
+    }
+  }
+  return *parametrization_;
+}
+
+DenseSamples sample_surface(const SphericalParametrization& parametrization, int n) {
+  const SurfaceSampler sampler(parametrization.surface, parametrization.sphere);
+  DenseSamples samples;
+  samples.side = dense_sample_side(n);
+  samples.points.resize(static_cast<size_t>(samples.side) * samples.side);
+  const double to_image = static_cast<double>(n - 1) / (samples.side - 1);
+  tbb::parallel_for(tbb::blocked_range<int>(0, samples.side), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j)
+      for (int i = 0; i < samples.side; ++i)
+        samples.points[static_cast<size_t>(j) * samples.side + i] =
+            sampler.at_direction(OctahedralMap::sphere_from_image(i * to_image, j * to_image, n));
+  });
+  return samples;
+}
+
+CreatedImage GeometryImageCreator::create(int size) {
+  const CutSymmetry check(size);  // validates the size
+  const ImageCache cache(options_.cache_dir.empty() ? ImageCache::default_directory() : options_.cache_dir);
+  const uint64_t key = cache_key();
+  if (options_.use_cache)
+    if (auto cached = cache.load(key, size)) {
+      CreatedImage out{std::move(cached->image), {}};
+      CreationReport& r = out.report;
+      r.from_cache = true;
+      r.cache_path = cached->path;
+      auto figure = [&](const char* name) { return cached->figures.count(name) ? cached->figures.at(name) : 0.0; };
+      r.parametrize_ms = figure("parametrize_ms"), r.sample_ms = figure("sample_ms"), r.fit_ms = figure("fit_ms");
+      r.stretch = figure("stretch"), r.rms_residual = figure("rms_residual");
+      r.cg_iterations = static_cast<int>(figure("cg_iterations"));
+      r.unknowns = static_cast<int>(figure("unknowns"));
+      r.samples = static_cast<long>(figure("samples"));
+      return out;
+    }
+
+  CreatedImage out;
+  CreationReport& r = out.report;
+  const SphericalParametrization& param = parametrization();
+  r.parametrize_ms = parametrize_reported_ ? 0.0 : parametrize_ms_;
+  parametrize_reported_ = true;
+  r.stretch = param.stretch;
+  auto start = std::chrono::steady_clock::now();
+  const DenseSamples samples = sample_surface(param, size);
+  r.sample_ms = ms_since(start);
+  start = std::chrono::steady_clock::now();
+  FitReport fit;
+  out.image = fit_geometry_image(size, samples, options_.fit, &fit);
+  r.fit_ms = ms_since(start);
+  r.cg_iterations = fit.iterations;
+  r.rms_residual = fit.rms_residual;
+  r.unknowns = fit.unknowns;
+  r.samples = fit.samples;
+  if (options_.use_cache)
+    r.cache_path = cache.store(key, out.image,
+                               {{"parametrize_ms", parametrize_ms_},
+                                {"sample_ms", r.sample_ms},
+                                {"fit_ms", r.fit_ms},
+                                {"stretch", r.stretch},
+                                {"rms_residual", r.rms_residual},
+                                {"cg_iterations", r.cg_iterations},
+                                {"unknowns", r.unknowns},
+                                {"samples", static_cast<double>(r.samples)}});
+  return out;
+}
+
+CreatedImage create_geometry_image(const ControlMesh& mesh, const CreationOptions& options) {
+  GeometryImageCreator creator(mesh, options);
+  return creator.create(options.size);
+}
+
+}  // namespace sdb::gim

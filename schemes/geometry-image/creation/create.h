@@ -1,0 +1,78 @@
+// Geometry image creation (Section 4): spherical parametrization, the octahedral map unfolded by
+// the X-cut, dense sampling of the surface through them, and the least-squares fit; results are
+// cached on disk (cache.h).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cache.h"
+#include "control_mesh.h"
+#include "fit.h"
+#include "image.h"
+#include "parametrize.h"
+#include "triangle_mesh.h"
+
+namespace sdb::gim {
+
+// Bumped whenever a change to creation changes its results, so that old cache files are not used.
+inline constexpr int kCreationVersion = 1;
+
+struct CreationOptions {
+  int size = 65;  // n: samples per image side, odd, >= 5
+  FitOptions fit;
+  SphericalParametrizationOptions parametrization;
+  bool use_cache = true;
+  std::string cache_dir;  // empty: ImageCache::default_directory()
+};
+
+struct CreationReport {
+  bool from_cache = false;
+  std::string cache_path;  // the file read or written ("" when not cached)
+  // Wall-clock milliseconds of each step of the creation that made the image (also when it came
+  // from the cache: the figures stored with it). Parametrization is shared by every size made by
+  // one GeometryImageCreator and counted for the first only.
+  double parametrize_ms = 0, sample_ms = 0, fit_ms = 0;
+  double stretch = 0;           // L2 stretch of the spherical parametrization
+  int cg_iterations = 0;
+  double rms_residual = 0;      // of the fit against the dense samples, in model units
+  int unknowns = 0;
+  long samples = 0;
+};
+
+struct CreatedImage {
+  GeometryImage image;
+  CreationReport report;
+};
+
+// Creates images of any size from one mesh, parametrizing it once.
+class GeometryImageCreator {
+ public:
+  // Throws InputError unless the mesh is closed, manifold, genus 0 and connected.
+  explicit GeometryImageCreator(const ControlMesh& mesh, CreationOptions options = {});
+  ~GeometryImageCreator();
+
+  CreatedImage create(int size);
+  // The parametrization (computed on first use).
+  const SphericalParametrization& parametrization();
+  const TriangleMesh& surface() const { return surface_; }
+  // The cache key of an image of this mesh (content and creation settings).
+  uint64_t cache_key() const;
+
+ private:
+  ControlMesh mesh_;
+  CreationOptions options_;
+  TriangleMesh surface_;
+  std::optional<SphericalParametrization> parametrization_;
+  double parametrize_ms_ = 0;
+  bool parametrize_reported_ = false;
+};
+
+CreatedImage create_geometry_image(const ControlMesh& mesh, const CreationOptions& options = {});
+
+// The dense samples of the surface, through `parametrization` and the octahedral map, on the
+// grid the fit of an n x n image uses.
+DenseSamples sample_surface(const SphericalParametrization& parametrization, int n);
+
+}  // namespace sdb::gim

@@ -1,0 +1,183 @@
+// The subdivided surface against the reference: OpenSubdiv's Catmull-Clark limit of g0, the exact
+// weld and ray-crack checks, and the fitted surface's Hausdorff distance to its input mesh.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "closed_mesh.h"
+#include "creation/triangle_mesh.h"
+#include "deviation.h"
+#include "geometry_image.h"
+#include "limit_evaluator.h"
+#include "test_support.h"
+#include "watertight.h"
+
+using namespace sdb;
+using namespace sdb::gim;
+using namespace sdb::gim::testing;
+
+namespace {
+
+struct Subdivided {
+  std::unique_ptr<Evaluation> evaluation;
+  const Tessellation& tessellation() const { return evaluation->result(); }
+};
+
+Subdivided subdivide(const GeometryImage& image, int level, Backend backend = Backend::Cpu) {
+  static const auto scheme = make_geometry_image_scheme();
+  Subdivided s{scheme->prepare(closed_mesh(image, "g0", "test"), {backend, level, 0})};
+  s.evaluation->execute();
+  return s;
+}
+
+double diagonal(const std::vector<Point3>& points) {
+  std::vector<Vec3d> p;
+  for (const Point3& q : points) p.push_back({q[0], q[1], q[2]});
+  return bounding_box_diagonal(p);
+}
+
+// g0 quads whose 2-ring (image positions two steps around the quad, folded by the cut) holds a
+// cut vertex: there the limit of Catmull-Clark's valence-2 rules and the paper's patch differ.
+std::vector<char> quads_near_cut_vertices(int n) {
+  const CutSymmetry sym(n);
+  std::vector<int> cut;
+  for (const ImagePos& c : sym.cut_vertices()) cut.push_back(sym.vertex(c.x, c.y));
+  std::vector<char> near(static_cast<size_t>(n - 1) * (n - 1), 0);
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i)
+      for (int y = j - 2; y <= j + 3; ++y)
+        for (int x = i - 2; x <= i + 3; ++x)
+          for (int c : cut) near[j * (n - 1) + i] |= sym.vertex(x, y) == c;
+  return near;
+}
+
+struct LimitComparison {
+  double away_max = 0, near_max = 0;              // distance / bounding-box diagonal
+  double away_normal_deg = 0, near_normal_deg = 0;
+  long away = 0, near = 0;
+  long no_reference_normal = 0;
+};
+
+LimitComparison compare_with_limit(const GeometryImage& image, int level) {
+  const Subdivided s = subdivide(image, level);
+  const Tessellation& t = s.tessellation();
+  const LimitEvaluator reference(*t.reference, SubdivisionRule::CatmullClark);
+  const std::vector<char> near = quads_near_cut_vertices(image.size);
+  const double diag = diagonal(t.positions);
+  LimitComparison out;
+  for (size_t v = 0; v < t.positions.size(); ++v) {
+    const LimitSample limit = reference.evaluate(t.coords[v]);
+    const Point3& p = t.positions[v];
+    const Point3& q = t.normals[v];
+    const double d = std::hypot(p[0] - limit.position[0], p[1] - limit.position[1], p[2] - limit.position[2]) / diag;
+    // atan2 of |q x n| and q . n: acos of a cosine near 1 would turn the float normal's length
+    // error (1e-7) into 0.03 degrees.
+    const double* n = limit.normal.data();
+    const double cosine = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
+    const double sine = std::hypot(q[1] * n[2] - q[2] * n[1], q[2] * n[0] - q[0] * n[2], q[0] * n[1] - q[1] * n[0]);
+    const double degrees = std::atan2(sine, cosine) * 180.0 / M_PI;
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) {
+      ++out.no_reference_normal;  // OpenSubdiv's tangents vanish at the valence-2 vertices
+      continue;
+    }
+    if (near[t.coords[v].face]) {
+      out.near_max = std::max(out.near_max, d), out.near_normal_deg = std::max(out.near_normal_deg, degrees);
+      ++out.near;
+    } else {
+      out.away_max = std::max(out.away_max, d), out.away_normal_deg = std::max(out.away_normal_deg, degrees);
+      ++out.away;
+    }
+  }
+  return out;
+}
+
+// The input mesh as a Tessellation (triangulated), the reference for Hausdorff distances.
+Tessellation as_tessellation(const ControlMesh& mesh) {
+  const TriangleMesh tri = triangulate(mesh);
+  Tessellation t;
+  t.positions = mesh.positions;
+  for (const auto& f : tri.triangles)
+    for (int v : f) t.triangles.push_back(static_cast<uint32_t>(v));
+  return t;
+}
+
+}  // namespace
+
+TEST(Surface, MatchesTheCatmullClarkLimitOfG0AwayFromTheCutVertices) {
+  struct Case {
+    std::string name;
+    GeometryImage image;
+    int max_level;
+  };
+  std::vector<Case> cases = {{"ellipsoid 31x31", analytic_image(AnalyticShape::Ellipsoid, 31), 3},
+                             {"wobbly 17x17", wobbly_image(17), 4}};
+  if (auto spot = fitted_image("crane/spot_low_resolution", 33)) cases.push_back({"Spot 33x33", spot->image, 2});
+  for (const Case& c : cases)
+    for (int k = 1; k <= c.max_level; ++k) {
+      const LimitComparison r = compare_with_limit(c.image, k);
+      std::printf("  %-16s k=%d: away from cut vertices max %.2e of the diagonal, normals %.2e deg (%ld samples); "
+                  "near them max %.2e, normals %.2f deg (%ld samples, %ld without a reference normal)\n",
+                  c.name.c_str(), k, r.away_max, r.away_normal_deg, r.away, r.near_max, r.near_normal_deg, r.near,
+                  r.no_reference_normal);
+      EXPECT_LE(r.away_max, 1e-5) << c.name << " k=" << k;
+      EXPECT_LE(r.away_normal_deg, 2e-3) << c.name << " k=" << k;  // float32 tangents at level k
+      EXPECT_EQ(r.no_reference_normal, 4) << "only at a, b, c, d";
+      EXPECT_GT(r.away, r.near);
+      EXPECT_LT(r.near_max, 0.05) << "sanity near the cut vertices, " << c.name << " k=" << k;
+    }
+}
+
+TEST(Surface, WeldedAnalyticSphereIsClosedAcrossTheCut) {
+  const GeometryImage sphere = analytic_image(AnalyticShape::Sphere, 31);
+  for (int k = 1; k <= 5; ++k) {
+    const Subdivided s = subdivide(sphere, k);
+    EXPECT_EQ(count_open_edges(s.tessellation()), 0) << "k=" << k;
+    if (k == 3) {
+      const RayCrackReport rays = ray_crack_check(s.tessellation(), {.random_lines = 100000});
+      EXPECT_GE(rays.rays, 100000);
+      EXPECT_EQ(rays.cracks, 0) << "k=" << k << ", seed " << rays.seed;
+    }
+  }
+}
+
+TEST(Surface, WeldedImagesOfTheCorpusAreClosedAcrossTheCut) {
+  for (const char* name : {"crane/spot_low_resolution", "stanford/bunny", "crane/blub_control"}) {
+    const auto made = fitted_image(name, 33);
+    if (!made) GTEST_SKIP() << kNoCorpus;
+    for (int k = 1; k <= 5; ++k) {
+      const Subdivided s = subdivide(made->image, k);
+      EXPECT_EQ(count_open_edges(s.tessellation()), 0) << name << " k=" << k;
+      if (k == 3) {
+        const RayCrackReport rays = ray_crack_check(s.tessellation(), {.random_lines = 100000});
+        EXPECT_GE(rays.rays, 100000);
+        EXPECT_EQ(rays.cracks, 0) << name << " k=" << k << ", seed " << rays.seed;
+      }
+    }
+  }
+}
+
+TEST(Surface, FittedSurfacesLieCloseToTheirMeshes) {
+  std::printf("  %-26s %5s %10s %10s %10s %12s %12s\n", "mesh", "m", "fit ms", "forward", "backward",
+              "Hausdorff", "(of diagonal)");
+  for (const char* name : {"crane/spot_low_resolution", "stanford/bunny", "crane/blub_control"}) {
+    auto mesh = corpus_mesh(name);
+    if (!mesh) {
+      GTEST_SKIP() << kNoCorpus;
+    }
+    const Tessellation input = as_tessellation(*mesh);
+    for (int m : {33, 65, 129}) {
+      const auto made = fitted_image(name, m);
+      // A level whose grid has about 513 samples a side stands for the limit surface.
+      const int level = m == 33 ? 4 : m == 65 ? 3 : 2;
+      const Subdivided s = subdivide(made->image, level);
+      const HausdorffReport h = hausdorff(s.tessellation(), input);
+      std::printf("  %-26s %5d %10.0f %10.4f %10.4f %12.4f %s\n", name, m, made->report.fit_ms, h.forward_max,
+                  h.backward_max, h.max(), made->report.from_cache ? "(fit cached)" : "");
+      if (std::string(name) == "crane/spot_low_resolution" && m == 65) {
+        EXPECT_LT(h.max(), 0.02);
+      }
+      EXPECT_LT(h.max(), 0.05) << name << " m=" << m;
+    }
+  }
+}
