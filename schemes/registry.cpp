@@ -1,6 +1,7 @@
 #include "registry.h"
 
 #include "cpatch.h"
+#include "geometry_image.h"
 #include "peers.h"
 
 namespace sdb {
@@ -9,6 +10,7 @@ const std::vector<std::unique_ptr<Scheme>>& all_schemes() {
   static const std::vector<std::unique_ptr<Scheme>> schemes = [] {
     std::vector<std::unique_ptr<Scheme>> list = make_peer_schemes();
     for (auto& s : make_cpatch_schemes()) list.push_back(std::move(s));
+    list.push_back(make_geometry_image_scheme());
     return list;
   }();
   return schemes;

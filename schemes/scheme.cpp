@@ -23,6 +23,14 @@ std::optional<Backend> parse_backend(std::string_view s) {
 
 int segments_per_edge(LevelKind kind, int level) { return kind == LevelKind::Depth ? 1 << level : level - 1; }
 
+long Scheme::estimated_triangles(const ControlMesh& accepted, const RunRequest& request) const {
+  const SchemeInfo& i = info();
+  const long seg = segments_per_edge(i.level_kind, request.level);
+  long doubled = 0;  // twice the count, to keep it integral
+  for (int n : accepted.face_sizes) doubled += n == 4 ? 4 : (n == 3 && i.reference == SubdivisionRule::Loop ? 2 : n);
+  return doubled * seg * seg / 2;
+}
+
 ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
   const MeshRequirements& req = info.accepts;
   auto refuse = [&](const std::string& why) -> void {

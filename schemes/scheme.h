@@ -91,6 +91,9 @@ class Scheme {
   virtual std::optional<std::string> unsupported(const RunRequest&) const { return std::nullopt; }
   // `mesh` has passed accept_mesh() for this scheme. Throws InputError for meshes it refuses late.
   virtual std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const = 0;
+  // Output size of a request, for run budgets. The default counts samples per base face: a quad
+  // gives 2 s^2 triangles, a Loop triangle s^2, an n-gon's n sub-quads n s^2 / 2 (s = segments).
+  virtual long estimated_triangles(const ControlMesh& accepted, const RunRequest& request) const;
 };
 
 // Checks a mesh against a scheme's requirements: returns the mesh to hand to prepare() (quadrangulated

@@ -262,7 +262,15 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   RunRow row = describe_run(spec, *scheme, o, ctx, &accepted);
   if (row.status == "unsupported") return row;
   const RunRequest request{spec.backend, spec.level, o.threads};
-  std::unique_ptr<Evaluation> eval = scheme->prepare(*accepted, request);
+  std::unique_ptr<Evaluation> eval;
+  try {
+    eval = scheme->prepare(*accepted, request);
+  } catch (const InputError& e) {
+    if (!o.refusals_as_rows) throw;
+    row.status = "unsupported";
+    row.message = e.what();
+    return row;
+  }
   const auto start = std::chrono::steady_clock::now();
   execute_on(*eval, spec.backend);
   const double once_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -33,6 +33,9 @@ struct MeasureOptions {
   uint64_t seed = 1;
   int threads = 0;  // cpu-mt
   std::string deviation_ply;  // when set: per-vertex deviation of the output written there
+  // Default sets: a scheme refusing a mesh late (in prepare) gives an "unsupported" row instead
+  // of stopping the run. Explicit requests keep the InputError (exit code 2).
+  bool refusals_as_rows = false;
 };
 
 // Meshes, accepted meshes and reference surfaces shared by the rows of one run.

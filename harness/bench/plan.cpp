@@ -11,16 +11,6 @@
 namespace sdb {
 namespace {
 
-// Output size of a run, to keep the default set within a budget: a quad gives 2 s^2 triangles,
-// a Loop triangle s^2, an n-gon's n sub-quads n s^2 / 2 (s = segments per edge).
-long estimated_triangles(const ControlMesh& accepted, const SchemeInfo& info, int level) {
-  const long seg = segments_per_edge(info.level_kind, level);
-  long doubled = 0;  // twice the count, to keep it integral
-  for (int n : accepted.face_sizes)
-    doubled += n == 4 ? 4 : (n == 3 && info.reference == SubdivisionRule::Loop ? 2 : n);
-  return doubled * seg * seg / 2;
-}
-
 // Benchmark figures the project reports (README, notes): in the default set whatever the budget.
 const std::vector<RunSpec>& headline_runs() {
   static const std::vector<RunSpec> runs = {
@@ -92,7 +82,7 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
           continue;
         }
         for (int level : sel.levels.empty() ? info.default_levels : sel.levels) {
-          if (sel.levels.empty() && estimated_triangles(*accepted, info, level) > sel.max_triangles) continue;
+          if (sel.levels.empty() && s->estimated_triangles(*accepted, {b, level, 0}) > sel.max_triangles) continue;
           plan.runs.push_back({info.name, mesh, b, level});
         }
       }

@@ -100,8 +100,10 @@ int run() {
               results.machine.vulkan_device.empty() ? ""
                   : (", " + results.machine.vulkan_device + " " + std::to_string(results.machine.gpu_write_bandwidth_gbs).substr(0, 5) + " GB/s").c_str());
   bool failed = false;
+  MeasureOptions options = measure_options();
+  options.refusals_as_rows = !(o.schemes.size() == 1 && o.meshes.size() == 1);
   for (const RunSpec& spec : plan.runs) {
-    results.runs.push_back(measure_run(spec, measure_options(), ctx));
+    results.runs.push_back(measure_run(spec, options, ctx));
     print_row(results.runs.back());
     failed |= results.runs.back().status == "failed";
   }

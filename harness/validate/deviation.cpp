@@ -66,15 +66,22 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
       }
       abs_dist[i] = std::sqrt(d2);
       dist[i] = 100.0 * abs_dist[i] / ref.local_size(static_cast<int>(c.face));
+      const double ref_len = std::sqrt(s.normal[0] * s.normal[0] + s.normal[1] * s.normal[1] + s.normal[2] * s.normal[2]);
       const double cosine = nn > 0 ? std::clamp(dot / std::sqrt(nn), -1.0, 1.0) : -1.0;
       r.vertex_pct[i] = static_cast<float>(dist[i]);
-      r.vertex_deg[i] = static_cast<float>(std::acos(cosine) * 180.0 / M_PI);
+      // No reference normal: NaN marks it, and the statistics leave it out.
+      r.vertex_deg[i] = ref_len > 0.5 ? static_cast<float>(std::acos(cosine) * 180.0 / M_PI) : NAN;
     }
   });
   std::vector<double> pct, deg;
   double max_abs = 0;
-  for (size_t i = 0; i < n; ++i)
-    if (used[i]) pct.push_back(dist[i]), deg.push_back(r.vertex_deg[i]), max_abs = std::max(max_abs, abs_dist[i]);
+  for (size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    pct.push_back(dist[i]);
+    max_abs = std::max(max_abs, abs_dist[i]);
+    if (std::isnan(r.vertex_deg[i])) ++r.normal_undefined;
+    else deg.push_back(r.vertex_deg[i]);
+  }
   const Stats p = stats_of(pct), a = stats_of(deg);
   r.pos_max_pct = p.max, r.pos_mean_pct = p.mean, r.pos_rms_pct = p.rms, r.pos_p95_pct = p.p95;
   r.normal_max_deg = a.max, r.normal_mean_deg = a.mean, r.normal_rms_deg = a.rms, r.normal_p95_deg = a.p95;

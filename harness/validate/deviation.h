@@ -17,6 +17,9 @@ struct DeviationReport {
   // Angle between output normal and limit normal, in degrees.
   double normal_max_deg = 0, normal_mean_deg = 0, normal_rms_deg = 0, normal_p95_deg = 0;
   long vertices = 0;
+  // Vertices where the reference has no normal (du x dv = 0: OpenSubdiv at a valence-2 vertex,
+  // say); left out of the normal statistics.
+  long normal_undefined = 0;
   std::vector<float> vertex_pct, vertex_deg;  // per output vertex, for heat maps
 };
 

@@ -89,6 +89,14 @@ class GeometryImageScheme final : public Scheme {
     return std::nullopt;
   }
 
+  // The output is the image subdivided, whatever the input's size: 2 ((n - 1) 2^k)^2 triangles.
+  long estimated_triangles(const ControlMesh& mesh, const RunRequest& request) const override {
+    const auto image = image_from_closed_mesh(mesh);
+    const long n = image ? image->size : resolved_fit_size(options_);
+    const long side = (n - 1) << request.level;
+    return 2 * side * side;
+  }
+
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
     if (auto why = unsupported(request)) throw InputError(mesh.name, *why);
     GeometryImage image = select_image(mesh);
