@@ -33,24 +33,41 @@ struct Normalised {
 // When the run went in rounds, sample r is divided by the peer's sample r, measured moments
 // apart, which cancels a busy machine's drift. Otherwise the unit is the peer's fastest
 // repetition: interference only adds time, so the minimum is its most stable estimate.
-std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file) {
-  const TimeStats& t = timing(row);
+// Sample r of `t` over sample r of `unit` (same round) when the run went in rounds, else over the
+// unit's fastest sample: interference only adds time, so the minimum is its stablest estimate.
+std::vector<double> divided(const std::vector<double>& t, const std::vector<double>& unit, bool paired) {
+  std::vector<double> out;
+  if (paired && unit.size() == t.size()) {
+    for (size_t i = 0; i < t.size(); ++i) out.push_back(t[i] / unit[i]);
+  } else {
+    const double m = *std::min_element(unit.begin(), unit.end());
+    for (double s : t) out.push_back(s / m);
+  }
+  return out;
+}
+
+const RunRow* find_unit(const RunRow& row, const ResultsFile& file) {
   if (row.scheme != "osd-bfr")
     for (const RunRow& peer : file.runs)
       if (peer.scheme == "osd-bfr" && peer.status == "ok" && peer.mesh == row.mesh &&
-          peer.tessellation == row.tessellation && peer.backend == (row.backend == "vulkan" ? "cpu-mt" : row.backend)) {
-        const auto& ps = timing(peer).samples;
-        if (ps.empty()) break;
-        Normalised n{{}, "osd-bfr"};
-        if (file.rounds > 0 && ps.size() == t.samples.size()) {
-          n.by = "osd-bfr, paired";
-          for (size_t i = 0; i < ps.size(); ++i) n.samples.push_back(t.samples[i] / ps[i]);
-        } else {
-          const double m = *std::min_element(ps.begin(), ps.end());
-          for (double s : t.samples) n.samples.push_back(s / m);
-        }
-        return n;
-      }
+          peer.tessellation == row.tessellation && peer.backend == (row.backend == "vulkan" ? "cpu-mt" : row.backend) &&
+          !timing(peer).samples.empty())
+        return &peer;
+  for (const RunRow& probe : file.runs)
+    if (probe.scheme == "calibration" && probe.backend == row.backend && !timing(probe).samples.empty()) return &probe;
+  return nullptr;
+}
+
+// Each repetition's time in units of the same run's osd-bfr time on the same mesh, tessellation
+// and backend; rows without such a peer (the peer itself) in units of the calibration probe run
+// beside them (bench --rounds), or failing that of the machine's bandwidth probe.
+std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file) {
+  const TimeStats& t = timing(row);
+  const bool paired = file.rounds > 0;
+  if (const RunRow* unit = find_unit(row, file)) {
+    const std::string by = unit->scheme == "osd-bfr" ? "osd-bfr" : "write probe";
+    return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
+  }
   const double bw = row.backend == "cpu-mt"   ? file.machine.write_bandwidth_mt_gbs
                     : row.backend == "vulkan" ? file.machine.gpu_write_bandwidth_gbs
                                               : file.machine.write_bandwidth_gbs;
@@ -90,7 +107,7 @@ GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, con
   for (const RunRow& r : baseline.runs)
     if (r.status == "ok") base[name_of(r)] = &r;
   for (const RunRow& cur : current.runs) {
-    if (cur.status != "ok") continue;
+    if (cur.status != "ok" || cur.scheme == "calibration") continue;
     const auto it = base.find(name_of(cur));
     if (it == base.end()) continue;
     const RunRow& old = *it->second;

@@ -1,6 +1,8 @@
 #include "measure.h"
 
 #include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -297,8 +299,45 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   return row;
 }
 
-std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& o, MeasureContext& ctx,
+namespace {
+
+// The calibration probe as a benchmark: a streaming store over 64 MiB, one thread on `cpu`, TBB's
+// threads on `cpu-mt`. Run once per round beside the schemes, it gives the gate a paired unit
+// for rows that have no osd-bfr peer (the peer itself).
+class WriteProbe final : public Evaluation {
+ public:
+  explicit WriteProbe(Backend backend) : backend_(backend), buffer_((size_t(64) << 20) / sizeof(float)) {}
+  void execute() override {
+    value_ += 1.0f;
+    if (backend_ == Backend::CpuMt) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, buffer_.size(), size_t(1) << 18), [&](const tbb::blocked_range<size_t>& r) {
+        std::fill(buffer_.begin() + long(r.begin()), buffer_.begin() + long(r.end()), value_);
+      });
+    } else {
+      std::fill(buffer_.begin(), buffer_.end(), value_);
+    }
+  }
+  const Tessellation& result() override { return empty_; }
+  size_t bytes_out() const override { return buffer_.size() * sizeof(float); }
+
+ private:
+  Backend backend_;
+  std::vector<float> buffer_;
+  float value_ = 0;
+  Tessellation empty_;
+};
+
+}  // namespace
+
+std::string calibration_mesh() { return "write-64MiB"; }
+
+std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs_in, const MeasureOptions& o, MeasureContext& ctx,
                                benchmark::BenchmarkReporter* display, int rounds) {
+  std::vector<RunSpec> specs = specs_in;
+  if (rounds > 0)
+    for (Backend b : {Backend::Cpu, Backend::CpuMt})
+      if (std::any_of(specs_in.begin(), specs_in.end(), [b](const RunSpec& s) { return s.backend == b; }))
+        specs.push_back({"calibration", calibration_mesh(), b, 0});
   struct Lazy {
     RunRow row;
     std::shared_ptr<const ControlMesh> mesh;
@@ -312,6 +351,16 @@ std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureO
   };
   std::vector<std::unique_ptr<Lazy>> runs;
   for (const RunSpec& spec : specs) {
+    if (spec.scheme == "calibration") {
+      auto lazy = std::make_unique<Lazy>();
+      lazy->row.scheme = spec.scheme;
+      lazy->row.backend = std::string(to_string(spec.backend));
+      lazy->row.mesh = spec.mesh;
+      lazy->row.message = "calibration probe: streaming store";
+      lazy->eval = std::make_unique<WriteProbe>(spec.backend);
+      runs.push_back(std::move(lazy));
+      continue;
+    }
     const Scheme* scheme = find_scheme(spec.scheme);
     if (!scheme) throw InputError(spec.scheme, "no such scheme (see `subdivbench list schemes`)");
     auto lazy = std::make_unique<Lazy>();

@@ -34,11 +34,17 @@ std::vector<Backend> available_backends() {
   return b;
 }
 
-std::vector<std::string> default_meshes(bool all_corpus) {
+std::vector<std::string> default_meshes(bool all, bool all_corpus) {
+  static const std::vector<std::string> curated = {
+      "torus",          "quadsphere",         "pole3",       "pole8",        "icosphere",
+      "creased-cube",   "sword-standin",      "head-standin", "frog-standin", "gim-sphere-31",
+      "crane/spot_control", "crane/blub_control", "pmp/fandisk_quads", "stanford/bunny"};
   std::vector<std::string> out;
   for (const auto& e : list_meshes()) {
-    if (e.kind == "builtin") out.push_back(e.name);
-    else if (all_corpus || e.name.rfind("opensubdiv/", 0) != 0) out.push_back(e.name);
+    const bool osd_shape = e.name.rfind("opensubdiv/", 0) == 0;
+    const bool take = all ? (e.kind == "builtin" || all_corpus || !osd_shape)
+                          : std::find(curated.begin(), curated.end(), e.name) != curated.end();
+    if (take) out.push_back(e.name);
   }
   return out;
 }
@@ -63,7 +69,7 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
   }
   const std::vector<Backend> available = available_backends();
   const bool explicit_pair = sel.schemes.size() == 1 && sel.meshes.size() == 1;
-  const std::vector<std::string> meshes = sel.meshes.empty() ? default_meshes(sel.all_corpus) : sel.meshes;
+  const std::vector<std::string> meshes = sel.meshes.empty() ? default_meshes(sel.all_meshes, sel.all_corpus) : sel.meshes;
   for (const Scheme* s : schemes) {
     const SchemeInfo& info = s->info();
     for (const auto& mesh : meshes) {

@@ -55,7 +55,8 @@ int bench() {
   machine.write_bandwidth_mt_gbs = measure_write_bandwidth(std::max(1, machine.cores));
   if (!machine.vulkan_device.empty()) machine.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
   MeasureContext ctx(machine);
-  Selection sel{g.schemes, g.meshes, g.backends, g.levels};
+  Selection sel;
+  sel.schemes = g.schemes, sel.meshes = g.meshes, sel.backends = g.backends, sel.levels = g.levels;
   Plan plan;
   if (g.runs.empty()) plan = make_plan(sel, ctx);
   for (const auto& name : g.runs) plan.runs.push_back(parse_run_name(name));

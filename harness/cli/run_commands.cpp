@@ -26,7 +26,7 @@ struct RunOptions {
   int level = 0, reps = 5;
   long rays = 50000;
   uint64_t seed = 1;
-  bool json = false, all_corpus = false, no_validate = false, no_report = false;
+  bool json = false, all_meshes = false, all_corpus = false, no_validate = false, no_report = false;
 };
 RunOptions o;
 
@@ -84,7 +84,10 @@ int validate() {
 
 int run() {
   MeasureContext ctx(machine_with_bandwidth());
-  Selection sel{o.schemes, o.meshes, o.backends, o.levels, o.all_corpus};
+  Selection sel;
+  sel.schemes = o.schemes, sel.meshes = o.meshes, sel.backends = o.backends, sel.levels = o.levels;
+  sel.all_meshes = o.all_meshes || o.all_corpus;
+  sel.all_corpus = o.all_corpus;
   const Plan plan = make_plan(sel, ctx);
   for (const auto& n : plan.notes) std::printf("note: %s\n", n.c_str());
   if (plan.runs.empty()) {
@@ -117,10 +120,11 @@ int run() {
 
 void add_selection(CLI::App* cmd) {
   cmd->add_option("--scheme", o.schemes, "scheme name (repeatable; default: all)");
-  cmd->add_option("--mesh", o.meshes, "mesh name or path (repeatable; default: built-ins and the real corpus meshes)");
+  cmd->add_option("--mesh", o.meshes, "mesh name or path (repeatable; default: the curated set, see README)");
   cmd->add_option("--backend", o.backends, "cpu | cpu-mt | vulkan (repeatable; default: all available)");
   cmd->add_option("--level", o.levels, "depth k or rate N (repeatable; default: the scheme's levels)");
-  cmd->add_flag("--all-corpus", o.all_corpus, "also OpenSubdiv's regression shapes in the default set");
+  cmd->add_flag("--all", o.all_meshes, "every built-in and every real corpus mesh instead of the curated set");
+  cmd->add_flag("--all-corpus", o.all_corpus, "--all, and OpenSubdiv's regression shapes too");
 }
 
 }  // namespace
