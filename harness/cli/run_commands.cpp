@@ -68,7 +68,10 @@ int validate() {
   MeasureOptions m = measure_options();
   m.time = false;
   m.deviation_ply = o.deviation_ply;
-  const RunRow row = measure_run({o.scheme, o.mesh, *backend, o.level}, m, ctx);
+  const RunSpec spec{o.scheme, o.mesh, *backend, o.level};
+  const RunRow row = measure_run(spec, m, ctx);
+  // One explicit request the scheme declines is bad usage, not a result.
+  if (row.status == "unsupported") throw InputError(spec.name(), row.message);
   if (o.json) std::cout << row_json(row) << "\n";
   else print_row(row);
   return row.status == "failed" ? 1 : 0;
