@@ -48,14 +48,14 @@ double memory_gib() {
 
 }  // namespace
 
-MachineInfo describe_machine() {
+MachineInfo describe_machine(bool probe_vulkan) {
   MachineInfo m;
   m.cpu_model = cpu_model();
   m.cores = static_cast<int>(std::thread::hardware_concurrency());
   m.memory_gib = memory_gib();
   m.compiler = std::string("g++ ") + __VERSION__;
   m.build_type = SDB_BUILD_TYPE;
-  if (const gpu::DeviceInfo vk = gpu::probe(); vk.available) {
+  if (const gpu::DeviceInfo vk = probe_vulkan ? gpu::probe() : gpu::DeviceInfo{}; vk.available) {
     m.vulkan_device = vk.name;
     m.vulkan_driver = vk.driver_name + " " + vk.driver_info + " (" + vk.driver_version + ")";
     m.vulkan_api = vk.api_version;

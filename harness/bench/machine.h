@@ -5,8 +5,9 @@
 
 namespace sdb {
 
-// CPU, memory, compiler, build type, git commit, and the Vulkan device a run would use.
-MachineInfo describe_machine();
+// CPU, memory, compiler, build type, git commit, and (probe_vulkan) the Vulkan device a run
+// would use; the probe loads the driver, which costs a lavapipe start-up its LLVM.
+MachineInfo describe_machine(bool probe_vulkan = true);
 
 // Achievable write bandwidth in GB/s: sequential stores over a buffer several times the last-level
 // cache, best of a few passes; `threads` > 1 splits the buffer across TBB workers.

@@ -130,9 +130,10 @@ const LimitEvaluator& MeasureContext::reference(const std::shared_ptr<const Cont
   return *slot;
 }
 
-const Tessellation& MeasureContext::dense_reference(const std::shared_ptr<const ControlMesh>& m) {
+std::pair<const Tessellation*, const EmbreeTriangleScene*> MeasureContext::dense_reference(
+    const std::shared_ptr<const ControlMesh>& m) {
   auto it = dense_.find(m.get());
-  if (it != dense_.end()) return it->second;
+  if (it != dense_.end()) return {&it->second.surface, it->second.scene.get()};
   keep_alive_.push_back(m);
   // About two million triangles: dense enough for 1e-4 of the diagonal on the meshes here.
   const int faces = std::max(1, num_faces(*m));
@@ -140,7 +141,10 @@ const Tessellation& MeasureContext::dense_reference(const std::shared_ptr<const 
   const Scheme* bfr = find_scheme("osd-bfr");
   auto e = bfr->prepare(*m, {Backend::CpuMt, rate, 0});
   e->execute();
-  return dense_.emplace(m.get(), e->result()).first->second;
+  Dense& d = dense_[m.get()];
+  d.surface = e->result();
+  d.scene = std::make_unique<EmbreeTriangleScene>(d.surface.positions, d.surface.triangles);
+  return {&d.surface, d.scene.get()};
 }
 
 void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& ref_mesh,
@@ -164,7 +168,10 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
     if (!o.deviation_ply.empty()) write_deviation_ply(t, d, o.deviation_ply);
     row.deviation = {true,  d.pos_max_pct,    d.pos_mean_pct,   d.pos_rms_pct, d.pos_p95_pct, d.pos_max_rel_diag,
                      d.normal_max_deg, d.normal_mean_deg, -1};
-    if (o.hausdorff && rule == SubdivisionRule::CatmullClark) row.deviation.hausdorff_rel = hausdorff(t, ctx.dense_reference(ref_mesh)).max();
+    if (o.hausdorff && rule == SubdivisionRule::CatmullClark) {
+      const auto [dense, scene] = ctx.dense_reference(ref_mesh);
+      row.deviation.hausdorff_rel = hausdorff(t, *dense, *scene).max();
+    }
   }
 }
 

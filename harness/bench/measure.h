@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "embree_scene.h"
 #include "limit_evaluator.h"
 #include "results.h"
 #include "scheme.h"
@@ -46,8 +47,9 @@ class MeasureContext {
   // The mesh as the scheme takes it (quadrangulated when it asks); throws InputError if refused.
   std::shared_ptr<const ControlMesh> accepted(const std::string& name, const Scheme& scheme);
   const LimitEvaluator& reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
-  // A dense Catmull-Clark tessellation of the limit (osd-bfr), for Hausdorff distances.
-  const Tessellation& dense_reference(const std::shared_ptr<const ControlMesh>& mesh);
+  // A dense Catmull-Clark tessellation of the limit (osd-bfr) and its Embree scene, for
+  // Hausdorff distances; built once per mesh.
+  std::pair<const Tessellation*, const EmbreeTriangleScene*> dense_reference(const std::shared_ptr<const ControlMesh>& mesh);
   const MachineInfo& machine() const { return machine_; }
 
  private:
@@ -55,7 +57,11 @@ class MeasureContext {
   std::map<std::string, ControlMesh> meshes_;
   std::map<std::string, std::shared_ptr<const ControlMesh>> accepted_;
   std::map<const ControlMesh*, std::unique_ptr<LimitEvaluator>> references_;
-  std::map<const ControlMesh*, Tessellation> dense_;
+  struct Dense {
+    Tessellation surface;
+    std::unique_ptr<EmbreeTriangleScene> scene;
+  };
+  std::map<const ControlMesh*, Dense> dense_;
   std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
 };
 

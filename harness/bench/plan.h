@@ -13,7 +13,7 @@ struct Selection {
   std::vector<int> levels;
   bool all_meshes = false;  // every built-in and every real corpus mesh instead of the curated set
   bool all_corpus = false;  // with all_meshes: OpenSubdiv's regression shapes too
-  long max_triangles = 2'000'000;  // default levels only: skip outputs larger than this
+  long max_triangles = 1'000'000;  // default levels only: skip outputs larger than this
   bool headline = true;  // default set: also the runs the issues name as benchmark figures
 };
 

@@ -62,9 +62,9 @@ MeasureOptions measure_options() {
 }
 
 int validate() {
-  MeasureContext ctx(describe_machine());
   auto backend = parse_backend(o.backend);
   if (!backend) throw InputError(o.backend, "no such backend (cpu, cpu-mt, vulkan)");
+  MeasureContext ctx(describe_machine(*backend == Backend::Vulkan));
   MeasureOptions m = measure_options();
   m.time = false;
   m.deviation_ply = o.deviation_ply;

@@ -132,7 +132,6 @@ EmbreeTriangleScene::EmbreeTriangleScene(const std::vector<Point3>& positions, c
   scene_ = rtcNewScene(device);
   // Robust: watertight triangle tests, so a ray through a shared edge never slips between.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions_.data(), 0,
                              sizeof(Point3), positions_.size());
@@ -169,16 +168,19 @@ EmbreeTriangleScene::LineCrossings EmbreeTriangleScene::crossings(const float or
   return out;
 }
 
-double EmbreeTriangleScene::closest_distance(const double p[3]) const {
-  ClosestQuery q{&positions_, &triangles_, p, std::numeric_limits<double>::infinity()};
-  RTCPointQuery query;
-  query.x = static_cast<float>(p[0]), query.y = static_cast<float>(p[1]), query.z = static_cast<float>(p[2]);
-  query.time = 0.0f;
-  query.radius = std::numeric_limits<float>::infinity();
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  rtcPointQuery(scene_, &query, &context, closest_callback, &q);
-  return q.best;
+double EmbreeTriangleScene::closest_distance(const double p[3], double radius_hint) const {
+  for (double radius : {radius_hint, std::numeric_limits<double>::infinity()}) {
+    ClosestQuery q{&positions_, &triangles_, p, radius};
+    RTCPointQuery query;
+    query.x = static_cast<float>(p[0]), query.y = static_cast<float>(p[1]), query.z = static_cast<float>(p[2]);
+    query.time = 0.0f;
+    query.radius = static_cast<float>(radius);
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(scene_, &query, &context, closest_callback, &q);
+    if (q.best < radius) return q.best;
+  }
+  return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace sdb

@@ -5,6 +5,7 @@
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "control_mesh.h"
@@ -34,8 +35,9 @@ class EmbreeTriangleScene {
   // Every crossing of origin + t * dir for t in [0, tfar]. Thread-safe.
   LineCrossings crossings(const float origin[3], const float dir[3], float tfar, float edge_eps) const;
 
-  // Closest point on the surface to p; returns the distance. Thread-safe.
-  double closest_distance(const double p[3]) const;
+  // Distance from p to the closest point of the surface. Thread-safe. The search starts within
+  // `radius_hint` (nearby surfaces answer fast) and widens to everything when nothing is there.
+  double closest_distance(const double p[3], double radius_hint = std::numeric_limits<double>::infinity()) const;
 
  private:
   RTCScene scene_ = nullptr;

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "embree_scene.h"
 #include "limit_evaluator.h"
 #include "tessellation.h"
 
@@ -28,7 +29,8 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
 
 struct HausdorffReport {
   // Relative to the reference bounding-box diagonal. forward: output -> reference; backward:
-  // reference -> output. Sampled at vertices and triangle interiors of the source surface.
+  // reference -> output. Each direction samples up to 50,000 vertices (a random subset beyond
+  // that) and 50,000 area-weighted points of the source surface.
   double forward_mean = 0, forward_rms = 0, forward_max = 0;
   double backward_mean = 0, backward_rms = 0, backward_max = 0;
   double max() const { return forward_max > backward_max ? forward_max : backward_max; }
@@ -36,5 +38,8 @@ struct HausdorffReport {
 };
 
 HausdorffReport hausdorff(const Tessellation& output, const Tessellation& reference);
+// The same with the reference's Embree scene built once by the caller (it is the costly part).
+HausdorffReport hausdorff(const Tessellation& output, const Tessellation& reference,
+                          const EmbreeTriangleScene& reference_scene);
 
 }  // namespace sdb
