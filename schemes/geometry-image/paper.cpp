@@ -123,9 +123,9 @@ MachineInfo measured_machine() {
 std::vector<Series> measure_all(const std::vector<int>& levels, const PaperTableOptions& options, MeasureContext& ctx,
                                 std::ostream& log) {
   std::vector<Series> all = {
-      {"geometry-image", "ours cpu (fused)", Backend::Cpu, {}},
-      {"geometry-image", "ours vulkan (fused)", Backend::Vulkan, {}},
-      {"geometry-image-permask", "ours vulkan (per mask, as the paper)", Backend::Vulkan, {}},
+      {"geometry-image", "ours cpu `geometry-image`", Backend::Cpu, {}},
+      {"geometry-image", "ours vulkan `geometry-image`", Backend::Vulkan, {}},
+      {"geometry-image-permask", "ours vulkan `geometry-image-permask`", Backend::Vulkan, {}},
       {"osd-uniform", "osd-uniform cpu (same g0)", Backend::Cpu, {}},
   };
   MeasureOptions m;
@@ -167,6 +167,16 @@ void add_series(Table& t, const Series& s) {
           cell([](const RunRow& r) { return fixed(100 * r.bandwidth_fraction, 1); }));
 }
 
+// The GPU passes of a vulkan series at its deepest level, as one line.
+std::string passes_line(const Series& s, int k) {
+  const RunRow* r = row_at(s, k);
+  if (!measured(r) || r->gpu_passes.empty()) return "";
+  std::string line = "- `" + s.scheme + "` at k = " + std::to_string(k) + ":";
+  for (const GpuPass& p : r->gpu_passes) line += " " + p.label + " " + fixed(p.ms, 3) + ",";
+  line.back() = '.';
+  return line + "\n";
+}
+
 std::string checks_line(const std::vector<Series>& all, bool* failed) {
   long rows = 0, bad = 0;
   std::string failures;
@@ -198,14 +208,15 @@ int run_table2(const PaperTableOptions& options, std::ostream& out) {
   for (const PaperRow& p : kPaperRows)
     t.add(p.label, [&p](int k) { return std::string(k >= 1 && k <= 4 ? p.values[k - 1] : ""); });
   for (const Series& s : all) add_series(t, s);
-  const Series& cpu = all[0];
+  const Series& cpu = all[0];  // measure_all's order
   const Series& osd = all[3];
   auto ratio = [&](int k) -> double {
     const RunRow *a = row_at(cpu, k), *b = row_at(osd, k);
     return measured(a) && measured(b) && b->triangle_rate_mtris > 0 ? a->triangle_rate_mtris / b->triangle_rate_mtris
                                                                     : 0;
   };
-  t.add("ours cpu / osd-uniform (rate ratio)", [&](int k) { return ratio(k) > 0 ? fixed(ratio(k), 1) + "x" : "n/a"; });
+  t.add("ours cpu `geometry-image` / osd-uniform (rate ratio)",
+        [&](int k) { return ratio(k) > 0 ? fixed(ratio(k), 1) + "x" : "n/a"; });
 
   bool failed = false;
   std::ostringstream md;
@@ -222,7 +233,11 @@ int run_table2(const PaperTableOptions& options, std::ostream& out) {
      << "of all traffic, so the two are related, not equal.\n\n"
      << "Our CPU: " << machine.cpu_model << ", `cpu` backend = one thread (the paper's CPU row; its P4 code used no "
      << "SIMD, ours is vectorised by the compiler). " << vulkan_device_note() << "\n\n"
-     << t.markdown() << "\n";
+     << t.markdown() << "\n"
+     << "`geometry-image` runs the fused plan (L+A per level, E+T), `geometry-image-permask` one pass per mask "
+     << "(L, A per level, E, T) as the paper's Radeon implementation (README.md). GPU passes of the last "
+     << "frame (ms; kernel time is their sum less upload and readback):\n\n"
+     << passes_line(all[1], levels.back()) << passes_line(all[2], levels.back()) << "\n";
   if (!options.quick) {
     const double r4 = ratio(4);
     md << "Benchmark target (issue 7): `cpu` at k = 4 at least " << fixed(kTargetRatio, 0) << "x osd-uniform's rate "
