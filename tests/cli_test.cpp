@@ -96,3 +96,12 @@ TEST(Cli, ValidateJsonIsAResultsRow) {
                           "\"pos_max_pct\"", "\"status\": \"ok\"", "\"tessellation\": 4"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
 }
+
+TEST(Cli, ValidateOfALevelTheSchemeDeclinesIsBadUsage) {
+  const auto r = run_cli("validate --scheme osd-bfr --mesh cube --level 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("osd-bfr/cpu/cube/1: rate N must be 2..129"), std::string::npos) << r.err;
+  const auto b = run_cli("validate --scheme osd-uniform --mesh cube --level 2 --backend cpu-mt");
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_NE(b.err.find("one thread only"), std::string::npos) << b.err;
+}

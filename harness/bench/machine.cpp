@@ -95,6 +95,14 @@ double measure_write_bandwidth(int threads) {
 
 namespace sdb {
 
+MachineInfo describe_machine_with_probes() {
+  MachineInfo m = describe_machine();
+  m.write_bandwidth_gbs = measure_write_bandwidth(1);
+  m.write_bandwidth_mt_gbs = measure_write_bandwidth(std::max(1, m.cores));
+  if (!m.vulkan_device.empty()) m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
+  return m;
+}
+
 double measure_gpu_write_bandwidth() {
   try {
     auto ctx = gpu::shared_context();

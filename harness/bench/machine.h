@@ -12,6 +12,10 @@ MachineInfo describe_machine();
 // cache, best of a few passes; `threads` > 1 splits the buffer across TBB workers.
 double measure_write_bandwidth(int threads);
 
+// describe_machine() with the write-bandwidth probes measured (CPU one thread, all threads, and
+// the Vulkan device when there is one): what every results file records.
+MachineInfo describe_machine_with_probes();
+
 // The same for the Vulkan device: a buffer fill timed by timestamp queries; 0 without a device.
 double measure_gpu_write_bandwidth();
 

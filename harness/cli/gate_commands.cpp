@@ -50,11 +50,7 @@ RunSpec parse_run_name(const std::string& name) {
 }
 
 int bench() {
-  MachineInfo machine = describe_machine();
-  machine.write_bandwidth_gbs = measure_write_bandwidth(1);
-  machine.write_bandwidth_mt_gbs = measure_write_bandwidth(std::max(1, machine.cores));
-  if (!machine.vulkan_device.empty()) machine.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
-  MeasureContext ctx(machine);
+  MeasureContext ctx(describe_machine_with_probes());
   Selection sel;
   sel.schemes = g.schemes, sel.meshes = g.meshes, sel.backends = g.backends, sel.levels = g.levels;
   Plan plan;

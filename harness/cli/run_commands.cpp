@@ -37,14 +37,6 @@ std::string utc_now() {
   return buf;
 }
 
-MachineInfo machine_with_bandwidth() {
-  MachineInfo m = describe_machine();
-  m.write_bandwidth_gbs = measure_write_bandwidth(1);
-  m.write_bandwidth_mt_gbs = measure_write_bandwidth(static_cast<int>(std::max(1, m.cores)));
-  if (!m.vulkan_device.empty()) m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
-  return m;
-}
-
 void print_row(const RunRow& r) {
   std::printf("%-44s", (r.scheme + "/" + r.backend + "/" + r.mesh + "/" + std::to_string(r.level)).c_str());
   if (r.status == "unsupported") {
@@ -76,14 +68,17 @@ int validate() {
   MeasureOptions m = measure_options();
   m.time = false;
   m.deviation_ply = o.deviation_ply;
-  const RunRow row = measure_run({o.scheme, o.mesh, *backend, o.level}, m, ctx);
+  const RunSpec spec{o.scheme, o.mesh, *backend, o.level};
+  const RunRow row = measure_run(spec, m, ctx);
+  // One explicit request the scheme declines is bad usage, not a result.
+  if (row.status == "unsupported") throw InputError(spec.name(), row.message);
   if (o.json) std::cout << row_json(row) << "\n";
   else print_row(row);
   return row.status == "failed" ? 1 : 0;
 }
 
 int run() {
-  MeasureContext ctx(machine_with_bandwidth());
+  MeasureContext ctx(describe_machine_with_probes());
   Selection sel;
   sel.schemes = o.schemes, sel.meshes = o.meshes, sel.backends = o.backends, sel.levels = o.levels;
   sel.all_meshes = o.all_meshes || o.all_corpus;

@@ -1,5 +1,8 @@
 #include "control_mesh.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace sdb {
 
 std::vector<int> face_offsets(const ControlMesh& m) {
@@ -21,6 +24,21 @@ std::string to_string(BoundaryRule rule) {
     case BoundaryRule::EdgeAndCorner: return "edge-and-corner";
   }
   return "?";
+}
+
+double Bounds::diagonal() const {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  return std::sqrt(d2);
+}
+
+Bounds bounds_of(const std::vector<Point3>& points) {
+  Bounds b;
+  if (points.empty()) return b;
+  for (int k = 0; k < 3; ++k) b.lo[k] = b.hi[k] = points[0][k];
+  for (const auto& p : points)
+    for (int k = 0; k < 3; ++k) b.lo[k] = std::min(b.lo[k], double(p[k])), b.hi[k] = std::max(b.hi[k], double(p[k]));
+  return b;
 }
 
 }  // namespace sdb

@@ -55,4 +55,13 @@ std::string face_location(const ControlMesh& m, int face);
 
 std::string to_string(BoundaryRule rule);
 
+// Axis-aligned bounds of a point set (in double), and its diagonal: the scale deviations and
+// tolerances are stated against.
+struct Bounds {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  double diagonal() const;
+  double centre(int axis) const { return 0.5 * (lo[axis] + hi[axis]); }
+};
+Bounds bounds_of(const std::vector<Point3>& points);
+
 }  // namespace sdb

@@ -22,16 +22,6 @@ void capture_error(Far::ErrorType, const char* message) {
   if (g_last_error.empty()) g_last_error = message;
 }
 
-struct Vertex3 {
-  float p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0f; }
-  void AddWithWeight(const Vertex3& src, float w) {
-    p[0] += w * src.p[0];
-    p[1] += w * src.p[1];
-    p[2] += w * src.p[2];
-  }
-};
-
 }  // namespace
 
 Sdc::Options sdc_options(const ControlMesh& m) {
@@ -89,13 +79,13 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const ControlMesh& m, Subdivi
 
 ControlMesh refined_level(const Far::TopologyRefiner& refiner, const ControlMesh& base, int level) {
   if (level > refiner.GetMaxLevel()) throw std::logic_error("refined_level: refiner not refined that far");
-  std::vector<Vertex3> verts(refiner.GetNumVerticesTotal());
+  std::vector<PrimvarPoint> verts(refiner.GetNumVerticesTotal());
   for (int v = 0; v < num_vertices(base); ++v)
     for (int k = 0; k < 3; ++k) verts[v].p[k] = base.positions[v][k];
   Far::PrimvarRefiner primvar(refiner);
-  Vertex3* src = verts.data();
+  PrimvarPoint* src = verts.data();
   for (int l = 1; l <= level; ++l) {
-    Vertex3* dst = src + refiner.GetLevel(l - 1).GetNumVertices();
+    PrimvarPoint* dst = src + refiner.GetLevel(l - 1).GetNumVertices();
     primvar.Interpolate(l, src, dst);
     src = dst;
   }

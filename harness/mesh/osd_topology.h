@@ -12,6 +12,17 @@ namespace sdb {
 
 enum class SubdivisionRule { CatmullClark, Loop };
 
+// A point as Far::PrimvarRefiner interpolates it (Clear, AddWithWeight).
+struct PrimvarPoint {
+  float p[3];
+  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0f; }
+  void AddWithWeight(const PrimvarPoint& src, float w) {
+    p[0] += w * src.p[0];
+    p[1] += w * src.p[1];
+    p[2] += w * src.p[2];
+  }
+};
+
 OpenSubdiv::Sdc::Options sdc_options(const ControlMesh& mesh);
 
 // Throws InputError with OpenSubdiv's own message when it refuses the topology.

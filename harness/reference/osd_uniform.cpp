@@ -12,16 +12,6 @@ namespace {
 
 namespace Far = OpenSubdiv::Far;
 
-struct Vertex3 {
-  float p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0f; }
-  void AddWithWeight(const Vertex3& s, float w) {
-    p[0] += w * s.p[0];
-    p[1] += w * s.p[1];
-    p[2] += w * s.p[2];
-  }
-};
-
 class OsdUniformEvaluation final : public Evaluation {
  public:
   OsdUniformEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int level)
@@ -51,11 +41,11 @@ class OsdUniformEvaluation final : public Evaluation {
       for (int k = 0; k < 3; ++k) levels_[0][v].p[k] = control_.positions[v][k];
     Far::PrimvarRefiner primvar(*refiner_);
     for (int l = 1; l <= level_; ++l) {
-      Vertex3* dst = levels_[l].data();  // Far takes destinations by non-const reference
+      PrimvarPoint* dst = levels_[l].data();  // Far takes destinations by non-const reference
       primvar.Interpolate(l, levels_[l - 1].data(), dst);
     }
-    const std::vector<Vertex3>& limit = limit_;
-    Vertex3 *pos = limit_.data(), *du = tan_u_.data(), *dv = tan_v_.data();
+    const std::vector<PrimvarPoint>& limit = limit_;
+    PrimvarPoint *pos = limit_.data(), *du = tan_u_.data(), *dv = tan_v_.data();
     primvar.Limit(levels_[level_].data(), pos, du, dv);
     for (size_t v = 0; v < limit.size(); ++v) {
       out_.positions[v] = {limit[v].p[0], limit[v].p[1], limit[v].p[2]};
@@ -70,9 +60,9 @@ class OsdUniformEvaluation final : public Evaluation {
   const ControlMesh control_;
   std::unique_ptr<Far::TopologyRefiner> refiner_;
   int level_;
-  std::vector<std::vector<Vertex3>> levels_;
-  std::vector<Vertex3> limit_;
-  std::vector<Vertex3> tan_u_, tan_v_;
+  std::vector<std::vector<PrimvarPoint>> levels_;
+  std::vector<PrimvarPoint> limit_;
+  std::vector<PrimvarPoint> tan_u_, tan_v_;
   Tessellation out_;
 };
 

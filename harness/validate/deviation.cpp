@@ -12,13 +12,6 @@
 namespace sdb {
 namespace {
 
-double diagonal(const std::vector<Point3>& p) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (const auto& q : p)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(q[k])), hi[k] = std::max(hi[k], double(q[k]));
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-}
-
 struct Stats {
   double max = 0, mean = 0, rms = 0, p95 = 0;
 };
@@ -85,7 +78,7 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
   const Stats p = stats_of(pct), a = stats_of(deg);
   r.pos_max_pct = p.max, r.pos_mean_pct = p.mean, r.pos_rms_pct = p.rms, r.pos_p95_pct = p.p95;
   r.normal_max_deg = a.max, r.normal_mean_deg = a.mean, r.normal_rms_deg = a.rms, r.normal_p95_deg = a.p95;
-  const double diag = diagonal(ref.mesh().positions);
+  const double diag = bounds_of(ref.mesh().positions).diagonal();
   r.pos_max_rel_diag = diag > 0 ? max_abs / diag : 0;
   r.vertices = static_cast<long>(pct.size());
   return r;
@@ -135,7 +128,7 @@ std::vector<double> one_sided(const Tessellation& source, const EmbreeTriangleSc
 
 HausdorffReport hausdorff(const Tessellation& output, const Tessellation& reference) {
   HausdorffReport h;
-  const double diag = diagonal(reference.positions);
+  const double diag = bounds_of(reference.positions).diagonal();
   if (diag <= 0 || output.triangles.empty() || reference.triangles.empty()) return h;
   const EmbreeTriangleScene out_scene(output.positions, output.triangles);
   const EmbreeTriangleScene ref_scene(reference.positions, reference.triangles);

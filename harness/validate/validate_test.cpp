@@ -26,13 +26,6 @@ Tessellation bfr_torus(int rate) {
   throw std::logic_error("no osd-bfr");
 }
 
-double diagonal(const std::vector<Point3>& p) {
-  double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
-  for (const auto& q : p)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(q[k])), hi[k] = std::max(hi[k], double(q[k]));
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-}
-
 // Gives one face its own copy of a border vertex (as patch schemes have), displaced by `offset`
 // along x: zero keeps the surface closed, anything else opens a crack there. Returns the copy.
 uint32_t split_border_vertex(Tessellation& t, float offset) {
@@ -88,7 +81,7 @@ TEST(RayCrackCheck, WatertightTorusHasNoCracks) {
 
 TEST(RayCrackCheck, FindsAPlantedCrack) {
   Tessellation t = bfr_torus(9);
-  const float offset = static_cast<float>(1e-3 * diagonal(t.positions));
+  const float offset = static_cast<float>(1e-3 * bounds_of(t.positions).diagonal());
   split_border_vertex(t, offset);
   const RayCrackReport r = ray_crack_check(t, {100000, 100000, 42});
   EXPECT_GT(r.cracks, 0);
@@ -125,7 +118,7 @@ TEST(Deviation, ReadsBackAPlantedOffset) {
 TEST(Hausdorff, ReadsBackAnOffsetSurface) {
   const Tessellation a = bfr_torus(9);
   Tessellation b = a;
-  const double diag = diagonal(a.positions), delta = 1e-3 * diag;
+  const double diag = bounds_of(a.positions).diagonal(), delta = 1e-3 * diag;
   for (size_t i = 0; i < b.positions.size(); ++i)
     for (int k = 0; k < 3; ++k) b.positions[i][k] += static_cast<float>(delta * a.normals[i][k]);
   const HausdorffReport h = hausdorff(b, a);

@@ -58,14 +58,8 @@ struct Sphere {
 };
 
 Sphere bounding_sphere(const std::vector<Point3>& p) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (const auto& q : p)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(q[k])), hi[k] = std::max(hi[k], double(q[k]));
-  Sphere s{{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2}, 0};
-  s.radius = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  s.radius = std::max(s.radius * 1.01, 1e-6);
-  return s;
+  const Bounds b = bounds_of(p);
+  return {{b.centre(0), b.centre(1), b.centre(2)}, std::max(0.5 * b.diagonal() * 1.01, 1e-6)};
 }
 
 struct BorderEdge {
