@@ -113,13 +113,6 @@ std::string vulkan_device_note() {
          ", driver " + d.driver_info + ").";
 }
 
-MachineInfo measured_machine() {
-  MachineInfo m = describe_machine();
-  m.write_bandwidth_gbs = measure_write_bandwidth(1);
-  if (!m.vulkan_device.empty()) m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
-  return m;
-}
-
 std::vector<Series> measure_all(const std::vector<int>& levels, const PaperTableOptions& options, MeasureContext& ctx,
                                 std::ostream& log) {
   std::vector<Series> all = {
@@ -199,7 +192,7 @@ std::string checks_line(const std::vector<Series>& all, bool* failed) {
 
 int run_table2(const PaperTableOptions& options, std::ostream& out) {
   const std::vector<int> levels = options.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4};
-  MeasureContext ctx(measured_machine());
+  MeasureContext ctx(describe_machine_with_probes());
   const std::vector<Series> all = measure_all(levels, options, ctx, out);
   const MachineInfo& machine = ctx.machine();
 

@@ -8,18 +8,14 @@
 #include <cmath>
 #include <vector>
 
-#include "creation/triangle_mesh.h"
+#include "control_mesh.h"
 #include "image.h"
 #include "limit_evaluator.h"
 #include "tessellation.h"
 
 namespace sdb::gim::testing {
 
-inline double diagonal(const std::vector<Point3>& points) {
-  std::vector<Vec3d> p;
-  for (const Point3& q : points) p.push_back({q[0], q[1], q[2]});
-  return bounding_box_diagonal(p);
-}
+inline double diagonal(const std::vector<Point3>& points) { return bounds_of(points).diagonal(); }
 
 // g0 quads whose 2-ring (image positions two steps around the quad, folded by the cut) holds a
 // cut vertex.
