@@ -11,6 +11,7 @@ const std::vector<std::unique_ptr<Scheme>>& all_schemes() {
     std::vector<std::unique_ptr<Scheme>> list = make_peer_schemes();
     for (auto& s : make_cpatch_schemes()) list.push_back(std::move(s));
     list.push_back(make_geometry_image_scheme());
+    list.push_back(make_geometry_image_scheme({.plan = gim::PassPlan::PerMask}));
     return list;
   }();
   return schemes;

@@ -1,4 +1,5 @@
-// The smooth geometry image scheme (Losasso, Hoppe, Schaefer, Warren 2003), CPU backends.
+// The smooth geometry image scheme (Losasso, Hoppe, Schaefer, Warren 2003): backends cpu,
+// cpu-mt and vulkan, as two scheme names, one per pass plan (README.md).
 //
 // Which image a run subdivides: a mesh whose connectivity is exactly the closed control mesh g0
 // of an n x n geometry image (closed_mesh.h) is that image, used as is: the analytic manifest
@@ -8,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "scheme.h"
 #include "subdivision.h"
@@ -26,7 +28,12 @@ struct GeometryImageOptions {
 // fit_size resolved as above; throws InputError for a malformed $SUBDIVBENCH_GIM_SIZE.
 int resolved_fit_size(const GeometryImageOptions& options);
 
-// The scheme "geometry-image" (backends cpu, cpu-mt).
+// "geometry-image" for PassPlan::Fused (L+A per level, E+T: the default), "geometry-image-permask"
+// for PassPlan::PerMask (pad, L, A, E, T: one pass per mask, as the paper). Names are part of the
+// results contract.
+std::string geometry_image_scheme_name(gim::PassPlan plan);
+
+// The scheme of options.plan, named as above (backends cpu, cpu-mt, vulkan).
 std::unique_ptr<Scheme> make_geometry_image_scheme(const GeometryImageOptions& options = {});
 
 }  // namespace sdb

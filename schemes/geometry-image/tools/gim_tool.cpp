@@ -2,7 +2,8 @@
 //   gim_tool create MESH N...       create images (uses the cache), print creation figures
 //   gim_tool export MESH N OUT.obj  write the image's g0 as OBJ (subdivbench takes it as that image)
 //   gim_tool time MESH K [REPS]     rough single-thread timing of execute(), beside OpenSubdiv
-//                                   uniform refinement with limit projection on the same g0
+//                                   uniform refinement with limit projection on the same g0, and
+//                                   the vulkan backend's timestamps pass by pass (median of REPS)
 //   gim_tool hausdorff MESH N...    two-sided Hausdorff distance of fitted surfaces to MESH
 // For experiments, $GIM_FAIRNESS, $GIM_TOL, $GIM_SWEEPS, $GIM_MINTRI, $GIM_RW and $GIM_INVERSE override
 // the creation settings (the cache key follows them).
@@ -144,6 +145,43 @@ int create(const std::string& name, const std::vector<int>& sizes) {
   return 0;
 }
 
+// Median GPU time of every pass over `reps` frames (the vulkan evaluation's timestamps).
+void time_vulkan(const Scheme& scheme, const ControlMesh& mesh, int level, int reps, const char* plan) {
+  if (auto why = scheme.unsupported({Backend::Vulkan, level, 0})) {
+    std::printf("geometry-image %-8s vulkan: %s\n", plan, why->c_str());
+    return;
+  }
+  auto eval = scheme.prepare(mesh, {Backend::Vulkan, level, 0});
+  std::vector<std::vector<double>> per_pass;
+  std::vector<std::string> labels;
+  std::vector<double> kernel;
+  for (int r = 0; r <= reps; ++r) {
+    eval->execute();
+    eval->result();  // the readback, timed separately
+    const auto t = eval->gpu_times();
+    if (!t) {
+      std::printf("geometry-image %-8s vulkan: no timestamps\n", plan);
+      return;
+    }
+    if (r == 0) {  // warm-up
+      for (const auto& p : t->passes) labels.push_back(p.label);
+      per_pass.resize(labels.size());
+      continue;
+    }
+    kernel.push_back(t->kernel_ms);
+    for (size_t i = 0; i < t->passes.size(); ++i) per_pass[i].push_back(t->passes[i].ms);
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  const double tris = static_cast<double>(eval->result().num_triangles());
+  std::printf("geometry-image %-8s vulkan k=%d: kernel median %.3f ms, %.1f M tri/s; passes:", plan, level,
+              median(kernel), tris / median(kernel) / 1e3);
+  for (size_t i = 0; i < labels.size(); ++i) std::printf(" %s %.3f", labels[i].c_str(), median(per_pass[i]));
+  std::printf("\n");
+}
+
 int time(const std::string& name, int level, int reps) {
   const ControlMesh mesh = load_mesh(name);
   for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
@@ -156,6 +194,7 @@ int time(const std::string& name, int level, int reps) {
                   plan == PassPlan::Fused ? "fused" : "per-mask", std::string(to_string(b)).c_str(), level, t.median,
                   t.min, tris, tris / t.median / 1e3);
     }
+    time_vulkan(*scheme, mesh, level, reps, plan == PassPlan::Fused ? "fused" : "per-mask");
   }
   const auto image = image_from_closed_mesh(mesh);
   if (image) {

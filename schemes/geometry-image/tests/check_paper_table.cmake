@@ -1,0 +1,20 @@
+# `subdivbench paper losasso2003-table2 --quick --out OUT` exits 0 and writes its Markdown table.
+# -DSUBDIVBENCH=<executable> -DOUT=<folder>
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${SUBDIVBENCH} paper losasso2003-table2 --quick --out ${OUT}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "subdivbench paper losasso2003-table2 --quick exited with ${rc}")
+endif()
+set(table ${OUT}/losasso2003-table2.md)
+if(NOT EXISTS ${table})
+  message(FATAL_ERROR "no ${table}")
+endif()
+file(READ ${table} md)
+foreach(expected "paper GPU R9700 time (ms)" "ours cpu `geometry-image` time (ms)" "osd-uniform" "| k = 1 | k = 2 |")
+  string(FIND "${md}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${table} lacks '${expected}'")
+  endif()
+endforeach()
