@@ -112,13 +112,13 @@ int list_schemes_cmd() {
     std::printf("no schemes built yet\n");
     return 0;
   }
-  std::printf("%-16s %-22s %-8s %s\n", "scheme", "backends", "levels", "paper");
+  std::printf("%-24s %-22s %-8s %s\n", "scheme", "backends", "levels", "paper");
   for (const auto& s : all_schemes()) {
     const SchemeInfo& i = s->info();
     std::string backends, levels;
     for (Backend b : i.backends) backends += (backends.empty() ? "" : ",") + std::string(to_string(b));
     levels = i.level_kind == LevelKind::Depth ? "depth" : "rate N";
-    std::printf("%-16s %-22s %-8s %s\n", i.name.c_str(), backends.c_str(), levels.c_str(), i.paper.c_str());
+    std::printf("%-24s %-22s %-8s %s\n", i.name.c_str(), backends.c_str(), levels.c_str(), i.paper.c_str());
   }
   return 0;
 }
