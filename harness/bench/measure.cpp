@@ -14,6 +14,7 @@
 #include "deviation.h"
 #include "errors.h"
 #include "facts.h"
+#include "gpu.h"
 #include "manifest.h"
 #include "registry.h"
 #include "watertight.h"
@@ -260,7 +261,15 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   RunRow row = describe_run(spec, *scheme, o, ctx, &accepted);
   if (row.status == "unsupported") return row;
   const RunRequest request{spec.backend, spec.level, o.threads};
-  std::unique_ptr<Evaluation> eval = scheme->prepare(*accepted, request);
+  std::unique_ptr<Evaluation> eval;
+  try {
+    eval = scheme->prepare(*accepted, request);
+  } catch (const gpu::Unsupported& e) {
+    // A device limit that depends on the mesh (its output past the device's memory, say).
+    row.status = "unsupported";
+    row.message = e.what();
+    return row;
+  }
   const auto start = std::chrono::steady_clock::now();
   execute_on(*eval, spec.backend);
   const double once_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
