@@ -262,11 +262,12 @@ void CpatchVulkan::record_frame() {
         d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 2: evaluate");
         const auto& chunks = d.output->plan().chunks;
         for (size_t k = 0; k < chunks.size(); ++k) {
+          // One invocation per grid row (evaluate.comp).
+          const uint32_t rows = static_cast<uint32_t>(chunks[k].elements / rate());
+          const uint32_t push[2] = {static_cast<uint32_t>(chunks[k].first_element / rate()), rows};
           cmd.bind(*d.evaluate, d.chunk_sets[k]);
-          const uint32_t push[2] = {static_cast<uint32_t>(chunks[k].first_element),
-                                    static_cast<uint32_t>(chunks[k].elements)};
           cmd.push(push);
-          cmd.dispatch(chunks[k].groups);
+          cmd.dispatch(gpu::groups_for(rows, kLocalSize, limits));
         }
       }
       d.frame_timer.end(cmd);

@@ -45,18 +45,18 @@ uint64_t float3_bytes(size_t count) { return count * 3 * sizeof(float); }
 
 std::vector<float> grid_table(const SampleGrid& grid) {
   const int n = grid.rate(), samples = grid.samples();
-  std::vector<float> table(8 * n + 45 * static_cast<size_t>(samples), 0.0f);
-  for (int k = 0; k < 4; ++k)
-    for (int i = 0; i < n; ++i) {
-      table[k * n + i] = grid.cubic(k)[i];
-      table[4 * n + k * n + i] = grid.cubic_du(k)[i];
+  std::vector<float> table(4 * (2 * n + 12 * static_cast<size_t>(samples)), 0.0f);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) {
+      table[4 * i + k] = grid.cubic(k)[i];
+      table[4 * (n + i) + k] = grid.cubic_du(k)[i];
     }
   const float* tables[3] = {grid.quartic(0), grid.quartic_du(0), grid.quartic_dv(0)};
   for (int sorted = 0; sorted < samples; ++sorted) {
     const int s = grid.piece_order()[sorted];
     for (int t = 0; t < 3; ++t)
       for (int m = 0; m < kQuarticPoints; ++m)
-        table[8 * n + (size_t(t) * kQuarticPoints + m) * samples + s] = tables[t][m * samples + sorted];
+        table[4 * (2 * n + 12 * size_t(s) + 4 * t) + m] = tables[t][m * samples + sorted];
   }
   return table;
 }
@@ -93,7 +93,7 @@ uint64_t DeviceMesh::bytes_needed(const CpatchTopology& t, const SampleGrid& gri
                    t.corners.size() * sizeof(QuadCorner) + t.num_quads * sizeof(uint32_t) +
                    t.cpatch_weights.size() * sizeof(CpatchCornerWeights) + grid_table(grid).size() * sizeof(float);
   if (intermediates)
-    bytes += float3_bytes(t.num_vertices) + 3 * float3_bytes(t.num_slots()) + float3_bytes(size_t(t.num_quads) * kRecordSize);
+    bytes += float3_bytes(t.num_vertices) + 3 * float3_bytes(t.num_slots()) + size_t(t.num_quads) * kRecordSize * 4 * sizeof(float);
   return bytes;
 }
 
@@ -116,7 +116,7 @@ DeviceMesh::DeviceMesh(gpu::Context& ctx, const CpatchTopology& t, const SampleG
   face_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch face points");
   edge_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch edge points");
   tangent_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch tangent points");
-  records = storage(ctx, float3_bytes(size_t(t.num_quads) * kRecordSize), "c-patch patch records");
+  records = storage(ctx, size_t(t.num_quads) * kRecordSize * 4 * sizeof(float), "c-patch patch records");
 }
 
 void DeviceMesh::write_positions(const std::vector<Vec3f>& positions) const {

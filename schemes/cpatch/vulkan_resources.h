@@ -15,11 +15,11 @@
 
 namespace sdb::cpatch {
 
-// The SampleGrid's tables as the shaders read them (evaluate.glsl): cubic weights B_k(u_i) at
-// k N + i, derivatives at 4 N + k N + i, then for every grid sample s = j N + i the 15 quartic
-// weights of the c-patch piece holding s: position at 8 N + m N^2 + s, d/du at 8 N + (15 + m) N^2
-// + s, d/dv at 8 N + (30 + m) N^2 + s. The same floats as the CPU's tables (re-indexed by grid
-// sample instead of piece order).
+// The SampleGrid's tables as the shaders read them (evaluate.glsl), in vec4s: (B_0..B_3)(u_i) at
+// vec4 i, their derivatives at vec4 N + i, then for every grid sample s = j N + i the 15 quartic
+// weights (padded to 16) of the c-patch piece holding s: position at vec4 2 N + 12 s, d/du at
+// + 4, d/dv at + 8. The same floats as the CPU's tables (re-indexed by grid sample instead of
+// piece order).
 std::vector<float> grid_table(const SampleGrid& grid);
 
 // Per quad: bits 0-3 forward_sides, bits 4.. the c-patch index + 1 (0: ordinary); record.glsl.

@@ -10,6 +10,6 @@ layout(location = 6) in vec3 corner_e1[];
 layout(location = 7) flat in int corner_quad[];  // the same for all four
 
 void read_corners(out CornerData corner[4]) {
-  for (int i = 0; i < 4; ++i)
+  [[unroll]] for (int i = 0; i < 4; ++i)
     corner[i] = CornerData(corner_p[i], corner_v[i], corner_t0[i], corner_t1[i], corner_f[i], corner_e0[i], corner_e1[i]);
 }

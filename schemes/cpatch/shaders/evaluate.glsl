@@ -5,13 +5,14 @@
 // borders"). Needs record.glsl, buffers.glsl with BINDING_GRID, and kRate (a specialization or
 // compile-time constant) declared before inclusion.
 
-// The grid table (gpu_mesh.cpp, grid_table()): cubic Bernstein weights B_k(u_i) at k N + i,
-// their derivatives at 4 N + k N + i, then per grid sample s = j N + i the c-patch's 15 quartic
-// weights of the piece holding s: position at 8 N + m N^2 + s, d/du and d/dv 15 N^2 further each.
+// The grid table (vulkan_resources.cpp, grid_table()), in vec4s: (B_0..B_3)(u_i) at i, their
+// derivatives at N + i, then for grid sample s = j N + i the c-patch's 15 quartic weights of the
+// piece holding s (padded to 16): position at 2 N + 12 s + m / 4, component m mod 4, d/du 4 and
+// d/dv 8 vec4s further.
 const int kSamples = kRate * kRate;
-float cubic_weight(int k, int i) { return grid[k * kRate + i]; }
-float cubic_derivative(int k, int i) { return grid[4 * kRate + k * kRate + i]; }
-float quartic_weight(int table, int m, int s) { return grid[8 * kRate + (table * 15 + m) * kSamples + s]; }
+vec4 cubic_weights(int i) { return grid[i]; }
+vec4 cubic_derivatives(int i) { return grid[kRate + i]; }
+vec4 quartic_weights(int table, int s, int quarter) { return grid[2 * kRate + 12 * s + 4 * table + quarter]; }
 
 // patch_control.h PatchControl<float>: the record relative to p*_0.
 struct PatchControl {
@@ -21,7 +22,7 @@ struct PatchControl {
 
 PatchControl local_control(vec3 record[kRecordSize]) {
   PatchControl c;
-  for (int i = 0; i < 4; ++i) {
+  [[unroll]] for (int i = 0; i < 4; ++i) {
     precise vec3 shift = record[record_index(i, kP)] - record[record_index(0, kP)];
     precise vec3 v = record[record_index(i, kV)] + shift;
     precise vec3 t0 = record[record_index(i, kT0)] + shift;
@@ -29,7 +30,7 @@ PatchControl local_control(vec3 record[kRecordSize]) {
     c.v[i] = v;
     c.t0[i] = t0;
     c.t1[i] = t1;
-    for (int k = 0; k < 3; ++k) c.x[3 * i + k] = record[record_index(i, kX0 + k)];
+    [[unroll]] for (int k = 0; k < 3; ++k) c.x[3 * i + k] = record[record_index(i, kX0 + k)];
   }
   return c;
 }
@@ -38,11 +39,6 @@ PatchControl local_control(vec3 record[kRecordSize]) {
 vec3 cubic_combination(vec4 w, vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
   precise vec3 r = ((w.x * p0 + w.y * p1) + w.z * p2) + w.w * p3;
   return r;
-}
-
-vec4 cubic_weights(int i) { return vec4(cubic_weight(0, i), cubic_weight(1, i), cubic_weight(2, i), cubic_weight(3, i)); }
-vec4 cubic_derivatives(int i) {
-  return vec4(cubic_derivative(0, i), cubic_derivative(1, i), cubic_derivative(2, i), cubic_derivative(3, i));
 }
 
 struct SurfacePoint {
@@ -59,7 +55,7 @@ SurfacePoint evaluate_bicubic(PatchControl c, int i, int j) {
   g[3] = c.v[3], g[2] = c.t0[3], g[7] = c.t1[3], g[6] = c.x[9];
   const vec4 bv = cubic_weights(j), dv = cubic_derivatives(j);
   vec3 column[4], column_dv[4];
-  for (int k = 0; k < 4; ++k) {
+  [[unroll]] for (int k = 0; k < 4; ++k) {
     column[k] = cubic_combination(bv, g[4 * k], g[4 * k + 1], g[4 * k + 2], g[4 * k + 3]);
     column_dv[k] = cubic_combination(dv, g[4 * k], g[4 * k + 1], g[4 * k + 2], g[4 * k + 3]);
   }
@@ -94,25 +90,31 @@ vec3 quarter_point(vec3 v, vec3 t) {  // (v + 3 t) / 4, degree raising at a corn
 // kQuarticIndex order.
 void piece_points(PatchControl c, int i, out vec3 b[15]) {
   const int n = (i + 1) % 4, p = (i + 3) % 4;
-  const vec3 B_i = c.x[3 * i], C_i = c.x[3 * i + 1], X_i = c.x[3 * i + 2];
-  const vec3 C_p = c.x[3 * p + 1], X_p = c.x[3 * p + 2];
-  const vec3 B_n = c.x[3 * n], X_n = c.x[3 * n + 2];
+#define PICK_X(corner, k) pick(c.x[k], c.x[3 + (k)], c.x[6 + (k)], c.x[9 + (k)], corner)
+#define PICK(array, corner) pick(array[0], array[1], array[2], array[3], corner)
+  const vec3 B_i = PICK_X(i, 0), C_i = PICK_X(i, 1), X_i = PICK_X(i, 2);
+  const vec3 C_p = PICK_X(p, 1), X_p = PICK_X(p, 2);
+  const vec3 B_n = PICK_X(n, 0), X_n = PICK_X(n, 2);
+  const vec3 v_i = PICK(c.v, i), v_n = PICK(c.v, n), t0_i = PICK(c.t0, i), t1_i = PICK(c.t1, i);
+  const vec3 t0_n = PICK(c.t0, n), t1_n = PICK(c.t1, n);
+#undef PICK
+#undef PICK_X
   precise vec3 center = 0.25 * (((c.x[2] + c.x[5]) + c.x[8]) + c.x[11]);
-  const vec3 b310 = quarter_point(c.v[i], c.t0[i]);
-  const vec3 b130 = quarter_point(c.v[n], c.t1[n]);
-  const vec3 b130_prev = quarter_point(c.v[i], c.t1[i]);
-  const vec3 b310_next = quarter_point(c.v[n], c.t0[n]);
-  b[0] = c.v[i];
+  const vec3 b310 = quarter_point(v_i, t0_i);
+  const vec3 b130 = quarter_point(v_n, t1_n);
+  const vec3 b130_prev = quarter_point(v_i, t1_i);
+  const vec3 b310_next = quarter_point(v_n, t0_n);
+  b[0] = v_i;
   b[1] = b310;
   b[2] = midpoint(b310, b130_prev);
-  b[3] = midpoint(c.t0[i], c.t1[n]);
+  b[3] = midpoint(t0_i, t1_n);
   b[4] = B_i;
   b[5] = midpoint(B_i, C_p);
   b[6] = b130;
   b[7] = C_i;
   b[8] = X_i;
   b[9] = midpoint(X_i, X_p);
-  b[10] = c.v[n];
+  b[10] = v_n;
   b[11] = midpoint(b130, b310_next);
   b[12] = midpoint(C_i, B_n);
   b[13] = midpoint(X_i, X_n);
@@ -125,10 +127,15 @@ SurfacePoint evaluate_cpatch(PatchControl c, int i, int j) {
   piece_points(c, cpatch_piece(i, j), b);
   const int s = j * kRate + i;
   precise vec3 position = vec3(0.0), du = vec3(0.0), dv = vec3(0.0);
-  for (int m = 0; m < 15; ++m) {
-    position = position + quartic_weight(0, m, s) * b[m];
-    du = du + quartic_weight(1, m, s) * b[m];
-    dv = dv + quartic_weight(2, m, s) * b[m];
+  [[unroll]] for (int quarter = 0; quarter < 4; ++quarter) {
+    const vec4 w = quartic_weights(0, s, quarter), wu = quartic_weights(1, s, quarter), wv = quartic_weights(2, s, quarter);
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+      const int m = 4 * quarter + k;
+      if (m == 15) break;
+      position = position + w[k] * b[m];
+      du = du + wu[k] * b[m];
+      dv = dv + wv[k] * b[m];
+    }
   }
   return SurfacePoint(position, du, dv);
 }
@@ -148,13 +155,15 @@ vec3 unit_normal(vec3 du, vec3 dv) {
 vec3 border_position(vec3 record[kRecordSize], uint forward_sides, int side, int m) {
   const int a = side, b = (side + 1) % 4;
   const bool forward = ((forward_sides >> side) & 1u) != 0u;
-  const vec3 pa = record[record_index(a, kP)], pb = record[record_index(b, kP)];
+  const vec3 pa = CORNER_ENTRY(record, a, kP), pb = CORNER_ENTRY(record, b, kP);
+  const vec3 va = CORNER_ENTRY(record, a, kV), vb = CORNER_ENTRY(record, b, kV);
+  const vec3 t0a = CORNER_ENTRY(record, a, kT0), t1b = CORNER_ENTRY(record, b, kT1);
   const vec3 origin = forward ? pa : pb;
   precise vec3 d = forward ? pb - pa : pa - pb;
-  const vec3 c0 = forward ? record[record_index(a, kV)] : record[record_index(b, kV)];
-  const vec3 c1 = forward ? record[record_index(a, kT0)] : record[record_index(b, kT1)];
-  precise vec3 c2 = (forward ? record[record_index(b, kT1)] : record[record_index(a, kT0)]) + d;
-  precise vec3 c3 = (forward ? record[record_index(b, kV)] : record[record_index(a, kV)]) + d;
+  const vec3 c0 = forward ? va : vb;
+  const vec3 c1 = forward ? t0a : t1b;
+  precise vec3 c2 = (forward ? t1b : t0a) + d;
+  precise vec3 c3 = (forward ? vb : va) + d;
   const int c = forward ? m : kRate - 1 - m;
   precise vec3 p = origin + cubic_combination(cubic_weights(c), c0, c1, c2, c3);
   return p;
@@ -171,7 +180,7 @@ void evaluate_sample(vec3 record[kRecordSize], bool is_cpatch, uint forward_side
   const bool on_corner = (i == 0 || i == last) && (j == 0 || j == last);
   if (on_corner) {
     const int corner = j == 0 ? (i == 0 ? 0 : 1) : (i == 0 ? 3 : 2);
-    precise vec3 p = record[record_index(corner, kP)] + record[record_index(corner, kV)];
+    precise vec3 p = CORNER_ENTRY(record, corner, kP) + CORNER_ENTRY(record, corner, kV);
     position = p;
   } else if (j == 0) {
     position = border_position(record, forward_sides, 0, i);

@@ -34,13 +34,13 @@ void main() {
   vec3 record[kRecordSize];
   build_record(corner, cpatch_index_of(quad_info[quad]), record);
   const int k = gl_InvocationID;
-  record_p[gl_InvocationID] = record[record_index(k, kP)];
-  record_v[gl_InvocationID] = record[record_index(k, kV)];
-  record_t0[gl_InvocationID] = record[record_index(k, kT0)];
-  record_t1[gl_InvocationID] = record[record_index(k, kT1)];
-  record_x0[gl_InvocationID] = record[record_index(k, kX0)];
-  record_x1[gl_InvocationID] = record[record_index(k, kX1)];
-  record_x2[gl_InvocationID] = record[record_index(k, kX2)];
+  record_p[gl_InvocationID] = CORNER_ENTRY(record, k, kP);
+  record_v[gl_InvocationID] = CORNER_ENTRY(record, k, kV);
+  record_t0[gl_InvocationID] = CORNER_ENTRY(record, k, kT0);
+  record_t1[gl_InvocationID] = CORNER_ENTRY(record, k, kT1);
+  record_x0[gl_InvocationID] = CORNER_ENTRY(record, k, kX0);
+  record_x1[gl_InvocationID] = CORNER_ENTRY(record, k, kX1);
+  record_x2[gl_InvocationID] = CORNER_ENTRY(record, k, kX2);
   if (k == 0) {
     patch_quad = quad;
     const float level = float(kRate - 1);

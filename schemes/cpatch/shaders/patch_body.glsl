@@ -15,7 +15,6 @@
 #define BINDING_GRID 8
 #if STORE_OUTPUT
 #define BINDING_OUTPUT 9  // and 10
-layout(std430, binding = 11) restrict buffer TessCoordError { uint tess_coord_error; };
 #else
 #define BINDING_CAMERA 9
 #endif
@@ -24,6 +23,9 @@ layout(std430, binding = 11) restrict buffer TessCoordError { uint tess_coord_er
 
 layout(constant_id = 0) const int kRate = 2;
 #include "evaluate.glsl"
+#if STORE_OUTPUT
+layout(std430, binding = 11) restrict buffer TessCoordError { uint tess_coord_error; };
+#endif
 
 layout(quads, equal_spacing, ccw) in;
 layout(push_constant) uniform Push { uint first_quad; } push;
@@ -45,7 +47,7 @@ void main() {
   const int quad = patch_quad;
   const uint info = quad_info[quad];
   vec3 record[kRecordSize];
-  for (int k = 0; k < 4; ++k) {
+  [[unroll]] for (int k = 0; k < 4; ++k) {
     record[record_index(k, kP)] = record_p[k];
     record[record_index(k, kV)] = record_v[k];
     record[record_index(k, kT0)] = record_t0[k];

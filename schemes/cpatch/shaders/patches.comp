@@ -36,13 +36,13 @@ void main() {
   const uint quad = SDB_LINEAR_INVOCATION();
   if (quad >= push.num_quads) return;
   CornerData corner[4];
-  for (int i = 0; i < 4; ++i) corner[i] = corner_from_vertex_points(corners[4 * quad + i]);
+  [[unroll]] for (int i = 0; i < 4; ++i) corner[i] = corner_from_vertex_points(corners[4 * quad + i]);
   vec3 record[kRecordSize];
   build_record(corner, cpatch_index_of(quad_info[quad]), record);
   const bool is_cpatch = cpatch_index_of(quad_info[quad]) >= 0;
-  for (int e = 0; e < kRecordSize; ++e) {
+  [[unroll]] for (int e = 0; e < kRecordSize; ++e) {
     // An ordinary quad's record is 16 coefficients and 4 corner points: skip X1, X2.
     if (!is_cpatch && e % 7 > kX0) continue;
-    STORE3(records, int(quad) * kRecordSize + e, record[e]);
+    records[int(quad) * kRecordSize + e] = vec4(record[e], 0.0);
   }
 }

@@ -25,7 +25,7 @@ void edge_interior(CpatchCorner a, CpatchCorner b, CornerWeights w, out vec3 b21
 // g* = g(1/2, 1/2) of the bicubic the quad would get if it were ordinary.
 vec3 bicubic_center(CpatchCorner c[4]) {
   precise vec3 sum = vec3(0.0);
-  for (int i = 0; i < 4; ++i) {
+  [[unroll]] for (int i = 0; i < 4; ++i) {
     precise vec3 term = c[i].v + 3.0 * (c[i].e0 + c[i].e1) + 9.0 * c[i].f;
     sum = sum + term;
   }
@@ -35,15 +35,15 @@ vec3 bicubic_center(CpatchCorner c[4]) {
 
 void cpatch_interior(CornerData corner[4], int cpatch_index, inout vec3 record[kRecordSize]) {
   CpatchCorner c[4];
-  for (int i = 0; i < 4; ++i) {
+  [[unroll]] for (int i = 0; i < 4; ++i) {
     precise vec3 shift = corner[i].p - corner[0].p;
     c[i] = CpatchCorner(shifted(corner[i].v, shift), shifted(corner[i].t0, shift), shifted(corner[i].t1, shift),
                         shifted(corner[i].f, shift), shifted(corner[i].e0, shift), shifted(corner[i].e1, shift));
   }
   vec3 B[4], C[4];
-  for (int i = 0; i < 4; ++i) edge_interior(c[i], c[(i + 1) % 4], corner_weights[4 * cpatch_index + i], B[i], C[i]);
+  [[unroll]] for (int i = 0; i < 4; ++i) edge_interior(c[i], c[(i + 1) % 4], corner_weights[4 * cpatch_index + i], B[i], C[i]);
   const vec3 g_center = bicubic_center(c);
-  for (int i = 0; i < 4; ++i) {
+  [[unroll]] for (int i = 0; i < 4; ++i) {
     const int i1 = (i + 1) % 4, i2 = (i + 2) % 4, i3 = (i + 3) % 4;
     precise vec3 near_terms = B[i] + C[i] - C[i1] - B[i3];
     precise vec3 far_terms = B[i1] + C[i3] - B[i2] - C[i2];
@@ -56,14 +56,14 @@ void cpatch_interior(CornerData corner[4], int cpatch_index, inout vec3 record[k
 
 // The record of a quad: corner entries, then f^i (ordinary) or the c-patch interior.
 void build_record(CornerData corner[4], int cpatch_index, out vec3 record[kRecordSize]) {
-  for (int i = 0; i < 4; ++i) {
+  [[unroll]] for (int i = 0; i < 4; ++i) {
     record[record_index(i, kP)] = corner[i].p;
     record[record_index(i, kV)] = corner[i].v;
     record[record_index(i, kT0)] = corner[i].t0;
     record[record_index(i, kT1)] = corner[i].t1;
   }
   if (cpatch_index < 0) {
-    for (int i = 0; i < 4; ++i) {
+    [[unroll]] for (int i = 0; i < 4; ++i) {
       precise vec3 shift = corner[i].p - corner[0].p;
       precise vec3 f = corner[i].f + shift;
       record[record_index(i, kX0)] = f;
