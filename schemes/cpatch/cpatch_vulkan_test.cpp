@@ -244,6 +244,62 @@ TEST_F(CpatchVulkanTest, RenderModeDrawsTheTorus) {
   }
 }
 
+// A column-major camera at `eye` looking along axis `axis` (0..5: +x, -x, +y, -y, +z, -z) with a
+// 90-degree field of view: six of them see every direction.
+gpu::Camera camera_inside(const Point3& eye, int axis, float aspect, float near) {
+  float forward[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+  forward[axis / 2] = axis % 2 ? -1.0f : 1.0f;
+  if (axis / 2 == 1) up[1] = 0, up[2] = 1;
+  const float side[3] = {forward[1] * up[2] - forward[2] * up[1], forward[2] * up[0] - forward[0] * up[2],
+                         forward[0] * up[1] - forward[1] * up[0]};
+  gpu::Camera c;
+  for (int i = 0; i < 3; ++i) {
+    c.view[i * 4 + 0] = side[i];
+    c.view[i * 4 + 1] = up[i];
+    c.view[i * 4 + 2] = -forward[i];
+  }
+  c.view[12] = -(side[0] * eye[0] + side[1] * eye[1] + side[2] * eye[2]);
+  c.view[13] = -(up[0] * eye[0] + up[1] * eye[1] + up[2] * eye[2]);
+  c.view[14] = forward[0] * eye[0] + forward[1] * eye[1] + forward[2] * eye[2];
+  c.view[15] = 1.0f;
+  const float far = 1000.0f * near;
+  c.projection[0] = 1.0f / aspect;  // tan(45 degrees) = 1
+  c.projection[5] = -1.0f;
+  c.projection[10] = far / (near - far);
+  c.projection[11] = -1.0f;
+  c.projection[14] = near * far / (near - far);
+  return c;
+}
+
+// The paper's Section 6: "no pixel drop out or gaps in the rendered surface". Seen from inside a
+// closed surface every pixel is covered; a background pixel is a crack the rasterizer saw through.
+TEST_F(CpatchVulkanTest, RenderModeHasNoPixelDropoutsFromInside) {
+  const ControlMesh quads = accepted("quadsphere");
+  Point3 center{0, 0, 0};
+  for (const Point3& p : quads.positions)
+    for (int k = 0; k < 3; ++k) center[k] += p[k] / float(quads.positions.size());
+  const float near = 1e-3f * float(bbox_diagonal(quads.positions));
+  for (GpuVariant variant : kVariants)
+    for (int rate : {5, 9}) {
+      if (!runs_at(variant, rate)) continue;
+      GpuOptions options;
+      options.variant = variant;
+      options.mode = GpuMode::Render;
+      options.width = 256, options.height = 256;
+      CpatchVulkan renderer(quads, rate, options);
+      for (int axis = 0; axis < 6; ++axis) {
+        renderer.set_camera(camera_inside(center, axis, 1.0f, near));
+        renderer.execute();
+        const gpu::Image image = renderer.read_image();
+        long background = 0;
+        for (uint32_t y = 0; y < image.height; ++y)
+          for (uint32_t x = 0; x < image.width; ++x)
+            background += image.pixel(x, y) == std::array<uint8_t, 4>{255, 255, 255, 255};
+        EXPECT_EQ(background, 0) << scheme_name(variant) << " N=" << rate << " view " << axis;
+      }
+    }
+}
+
 TEST_F(CpatchVulkanTest, HeatMapColoursByTheGivenValues) {
   const ControlMesh quads = accepted("torus");
   GpuOptions options;

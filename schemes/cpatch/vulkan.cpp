@@ -21,11 +21,16 @@ struct CameraBlock {
 };
 static_assert(sizeof(CameraBlock) == 128);
 
-CameraBlock camera_block(const ControlMesh& quads, float aspect, float heat_scale) {
+// Looks at the control mesh's bounding box (the surface lies within it) from MeshRenderer's
+// oblique direction.
+gpu::Camera framing_camera(const ControlMesh& quads, float aspect) {
   Point3 lo = quads.positions.front(), hi = lo;
   for (const Point3& p : quads.positions)
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  const gpu::Camera camera = gpu::frame_bounds(lo, hi, aspect);
+  return gpu::frame_bounds(lo, hi, aspect);
+}
+
+CameraBlock camera_block(const gpu::Camera& camera, float heat_scale) {
   const std::array<float, 16> mvp = gpu::multiply(camera.projection, camera.view);
   CameraBlock block{};
   std::copy(mvp.begin(), mvp.end(), block.mvp);
@@ -35,15 +40,16 @@ CameraBlock camera_block(const ControlMesh& quads, float aspect, float heat_scal
   return block;
 }
 
-// One quad's grid triangles, as grid_output_topology() lays them out; the 2-pass render draw
-// instances them once per quad.
-std::vector<uint32_t> grid_indices(int rate) {
+// The grid triangles of `grids` quads, each as grid_output_topology() lays them out, vertex k of
+// grid g numbered g N^2 + k; the 2-pass render draw instances them (grid_body.glsl).
+std::vector<uint32_t> grid_indices(int rate, int grids) {
   std::vector<uint32_t> indices;
-  for (int j = 0; j + 1 < rate; ++j)
-    for (int i = 0; i + 1 < rate; ++i) {
-      const uint32_t a = j * rate + i, b = a + 1, c = a + rate + 1, d = a + rate;
-      indices.insert(indices.end(), {a, b, c, a, c, d});
-    }
+  for (int g = 0; g < grids; ++g)
+    for (int j = 0; j + 1 < rate; ++j)
+      for (int i = 0; i + 1 < rate; ++i) {
+        const uint32_t a = g * rate * rate + j * rate + i, b = a + 1, c = a + rate + 1, d = a + rate;
+        indices.insert(indices.end(), {a, b, c, a, c, d});
+      }
   return indices;
 }
 
@@ -147,7 +153,8 @@ struct CpatchVulkan::Device {
     const int rate = grid.rate();
     if (render) {
       target = std::make_unique<gpu::RenderTarget>(ctx, o.width, o.height);
-      const CameraBlock block = camera_block(quads, target->aspect(), o.heat_scale);
+      const CameraBlock block =
+          camera_block(o.camera ? *o.camera : framing_camera(quads, target->aspect()), o.heat_scale);
       camera = gpu::device_buffer_with(ctx, std::span<const CameraBlock>(&block, 1), gpu::BufferUsage::Uniform,
                                        "c-patch camera");
     } else {
@@ -164,7 +171,8 @@ struct CpatchVulkan::Device {
         if (heat_map) heat = gpu::device_buffer_with(ctx, o.heat_values, gpu::BufferUsage::Storage, "c-patch heat values");
         graphics = std::make_unique<gpu::GraphicsPipeline>(ctx, grid_render_desc(rate, heat_map));
         graphics_set = gpu::DescriptorSet(*graphics, grid_render_bindings(mesh, camera, heat_map ? &heat : nullptr));
-        indices = gpu::device_buffer_with(ctx, grid_indices(rate), gpu::BufferUsage::Index, "c-patch grid indices");
+        indices = gpu::device_buffer_with(ctx, grid_indices(rate, grids_per_instance(rate)), gpu::BufferUsage::Index,
+                                          "c-patch grid indices");
       } else {
         evaluate = std::make_unique<gpu::ComputePipeline>(ctx, evaluate_pass_desc(rate));
         for (const gpu::Chunk& c : output->plan().chunks)
@@ -254,9 +262,11 @@ void CpatchVulkan::record_frame() {
       if (render) {
         d.frame_timer.begin(cmd, gpu::PassKind::Draw, "pass 2: evaluate and rasterize");
         d.target->render(cmd, [&](gpu::Commands& c) {
+          const uint32_t batch = static_cast<uint32_t>(grids_per_instance(rate()));
           c.bind(*d.graphics, d.graphics_set);
+          c.push(static_cast<int32_t>(quads));
           c.bind_index_buffer(d.indices);
-          c.draw_indexed(static_cast<uint32_t>(6 * (rate() - 1) * (rate() - 1)), quads);
+          c.draw_indexed(static_cast<uint32_t>(6 * (rate() - 1) * (rate() - 1)) * batch, (quads + batch - 1) / batch);
         });
       } else {
         d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 2: evaluate");
@@ -309,6 +319,13 @@ void CpatchVulkan::record_readback() {
     if (d.tess_error) cmd.download(d.tess_error, d.tess_error_staging);
     d.readback_timer.end(cmd);
   });
+}
+
+void CpatchVulkan::set_camera(const gpu::Camera& camera) {
+  if (options_.mode != GpuMode::Render) throw std::logic_error("CpatchVulkan::set_camera: evaluate mode has no camera");
+  options_.camera = camera;
+  const CameraBlock block = camera_block(camera, options_.heat_scale);
+  gpu::upload(*ctx_, device_->camera, &block, sizeof block);
 }
 
 void CpatchVulkan::set_positions(const std::vector<Point3>& positions) {

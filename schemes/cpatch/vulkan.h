@@ -47,6 +47,8 @@ struct GpuOptions {
   // blue-white-red scale (deviation heat maps).
   std::vector<float> heat_values;
   float heat_scale = 1.0f;
+  // Render mode: the camera; by default one that frames the control mesh's bounding box.
+  std::optional<gpu::Camera> camera;
   // Evaluate mode: a smaller output chunk than one storage binding (0: the device's limit), to
   // exercise the chunked path on small meshes in tests.
   uint64_t max_chunk_bytes = 0;
@@ -61,6 +63,8 @@ class CpatchVulkan {
   CpatchVulkan(const CpatchVulkan&) = delete;
   CpatchVulkan& operator=(const CpatchVulkan&) = delete;
 
+  // Render mode: the camera of the next frames (blocking upload).
+  void set_camera(const gpu::Camera& camera);
   // Replaces the control positions (same count) for the next frame.
   void set_positions(const std::vector<Point3>& positions);
   // One frame: upload, conversion, evaluation (and rasterization in render mode); waits.

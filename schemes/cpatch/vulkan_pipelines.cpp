@@ -1,5 +1,6 @@
 #include "vulkan_pipelines.h"
 
+#include <algorithm>
 #include <string>
 
 #include "sdb_scheme_cpatch_shaders.h"
@@ -50,13 +51,16 @@ gpu::ComputePipelineDesc evaluate_pass_desc(int rate) {
   return {shaders::get("evaluate.comp"), storage_bindings(5), 2 * sizeof(uint32_t), {rate_constant(rate)}};
 }
 
+int grids_per_instance(int rate) { return std::max(1, kVerticesPerInstance / (rate * rate)); }
+
 gpu::GraphicsPipelineDesc grid_render_desc(int rate, bool heat_map) {
   gpu::GraphicsPipelineDesc d;
   d.vertex = shaders::get(heat_map ? "grid_heat.vert" : "grid.vert");
   d.fragment = shaders::get(heat_map ? "heat.frag" : "surface.frag");
   d.bindings = {Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer, Binding::UniformBuffer};
   if (heat_map) d.bindings.push_back(Binding::StorageBuffer);
-  d.constants = {rate_constant(rate)};
+  d.push_constant_bytes = sizeof(int32_t);  // number of quads
+  d.constants = {rate_constant(rate), {1, static_cast<uint32_t>(grids_per_instance(rate))}};
   d.cull = gpu::CullMode::None;
   return d;
 }

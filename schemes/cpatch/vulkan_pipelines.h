@@ -17,6 +17,10 @@ gpu::ComputePipelineDesc vertices_pass_desc();      // pass 1a, Table 1 per vert
 gpu::ComputePipelineDesc patches_pass_desc();       // pass 1b, Table 2 per quad
 gpu::ComputePipelineDesc evaluate_pass_desc(int rate);  // pass 2, evaluate-only
 gpu::GraphicsPipelineDesc grid_render_desc(int rate, bool heat_map);  // pass 2, render mode
+// Render mode instances batches of this many quad grids (grid_body.glsl): about
+// kVerticesPerInstance vertices per instance.
+constexpr int kVerticesPerInstance = 1024;
+int grids_per_instance(int rate);
 std::vector<gpu::BufferRange> vertices_pass_bindings(const DeviceMesh& m);
 std::vector<gpu::BufferRange> patches_pass_bindings(const DeviceMesh& m);
 std::vector<gpu::BufferRange> evaluate_pass_bindings(const DeviceMesh& m, const DeviceOutput& out, const gpu::Chunk& c);
