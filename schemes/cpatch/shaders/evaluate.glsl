@@ -146,7 +146,11 @@ vec3 unit_normal(vec3 du, vec3 dv) {
   precise float length2 = n.x * n.x + n.y * n.y + n.z * n.z;
   // + FLT_MIN (1.17549435e-38) keeps the division finite, as on the CPU.
   precise float inverse = 1.0 / sqrt(length2 + 1.17549435e-38);
-  return length2 > 0.0 ? n * inverse : vec3(0.0, 0.0, 1.0);
+  // The CPU's branch-free form, to the sign of zero: ok n / |n|, plus 1 - ok on z only.
+  const float ok = length2 > 0.0 ? 1.0 : 0.0;
+  precise vec3 scaled = ok * (n * inverse);
+  precise float z = scaled.z + (1.0 - ok);
+  return vec3(scaled.x, scaled.y, z);
 }
 
 // write_border: side `side` (corner side -> side + 1) at position m (1..N-2, from corner
