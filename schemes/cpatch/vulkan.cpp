@@ -149,51 +149,64 @@ struct CpatchVulkan::Device {
   Device(gpu::Context& ctx, const ControlMesh& quads, const CpatchTopology& t, const SampleGrid& grid,
          const GpuOptions& o)
       : mesh(ctx, t, grid, o.variant == GpuVariant::TwoPass), frame_timer(ctx), readback_timer(ctx) {
-    const bool render = o.mode == GpuMode::Render;
-    const int rate = grid.rate();
-    if (render) {
-      target = std::make_unique<gpu::RenderTarget>(ctx, o.width, o.height);
-      const CameraBlock block =
-          camera_block(o.camera ? *o.camera : framing_camera(quads, target->aspect()), o.heat_scale);
-      camera = gpu::device_buffer_with(ctx, std::span<const CameraBlock>(&block, 1), gpu::BufferUsage::Uniform,
-                                       "c-patch camera");
-    } else {
-      output.emplace(ctx, t.num_quads, rate, kLocalSize, o.max_chunk_bytes);
-      if (o.variant != GpuVariant::TwoPass) target = std::make_unique<gpu::RenderTarget>(ctx, 1, 1);
-    }
-    if (o.variant == GpuVariant::TwoPass) {
-      vertices = std::make_unique<gpu::ComputePipeline>(ctx, vertices_pass_desc());
-      patches = std::make_unique<gpu::ComputePipeline>(ctx, patches_pass_desc());
-      vertices_set = gpu::DescriptorSet(*vertices, vertices_pass_bindings(mesh));
-      patches_set = gpu::DescriptorSet(*patches, patches_pass_bindings(mesh));
-      if (render) {
-        const bool heat_map = !o.heat_values.empty();
-        if (heat_map) heat = gpu::device_buffer_with(ctx, o.heat_values, gpu::BufferUsage::Storage, "c-patch heat values");
-        graphics = std::make_unique<gpu::GraphicsPipeline>(ctx, grid_render_desc(rate, heat_map));
-        graphics_set = gpu::DescriptorSet(*graphics, grid_render_bindings(mesh, camera, heat_map ? &heat : nullptr));
-        indices = gpu::device_buffer_with(ctx, grid_indices(rate, grids_per_instance(rate)), gpu::BufferUsage::Index,
-                                          "c-patch grid indices");
-      } else {
-        evaluate = std::make_unique<gpu::ComputePipeline>(ctx, evaluate_pass_desc(rate));
-        for (const gpu::Chunk& c : output->plan().chunks)
-          chunk_sets.emplace_back(*evaluate, evaluate_pass_bindings(mesh, *output, c));
-      }
-      return;
-    }
-    const gpu::GraphicsPipelineDesc desc =
-        o.variant == GpuVariant::OnePass ? onepass_desc(rate, o.mode) : tess_desc(rate, o.mode);
-    graphics = std::make_unique<gpu::GraphicsPipeline>(ctx, desc);
-    if (render) {
-      graphics_set = gpu::DescriptorSet(*graphics, graphics_render_bindings(mesh, camera));
-      return;
-    }
+    if (o.mode == GpuMode::Render)
+      make_target_and_camera(ctx, quads, o);
+    else
+      make_output(ctx, t, grid.rate(), o);
+    if (o.variant == GpuVariant::TwoPass)
+      make_two_pass(ctx, grid.rate(), o);
+    else
+      make_corner_pipeline(ctx, grid.rate(), o);
+  }
+
+  void make_target_and_camera(gpu::Context& ctx, const ControlMesh& quads, const GpuOptions& o) {
+    target = std::make_unique<gpu::RenderTarget>(ctx, o.width, o.height);
+    const CameraBlock block =
+        camera_block(o.camera ? *o.camera : framing_camera(quads, target->aspect()), o.heat_scale);
+    camera = gpu::device_buffer_with(ctx, std::span<const CameraBlock>(&block, 1), gpu::BufferUsage::Uniform,
+                                     "c-patch camera");
+  }
+
+  // Evaluate mode: the output buffers; the graphics variants draw into a 1 x 1 target (a draw needs
+  // one; nothing reaches it).
+  void make_output(gpu::Context& ctx, const CpatchTopology& t, int rate, const GpuOptions& o) {
+    output.emplace(ctx, t.num_quads, rate, kLocalSize, o.max_chunk_bytes);
+    if (o.variant != GpuVariant::TwoPass) target = std::make_unique<gpu::RenderTarget>(ctx, 1, 1);
     if (o.variant == GpuVariant::Tessellation) {
       tess_error = gpu::Buffer::device(ctx, sizeof(uint32_t), gpu::BufferUsage::Storage, "c-patch tess coord error");
       tess_error_staging = gpu::Buffer::readback(ctx, sizeof(uint32_t), "c-patch tess coord error (readback)");
     }
+  }
+
+  void make_two_pass(gpu::Context& ctx, int rate, const GpuOptions& o) {
+    vertices = std::make_unique<gpu::ComputePipeline>(ctx, vertices_pass_desc());
+    patches = std::make_unique<gpu::ComputePipeline>(ctx, patches_pass_desc());
+    vertices_set = gpu::DescriptorSet(*vertices, vertices_pass_bindings(mesh));
+    patches_set = gpu::DescriptorSet(*patches, patches_pass_bindings(mesh));
+    if (o.mode == GpuMode::Evaluate) {
+      evaluate = std::make_unique<gpu::ComputePipeline>(ctx, evaluate_pass_desc(rate));
+      for (const gpu::Chunk& c : output->plan().chunks)
+        chunk_sets.emplace_back(*evaluate, evaluate_pass_bindings(mesh, *output, c));
+      return;
+    }
+    const bool heat_map = !o.heat_values.empty();
+    if (heat_map) heat = gpu::device_buffer_with(ctx, o.heat_values, gpu::BufferUsage::Storage, "c-patch heat values");
+    graphics = std::make_unique<gpu::GraphicsPipeline>(ctx, grid_render_desc(rate, heat_map));
+    graphics_set = gpu::DescriptorSet(*graphics, grid_render_bindings(mesh, camera, heat_map ? &heat : nullptr));
+    indices = gpu::device_buffer_with(ctx, grid_indices(rate, grids_per_instance(rate)), gpu::BufferUsage::Index,
+                                      "c-patch grid indices");
+  }
+
+  // cpatch-1pass and cpatch-tess: one graphics pipeline from corner.vert on.
+  void make_corner_pipeline(gpu::Context& ctx, int rate, const GpuOptions& o) {
+    graphics = std::make_unique<gpu::GraphicsPipeline>(
+        ctx, o.variant == GpuVariant::OnePass ? onepass_desc(rate, o.mode) : tess_desc(rate, o.mode));
+    if (o.mode == GpuMode::Render) {
+      graphics_set = gpu::DescriptorSet(*graphics, graphics_render_bindings(mesh, camera));
+      return;
+    }
     for (const gpu::Chunk& c : output->plan().chunks)
-      chunk_sets.emplace_back(*graphics,
-                              graphics_store_bindings(mesh, *output, c, tess_error ? &tess_error : nullptr));
+      chunk_sets.emplace_back(*graphics, graphics_store_bindings(mesh, *output, c, tess_error ? &tess_error : nullptr));
   }
 
   DeviceMesh mesh;
@@ -237,77 +250,97 @@ CpatchVulkan::~CpatchVulkan() = default;
 
 void CpatchVulkan::record_frame() {
   Device& d = *device_;
-  const GpuVariant variant = options_.variant;
-  const bool render = options_.mode == GpuMode::Render;
-  const uint32_t quads = static_cast<uint32_t>(topology_.num_quads);
-  const gpu::DeviceLimits& limits = ctx_->limits();
   d.frame = ctx_->record([&](gpu::Commands& cmd) {
     d.frame_timer.reset(cmd);
     d.frame_timer.begin(cmd, gpu::PassKind::Upload, "upload control points");
     d.mesh.record_upload(cmd);
     d.frame_timer.end(cmd);
-    if (variant == GpuVariant::TwoPass) {
-      d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 1a: Table 1 per vertex");
-      cmd.bind(*d.vertices, d.vertices_set);
-      cmd.push(static_cast<uint32_t>(topology_.num_vertices));
-      cmd.dispatch(gpu::groups_for(topology_.num_vertices, kLocalSize, limits));
-      d.frame_timer.end(cmd);
-      cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
-      d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 1b: Table 2 per quad");
-      cmd.bind(*d.patches, d.patches_set);
-      cmd.push(quads);
-      cmd.dispatch(gpu::groups_for(quads, kLocalSize, limits));
-      d.frame_timer.end(cmd);
-      cmd.barrier(gpu::Stage::Compute, render ? gpu::Stage::Vertex : gpu::Stage::Compute);
-      if (render) {
-        d.frame_timer.begin(cmd, gpu::PassKind::Draw, "pass 2: evaluate and rasterize");
-        d.target->render(cmd, [&](gpu::Commands& c) {
-          const uint32_t batch = static_cast<uint32_t>(grids_per_instance(rate()));
-          c.bind(*d.graphics, d.graphics_set);
-          c.push(static_cast<int32_t>(quads));
-          c.bind_index_buffer(d.indices);
-          c.draw_indexed(static_cast<uint32_t>(6 * (rate() - 1) * (rate() - 1)) * batch, (quads + batch - 1) / batch);
-        });
-      } else {
-        d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 2: evaluate");
-        const auto& chunks = d.output->plan().chunks;
-        for (size_t k = 0; k < chunks.size(); ++k) {
-          // One invocation per grid row (evaluate.comp).
-          const uint32_t rows = static_cast<uint32_t>(chunks[k].elements / rate());
-          const uint32_t push[2] = {static_cast<uint32_t>(chunks[k].first_element / rate()), rows};
-          cmd.bind(*d.evaluate, d.chunk_sets[k]);
-          cmd.push(push);
-          cmd.dispatch(gpu::groups_for(rows, kLocalSize, limits));
-        }
-      }
-      d.frame_timer.end(cmd);
-      return;
-    }
-    const char* stage = variant == GpuVariant::OnePass ? "geometry" : "tessellation";
-    if (render) {
-      d.frame_timer.begin(cmd, gpu::PassKind::Draw, std::string("draw: convert, ") + stage + " evaluate, rasterize");
-      d.target->render(cmd, [&](gpu::Commands& c) {
-        c.bind(*d.graphics, d.graphics_set);
-        c.push(uint32_t{0});
-        c.draw(4 * quads);
-      });
+    if (options_.variant == GpuVariant::TwoPass) {
+      record_conversion(cmd);
+      record_two_pass_evaluation(cmd);
     } else {
-      if (d.tess_error) {
-        cmd.fill(d.tess_error, 0);
-        cmd.barrier(gpu::Stage::Transfer, gpu::Stage::Vertex);
-      }
-      d.frame_timer.begin(cmd, gpu::PassKind::Kernel, std::string("convert and ") + stage + " evaluate");
-      d.target->render(cmd, [&](gpu::Commands& c) {
-        const auto& chunks = d.output->plan().chunks;
-        for (size_t k = 0; k < chunks.size(); ++k) {
-          c.bind(*d.graphics, d.chunk_sets[k]);
-          c.push(d.output->first_quad(chunks[k]));
-          c.draw(4 * d.output->quads(chunks[k]), 1, 4 * d.output->first_quad(chunks[k]));
-        }
-      });
+      record_corner_draw(cmd);
     }
-    d.frame_timer.end(cmd);
   });
+}
+
+// cpatch-2pass, pass 1: Table 1 per vertex, then Table 2 per quad streaming out the records.
+void CpatchVulkan::record_conversion(gpu::Commands& cmd) {
+  Device& d = *device_;
+  const gpu::DeviceLimits& limits = ctx_->limits();
+  const uint32_t quads = static_cast<uint32_t>(topology_.num_quads);
+  d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 1a: Table 1 per vertex");
+  cmd.bind(*d.vertices, d.vertices_set);
+  cmd.push(static_cast<uint32_t>(topology_.num_vertices));
+  cmd.dispatch(gpu::groups_for(topology_.num_vertices, kLocalSize, limits));
+  d.frame_timer.end(cmd);
+  cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
+  d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 1b: Table 2 per quad");
+  cmd.bind(*d.patches, d.patches_set);
+  cmd.push(quads);
+  cmd.dispatch(gpu::groups_for(quads, kLocalSize, limits));
+  d.frame_timer.end(cmd);
+  cmd.barrier(gpu::Stage::Compute, options_.mode == GpuMode::Render ? gpu::Stage::Vertex : gpu::Stage::Compute);
+}
+
+// cpatch-2pass, pass 2: evaluate the records into the output chunks, or draw the instanced grids.
+void CpatchVulkan::record_two_pass_evaluation(gpu::Commands& cmd) {
+  Device& d = *device_;
+  const uint32_t quads = static_cast<uint32_t>(topology_.num_quads);
+  if (options_.mode == GpuMode::Render) {
+    d.frame_timer.begin(cmd, gpu::PassKind::Draw, "pass 2: evaluate and rasterize");
+    d.target->render(cmd, [&](gpu::Commands& c) {
+      const uint32_t batch = static_cast<uint32_t>(grids_per_instance(rate()));
+      c.bind(*d.graphics, d.graphics_set);
+      c.push(static_cast<int32_t>(quads));
+      c.bind_index_buffer(d.indices);
+      c.draw_indexed(static_cast<uint32_t>(6 * (rate() - 1) * (rate() - 1)) * batch, (quads + batch - 1) / batch);
+    });
+    d.frame_timer.end(cmd);
+    return;
+  }
+  d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 2: evaluate");
+  const auto& chunks = d.output->plan().chunks;
+  for (size_t k = 0; k < chunks.size(); ++k) {
+    // One invocation per grid row (evaluate.comp).
+    const uint32_t rows = static_cast<uint32_t>(chunks[k].elements / rate());
+    const uint32_t push[2] = {static_cast<uint32_t>(chunks[k].first_element / rate()), rows};
+    cmd.bind(*d.evaluate, d.chunk_sets[k]);
+    cmd.push(push);
+    cmd.dispatch(gpu::groups_for(rows, kLocalSize, ctx_->limits()));
+  }
+  d.frame_timer.end(cmd);
+}
+
+// cpatch-1pass and cpatch-tess: one draw of the quads' corners (render mode), or one per output
+// chunk (evaluate mode, the stages store; nothing is rasterized).
+void CpatchVulkan::record_corner_draw(gpu::Commands& cmd) {
+  Device& d = *device_;
+  const char* stage = options_.variant == GpuVariant::OnePass ? "geometry" : "tessellation";
+  if (options_.mode == GpuMode::Render) {
+    d.frame_timer.begin(cmd, gpu::PassKind::Draw, std::string("draw: convert, ") + stage + " evaluate, rasterize");
+    d.target->render(cmd, [&](gpu::Commands& c) {
+      c.bind(*d.graphics, d.graphics_set);
+      c.push(uint32_t{0});
+      c.draw(4 * static_cast<uint32_t>(topology_.num_quads));
+    });
+    d.frame_timer.end(cmd);
+    return;
+  }
+  if (d.tess_error) {
+    cmd.fill(d.tess_error, 0);
+    cmd.barrier(gpu::Stage::Transfer, gpu::Stage::Vertex);
+  }
+  d.frame_timer.begin(cmd, gpu::PassKind::Kernel, std::string("convert and ") + stage + " evaluate");
+  d.target->render(cmd, [&](gpu::Commands& c) {
+    const auto& chunks = d.output->plan().chunks;
+    for (size_t k = 0; k < chunks.size(); ++k) {
+      c.bind(*d.graphics, d.chunk_sets[k]);
+      c.push(d.output->first_quad(chunks[k]));
+      c.draw(4 * d.output->quads(chunks[k]), 1, 4 * d.output->first_quad(chunks[k]));
+    }
+  });
+  d.frame_timer.end(cmd);
 }
 
 void CpatchVulkan::record_readback() {

@@ -87,6 +87,9 @@ class CpatchVulkan {
  private:
   struct Device;  // buffers, pipelines, descriptor sets, recordings (vulkan.cpp)
   void record_frame();
+  void record_conversion(gpu::Commands& cmd);
+  void record_two_pass_evaluation(gpu::Commands& cmd);
+  void record_corner_draw(gpu::Commands& cmd);
   void record_readback();
 
   std::shared_ptr<gpu::Context> ctx_;

@@ -41,8 +41,8 @@ void main() {
   read_corners(corner);
   vec3 record[kRecordSize];
   build_record(corner, cpatch_index_of(info), record);
-  [[unroll]] for (int j = 0; j < kRate; ++j)
-    [[unroll]] for (int i = 0; i < kRate; ++i) {
+  for (int j = 0; j < kRate; ++j)
+    for (int i = 0; i < kRate; ++i) {
       vec3 position, normal;
       evaluate_sample(record, cpatch_index_of(info) >= 0, forward_sides_of(info), i, j, position, normal);
       const int local = (quad - int(push.first_quad)) * kSamples + j * kRate + i;  // chunk-relative
@@ -62,7 +62,7 @@ struct Row {
 
 Row evaluate_row(vec3 record[kRecordSize], uint info, int j) {
   Row row;
-  [[unroll]] for (int i = 0; i < kRate; ++i) {
+  for (int i = 0; i < kRate; ++i) {
     vec3 position, normal;
     evaluate_sample(record, cpatch_index_of(info) >= 0, forward_sides_of(info), i, j, position, normal);
     row.clip[i] = clip_position(position);
@@ -85,9 +85,9 @@ void main() {
   vec3 record[kRecordSize];
   build_record(corner, cpatch_index_of(info), record);
   Row lower = evaluate_row(record, info, 0);
-  [[unroll]] for (int j = 0; j + 1 < kRate; ++j) {
+  for (int j = 0; j + 1 < kRate; ++j) {
     const Row upper = evaluate_row(record, info, j + 1);
-    [[unroll]] for (int i = 0; i < kRate; ++i) {
+    for (int i = 0; i < kRate; ++i) {
       emit(upper, i);
       emit(lower, i);
     }
