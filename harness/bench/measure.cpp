@@ -17,6 +17,7 @@
 #include "deviation_ply.h"
 #include "errors.h"
 #include "facts.h"
+#include "gpu.h"
 #include "manifest.h"
 #include "registry.h"
 #include "watertight.h"
@@ -274,6 +275,11 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   std::unique_ptr<Evaluation> eval;
   try {
     eval = scheme->prepare(*accepted, request);
+  } catch (const gpu::Unsupported& e) {
+    // A device limit that depends on the mesh (its output past the device's memory, say).
+    row.status = "unsupported";
+    row.message = e.what();
+    return row;
   } catch (const InputError& e) {
     if (!o.refusals_as_rows) throw;
     row.status = "unsupported";

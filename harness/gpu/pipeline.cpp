@@ -71,6 +71,7 @@ VkPrimitiveTopology vk_topology(Topology t) {
     case Topology::TriangleList: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     case Topology::TriangleStrip: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
     case Topology::LineList: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+    case Topology::LineListWithAdjacency: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST_WITH_ADJACENCY;
     case Topology::PointList: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
     case Topology::PatchList: return VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   }

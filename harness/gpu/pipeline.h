@@ -30,7 +30,8 @@ struct ComputePipelineDesc {
   std::vector<SpecConstant> constants;
 };
 
-enum class Topology { TriangleList, TriangleStrip, LineList, PointList, PatchList };
+// LineListWithAdjacency: four vertices per primitive, what a geometry shader that takes a quad reads.
+enum class Topology { TriangleList, TriangleStrip, LineList, LineListWithAdjacency, PointList, PatchList };
 enum class CullMode { None, Back, Front };  // front faces are counter-clockwise
 
 struct VertexBinding {  // vertex buffer binding = index in GraphicsPipelineDesc::vertex_bindings

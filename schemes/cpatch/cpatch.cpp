@@ -1,6 +1,7 @@
 #include "cpatch.h"
 
 #include "cpu.h"
+#include "vulkan.h"
 
 namespace sdb {
 namespace {
@@ -34,21 +35,50 @@ SchemeInfo make_info(const char* name, const char* description, std::vector<Back
   return info;
 }
 
+std::optional<std::string> rate_unsupported(int rate) {
+  if (rate < 2) return "rate N = " + std::to_string(rate) + " is below 2 (N x N samples per quad)";
+  return std::nullopt;
+}
+
 class CpatchTwoPassScheme final : public Scheme {
  public:
   const SchemeInfo& info() const override { return cpatch_2pass_info(); }
 
   std::optional<std::string> unsupported(const RunRequest& request) const override {
-    if (request.backend == Backend::Vulkan) return "cpatch-2pass has no vulkan backend yet";
-    if (request.level < 2) return "rate N = " + std::to_string(request.level) + " is below 2 (N x N samples per quad)";
-    return std::nullopt;
+    if (request.backend == Backend::Vulkan)
+      return cpatch::vulkan_unsupported(cpatch::GpuVariant::TwoPass, cpatch::GpuMode::Evaluate, request.level);
+    return rate_unsupported(request.level);
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
-    if (auto why = unsupported(request)) throw std::invalid_argument(*why);
+    if (auto why = rate_unsupported(request.level)) throw std::invalid_argument(*why);
+    if (request.backend == Backend::Vulkan)
+      return std::make_unique<cpatch::CpatchVulkanEvaluation>(mesh, request.level, cpatch::GpuVariant::TwoPass);
     return std::make_unique<cpatch::CpatchCpuEvaluation>(mesh, request.level, request.backend == Backend::CpuMt,
                                                          request.threads);
   }
+};
+
+// cpatch-1pass and cpatch-tess: Vulkan only.
+class CpatchGpuOnlyScheme final : public Scheme {
+ public:
+  CpatchGpuOnlyScheme(const SchemeInfo& info, cpatch::GpuVariant variant) : info_(info), variant_(variant) {}
+  const SchemeInfo& info() const override { return info_; }
+
+  std::optional<std::string> unsupported(const RunRequest& request) const override {
+    if (request.backend != Backend::Vulkan)
+      return info_.name + " runs on the vulkan backend only (its amplification is a shader stage's)";
+    return cpatch::vulkan_unsupported(variant_, cpatch::GpuMode::Evaluate, request.level);
+  }
+
+  std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
+    if (request.backend != Backend::Vulkan) throw std::invalid_argument(*unsupported(request));
+    return std::make_unique<cpatch::CpatchVulkanEvaluation>(mesh, request.level, variant_);
+  }
+
+ private:
+  const SchemeInfo& info_;
+  cpatch::GpuVariant variant_;
 };
 
 }  // namespace
@@ -56,7 +86,7 @@ class CpatchTwoPassScheme final : public Scheme {
 const SchemeInfo& cpatch_2pass_info() {
   static const SchemeInfo info = make_info(
       "cpatch-2pass", "bicubic patches on ordinary quads, c-patches on extraordinary ones; convert, then evaluate",
-      {Backend::Cpu, Backend::CpuMt}, {2, 5, 9, 17, 33});
+      {Backend::Cpu, Backend::CpuMt, Backend::Vulkan}, {2, 5, 9, 17, 33});
   return info;
 }
 
@@ -77,6 +107,8 @@ const SchemeInfo& cpatch_tess_info() {
 std::vector<std::unique_ptr<Scheme>> make_cpatch_schemes() {
   std::vector<std::unique_ptr<Scheme>> schemes;
   schemes.push_back(std::make_unique<CpatchTwoPassScheme>());
+  schemes.push_back(std::make_unique<CpatchGpuOnlyScheme>(cpatch_1pass_info(), cpatch::GpuVariant::OnePass));
+  schemes.push_back(std::make_unique<CpatchGpuOnlyScheme>(cpatch_tess_info(), cpatch::GpuVariant::Tessellation));
   return schemes;
 }
 

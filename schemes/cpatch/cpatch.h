@@ -10,15 +10,15 @@
 
 namespace sdb {
 
-// cpatch-2pass: conversion pass (Tables 1, 2) then evaluation pass (Table 3); cpu and cpu-mt.
+// cpatch-2pass: conversion pass (Tables 1, 2) then evaluation pass (Table 3); cpu, cpu-mt, vulkan.
 const SchemeInfo& cpatch_2pass_info();
 // cpatch-1pass (conversion and evaluation in one geometry-shader pass, Section 4) and cpatch-tess
-// (evaluation in a tessellation-evaluation shader, Section 6's outlook): Vulkan only, declared
-// here for the Vulkan module and kept out of make_cpatch_schemes() until they have a backend.
+// (Table 2 in the tessellation control stage, evaluation after the hardware tessellator, Section
+// 6's outlook): vulkan only.
 const SchemeInfo& cpatch_1pass_info();
 const SchemeInfo& cpatch_tess_info();
 
-// The schemes with a backend today: cpatch-2pass.
+// cpatch-2pass, cpatch-1pass, cpatch-tess (in this order).
 std::vector<std::unique_ptr<Scheme>> make_cpatch_schemes();
 
 }  // namespace sdb

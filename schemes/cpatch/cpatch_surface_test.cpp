@@ -276,14 +276,19 @@ TEST(Scheme, InfoAndFactory) {
   EXPECT_EQ(info.name, "cpatch-2pass");
   EXPECT_EQ(info.level_kind, LevelKind::Rate);
   EXPECT_EQ(info.default_levels, (std::vector<int>{2, 5, 9, 17, 33}));
-  EXPECT_EQ(info.backends, (std::vector<Backend>{Backend::Cpu, Backend::CpuMt}));
+  EXPECT_EQ(info.backends, (std::vector<Backend>{Backend::Cpu, Backend::CpuMt, Backend::Vulkan}));
   EXPECT_EQ(cpatch_1pass_info().backends, (std::vector<Backend>{Backend::Vulkan}));
   EXPECT_EQ(cpatch_tess_info().backends, (std::vector<Backend>{Backend::Vulkan}));
   const auto schemes = make_cpatch_schemes();
-  ASSERT_EQ(schemes.size(), 1u);
-  EXPECT_TRUE(schemes[0]->unsupported({Backend::Vulkan, 9, 0}).has_value());
+  ASSERT_EQ(schemes.size(), 3u);
+  EXPECT_EQ(schemes[1]->info().name, "cpatch-1pass");
+  EXPECT_EQ(schemes[2]->info().name, "cpatch-tess");
+  // Without touching a device: a rate below 2 and the cpu backends of the Vulkan-only variants.
+  EXPECT_TRUE(schemes[0]->unsupported({Backend::Vulkan, 1, 0}).has_value());
   EXPECT_TRUE(schemes[0]->unsupported({Backend::Cpu, 1, 0}).has_value());
   EXPECT_FALSE(schemes[0]->unsupported({Backend::CpuMt, 9, 0}).has_value());
+  EXPECT_TRUE(schemes[1]->unsupported({Backend::Cpu, 5, 0}).has_value());
+  EXPECT_TRUE(schemes[2]->unsupported({Backend::CpuMt, 5, 0}).has_value());
 }
 
 // The paper's Figure 12 comparison: distance to the Catmull-Clark limit at the same SurfaceCoord

@@ -42,29 +42,7 @@ void CpatchCpuEvaluation::build_lane_groups() {
     for (size_t l = 0; l < size_t(kLanes); ++l) lane_groups_.push_back(ordinary[std::min(g + l, ordinary.size() - 1)]);
 }
 
-// Per quad its own N x N vertices (row j = v index), 2 (N-1)^2 triangles counter-clockwise in
-// (u, v), which is outward for the mesh's counter-clockwise quads, and each vertex's ptex coord.
-void CpatchCpuEvaluation::build_output_topology() {
-  const int n = grid_.rate(), per_quad = grid_.samples();
-  const size_t vertices = static_cast<size_t>(topology_.num_quads) * per_quad;
-  out_.positions.assign(vertices, Point3{});
-  out_.normals.assign(vertices, Point3{});
-  out_.coords.resize(vertices);
-  out_.triangles.clear();
-  out_.triangles.reserve(static_cast<size_t>(topology_.num_quads) * 6 * (n - 1) * (n - 1));
-  for (int q = 0; q < topology_.num_quads; ++q) {
-    const uint32_t base = static_cast<uint32_t>(q) * static_cast<uint32_t>(per_quad);
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        out_.coords[base + j * n + i] = {static_cast<uint32_t>(q), static_cast<float>(i) / static_cast<float>(n - 1),
-                                         static_cast<float>(j) / static_cast<float>(n - 1)};
-    for (int j = 0; j + 1 < n; ++j)
-      for (int i = 0; i + 1 < n; ++i) {
-        const uint32_t a = base + j * n + i, b = a + 1, c = a + n + 1, d = a + n;
-        out_.triangles.insert(out_.triangles.end(), {a, b, c, a, c, d});
-      }
-  }
-}
+void CpatchCpuEvaluation::build_output_topology() { grid_output_topology(topology_.num_quads, grid_.rate(), out_); }
 
 void CpatchCpuEvaluation::set_positions(const std::vector<Point3>& positions) {
   if (positions.size() != positions_.size()) throw std::invalid_argument("set_positions: vertex count differs");

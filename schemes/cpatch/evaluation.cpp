@@ -257,6 +257,28 @@ void write_border(const SampleGrid& grid, const Vec3f* record, uint8_t forward_s
   }
 }
 
+void grid_output_topology(int num_quads, int rate, Tessellation& out) {
+  const int per_quad = rate * rate;
+  const size_t vertices = static_cast<size_t>(num_quads) * per_quad;
+  out.positions.assign(vertices, Point3{});
+  out.normals.assign(vertices, Point3{});
+  out.coords.resize(vertices);
+  out.triangles.clear();
+  out.triangles.reserve(static_cast<size_t>(num_quads) * 6 * (rate - 1) * (rate - 1));
+  for (int q = 0; q < num_quads; ++q) {
+    const uint32_t base = static_cast<uint32_t>(q) * static_cast<uint32_t>(per_quad);
+    for (int j = 0; j < rate; ++j)
+      for (int i = 0; i < rate; ++i)
+        out.coords[base + j * rate + i] = {static_cast<uint32_t>(q), static_cast<float>(i) / static_cast<float>(rate - 1),
+                                           static_cast<float>(j) / static_cast<float>(rate - 1)};
+    for (int j = 0; j + 1 < rate; ++j)
+      for (int i = 0; i + 1 < rate; ++i) {
+        const uint32_t a = base + j * rate + i, b = a + 1, c = a + rate + 1, d = a + rate;
+        out.triangles.insert(out.triangles.end(), {a, b, c, a, c, d});
+      }
+  }
+}
+
 void evaluate_quad(const SampleGrid& grid, const Vec3f* record, bool is_cpatch, uint8_t forward_sides,
                    PatchScratch& scratch, Point3* positions, Point3* normals) {
   const int count = grid.samples();

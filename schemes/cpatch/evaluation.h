@@ -18,6 +18,7 @@
 
 #include "control_mesh.h"
 #include "conversion.h"
+#include "tessellation.h"
 #include "topology.h"
 #include "vec3.h"
 
@@ -97,6 +98,13 @@ struct PatchScratch {
   explicit PatchScratch(int samples = 0) { resize(samples); }
   void resize(int samples);
 };
+
+// The output's layout, shared by every backend: per quad its own N x N vertices (row j = v
+// index; borders duplicated per quad, welded only by validation), 2 (N-1)^2 triangles
+// (i,j),(i+1,j),(i+1,j+1) and (i,j),(i+1,j+1),(i,j+1), counter-clockwise in (u, v), hence outward
+// for the mesh's counter-clockwise quads, and coords[k] = {quad, i/(N-1), j/(N-1)}. Sizes the
+// position and normal arrays (zeros) for the evaluation to fill.
+void grid_output_topology(int num_quads, int rate, Tessellation& out);
 
 // The one routine both quads of an edge use for its samples: cubic Bezier (p0..p3, canonical
 // order) with the weights of the canonical sample index, summed in a fixed order.

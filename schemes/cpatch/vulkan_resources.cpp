@@ -1,0 +1,159 @@
+#include "vulkan_resources.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+namespace sdb::cpatch {
+namespace {
+
+std::string gib(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f GiB", double(bytes) / double(1ull << 30));
+  return text;
+}
+
+// Heap of the first memory type with all of `flags`, or -1.
+int heap_with(const VkPhysicalDeviceMemoryProperties& p, VkMemoryPropertyFlags flags) {
+  for (uint32_t t = 0; t < p.memoryTypeCount; ++t)
+    if ((p.memoryTypes[t].propertyFlags & flags) == flags) return static_cast<int>(p.memoryTypes[t].heapIndex);
+  return -1;
+}
+
+// A buffer holding `values`; one element of zeros when there are none (Vulkan has no empty
+// buffers; the shaders never read it then, e.g. c-patch weights on an all-ordinary mesh).
+template <class T>
+gpu::Buffer table_buffer(gpu::Context& ctx, std::vector<T> values, const char* name) {
+  if (values.empty()) values.resize(1);
+  const uint64_t bytes = values.size() * sizeof(T);
+  if (bytes > ctx.limits().max_storage_buffer_range)
+    throw gpu::Unsupported(std::string("c-patch table '") + name + "' of " + gib(bytes) + " exceeds one storage binding on " +
+                           ctx.info().name + " (" + gib(ctx.limits().max_storage_buffer_range) + ")");
+  return gpu::device_buffer_with(ctx, values, gpu::BufferUsage::Storage, name);
+}
+
+gpu::Buffer storage(gpu::Context& ctx, uint64_t bytes, const char* name) {
+  if (bytes > ctx.limits().max_storage_buffer_range)
+    throw gpu::Unsupported(std::string("c-patch buffer '") + name + "' of " + gib(bytes) + " exceeds one storage binding on " +
+                           ctx.info().name + " (" + gib(ctx.limits().max_storage_buffer_range) + ")");
+  return gpu::Buffer::device(ctx, std::max<uint64_t>(bytes, 16), gpu::BufferUsage::Storage, name);
+}
+
+uint64_t float3_bytes(size_t count) { return count * 3 * sizeof(float); }
+
+}  // namespace
+
+std::vector<float> grid_table(const SampleGrid& grid) {
+  const int n = grid.rate(), samples = grid.samples();
+  std::vector<float> table(4 * (2 * n + 12 * static_cast<size_t>(samples)), 0.0f);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) {
+      table[4 * i + k] = grid.cubic(k)[i];
+      table[4 * (n + i) + k] = grid.cubic_du(k)[i];
+    }
+  const float* tables[3] = {grid.quartic(0), grid.quartic_du(0), grid.quartic_dv(0)};
+  for (int sorted = 0; sorted < samples; ++sorted) {
+    const int s = grid.piece_order()[sorted];
+    for (int t = 0; t < 3; ++t)
+      for (int m = 0; m < kQuarticPoints; ++m)
+        table[4 * (2 * n + 12 * size_t(s) + 4 * t) + m] = tables[t][m * samples + sorted];
+  }
+  return table;
+}
+
+std::vector<uint32_t> quad_info_table(const CpatchTopology& t) {
+  std::vector<uint32_t> info(t.num_quads);
+  for (int q = 0; q < t.num_quads; ++q)
+    info[q] = uint32_t(t.forward_sides[q]) | (uint32_t(t.extraordinary_index[q] + 1) << 4);
+  return info;
+}
+
+void check_memory(const gpu::Context& ctx, const MemoryNeed& need, const std::string& what) {
+  const VkPhysicalDeviceMemoryProperties& p = ctx.memory_properties();
+  const int device_heap = heap_with(p, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  int readback_heap = heap_with(p, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+  if (readback_heap < 0) readback_heap = heap_with(p, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+  auto refuse = [&](uint64_t needed, int heap, const char* kind) {
+    throw gpu::Unsupported(what + " needs " + gib(needed) + " of " + kind + " memory; " + ctx.info().name +
+                           " has a heap of " + gib(p.memoryHeaps[heap].size));
+  };
+  if (device_heap >= 0 && device_heap == readback_heap) {
+    const uint64_t total = need.device_bytes + need.readback_bytes;
+    if (total > p.memoryHeaps[device_heap].size) refuse(total, device_heap, "device and readback");
+    return;
+  }
+  if (device_heap >= 0 && need.device_bytes > p.memoryHeaps[device_heap].size)
+    refuse(need.device_bytes, device_heap, "device");
+  if (readback_heap >= 0 && need.readback_bytes > p.memoryHeaps[readback_heap].size)
+    refuse(need.readback_bytes, readback_heap, "readback");
+}
+
+uint64_t DeviceMesh::bytes_needed(const CpatchTopology& t, const SampleGrid& grid, bool intermediates) {
+  uint64_t bytes = 2 * float3_bytes(t.num_vertices) + (t.first_slot.size() + t.ring.size()) * sizeof(int) +
+                   t.corners.size() * sizeof(QuadCorner) + t.num_quads * sizeof(uint32_t) +
+                   t.cpatch_weights.size() * sizeof(CpatchCornerWeights) + grid_table(grid).size() * sizeof(float);
+  if (intermediates)
+    bytes += float3_bytes(t.num_vertices) + 3 * float3_bytes(t.num_slots()) + size_t(t.num_quads) * kRecordSize * 4 * sizeof(float);
+  return bytes;
+}
+
+DeviceMesh::DeviceMesh(gpu::Context& ctx, const CpatchTopology& t, const SampleGrid& sample_grid, bool intermediates) {
+  const uint64_t control_bytes = float3_bytes(t.num_vertices);
+  control_staging = gpu::Buffer::upload(ctx, control_bytes, "c-patch control points (staging)");
+  control_points = storage(ctx, control_bytes, "c-patch control points");
+  first_slot = table_buffer(ctx, t.first_slot, "c-patch first_slot");
+  ring = table_buffer(ctx, t.ring, "c-patch ring");
+  valence_constants = table_buffer(ctx, t.valence_constants, "c-patch valence constants");
+  std::vector<float> trig_pairs;
+  for (size_t j = 0; j < t.trig_cos.size(); ++j) trig_pairs.insert(trig_pairs.end(), {t.trig_cos[j], t.trig_sin[j]});
+  trig = table_buffer(ctx, trig_pairs, "c-patch cos/sin table");
+  corners = table_buffer(ctx, t.corners, "c-patch quad corners");
+  quad_info = table_buffer(ctx, quad_info_table(t), "c-patch quad info");
+  corner_weights = table_buffer(ctx, t.cpatch_weights, "c-patch Table 2 weights");
+  grid = table_buffer(ctx, grid_table(sample_grid), "c-patch grid weights");
+  if (!intermediates) return;
+  limit_points = storage(ctx, control_bytes, "c-patch limit points");
+  face_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch face points");
+  edge_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch edge points");
+  tangent_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch tangent points");
+  records = storage(ctx, size_t(t.num_quads) * kRecordSize * 4 * sizeof(float), "c-patch patch records");
+}
+
+void DeviceMesh::write_positions(const std::vector<Vec3f>& positions) const {
+  static_assert(sizeof(Vec3f) == 3 * sizeof(float));
+  control_staging.write(positions.data(), float3_bytes(positions.size()));
+}
+
+void DeviceMesh::record_upload(gpu::Commands& cmd) const { cmd.upload(control_staging, control_points); }
+
+DeviceOutput::DeviceOutput(gpu::Context& ctx, int num_quads, int rate, uint32_t local_size, uint64_t max_chunk_bytes)
+    : samples_(uint64_t(rate) * rate) {
+  plan_ = gpu::plan_chunks(ctx.limits(), {uint64_t(num_quads) * samples_, 12, samples_, local_size, max_chunk_bytes});
+  for (uint64_t bytes : plan_.buffer_bytes) {
+    positions_.push_back(gpu::Buffer::device(ctx, bytes, gpu::BufferUsage::Storage, "c-patch output positions"));
+    normals_.push_back(gpu::Buffer::device(ctx, bytes, gpu::BufferUsage::Storage, "c-patch output normals"));
+    positions_staging_.push_back(gpu::Buffer::readback(ctx, bytes, "c-patch output positions (readback)"));
+    normals_staging_.push_back(gpu::Buffer::readback(ctx, bytes, "c-patch output normals (readback)"));
+  }
+}
+
+void DeviceOutput::record_download(gpu::Commands& cmd) const {
+  for (size_t b = 0; b < positions_.size(); ++b) {
+    cmd.download(positions_[b], positions_staging_[b]);
+    cmd.download(normals_[b], normals_staging_[b]);
+  }
+}
+
+void DeviceOutput::read(Tessellation& out) const {
+  static_assert(sizeof(Point3) == 12);
+  // Chunks are contiguous within a buffer, and buffers follow each other in element order.
+  uint64_t element = 0;
+  for (size_t b = 0; b < positions_.size(); ++b) {
+    const uint64_t bytes = plan_.buffer_bytes[b];
+    positions_staging_[b].read(&out.positions[element], bytes);
+    normals_staging_[b].read(&out.normals[element], bytes);
+    element += bytes / 12;
+  }
+}
+
+}  // namespace sdb::cpatch
