@@ -106,6 +106,26 @@ std::vector<MeshEntry> list_meshes() {
   return out;
 }
 
+namespace {
+
+std::optional<fs::path> corpus_file(const std::string& name) {
+  const auto dir = corpus_dir();
+  if (!dir) return std::nullopt;
+  std::error_code ec;
+  const fs::path base = fs::path(*dir) / name;
+  if (fs::is_regular_file(base, ec)) return base;
+  for (const char* ext : {".obj", ".off", ".ply"}) {
+    fs::path p = base;
+    p += ext;
+    if (fs::is_regular_file(p, ec)) return p;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+bool corpus_has(const std::string& name) { return corpus_file(name).has_value(); }
+
 ControlMesh load_mesh(const std::string& name) {
   for (const auto& b : builtins())
     if (name == b.name) {
@@ -116,18 +136,10 @@ ControlMesh load_mesh(const std::string& name) {
   if (auto m = parametrised(name)) return *m;
   std::error_code ec;
   if (fs::is_regular_file(name, ec)) return read_mesh(name);
-  if (auto dir = corpus_dir()) {
-    const fs::path base = fs::path(*dir) / name;
-    if (fs::is_regular_file(base, ec)) return read_mesh(base.string());
-    for (const char* ext : {".obj", ".off", ".ply"}) {
-      fs::path p = base;
-      p += ext;
-      if (fs::is_regular_file(p, ec)) {
-        ControlMesh m = read_mesh(p.string());
-        m.name = name;
-        return m;
-      }
-    }
+  if (auto file = corpus_file(name)) {
+    ControlMesh m = read_mesh(file->string());
+    if (file->has_extension() && fs::path(name).extension() != file->extension()) m.name = name;
+    return m;
   }
   if (is_mesh_file(name)) return read_mesh(name);  // gives the "no such file" message
   throw InputError(name, "no such mesh: not a built-in name, a corpus name or a file (see `subdivbench list meshes`)");

@@ -26,4 +26,7 @@ ControlMesh load_mesh(const std::string& name);
 
 std::optional<std::string> corpus_dir();
 
+// Whether the corpus is present and holds NAME (as load_mesh resolves it), without reading it.
+bool corpus_has(const std::string& name);
+
 }  // namespace sdb

@@ -69,6 +69,19 @@ std::pair<int, int> first_degenerate_face(const ControlMesh& m, int* count) {
 
 }  // namespace
 
+double signed_volume6(const ControlMesh& m) {
+  double v = 0;
+  const auto off = face_offsets(m);
+  for (int f = 0; f < num_faces(m); ++f)
+    for (int k = 1; k + 1 < m.face_sizes[f]; ++k) {
+      const auto& a = m.positions[m.face_vertices[off[f]]];
+      const auto& b = m.positions[m.face_vertices[off[f] + k]];
+      const auto& c = m.positions[m.face_vertices[off[f] + k + 1]];
+      v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+  return v;
+}
+
 std::vector<int> vertex_valences(const ControlMesh& m) {
   std::vector<int> valence(m.positions.size(), 0);
   for (const auto& [key, use] : edge_table(m)) {

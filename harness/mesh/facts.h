@@ -39,6 +39,10 @@ MeshFacts compute_facts(const ControlMesh& mesh);
 // edge non-manifold or breaks orientation, for schemes that cannot take such meshes.
 void require_manifold(const ControlMesh& mesh, const std::string& scheme);
 
+// Six times the enclosed signed volume (faces fanned from their first vertex): positive when a
+// closed mesh's faces are oriented outwards.
+double signed_volume6(const ControlMesh& mesh);
+
 // Per-vertex valence (number of distinct edges), 0 for unused vertices.
 std::vector<int> vertex_valences(const ControlMesh& mesh);
 

@@ -24,16 +24,6 @@ namespace {
 const char* kCorpusMeshes[] = {"crane/spot_control", "crane/blub_control", "pmp/fandisk_quads",
                                "stein/sword_quad_dominant"};
 
-bool corpus_present(const std::string& name) {
-  if (!corpus_dir()) return false;
-  try {
-    load_mesh(name);
-    return true;
-  } catch (const InputError&) {
-    return false;
-  }
-}
-
 ControlMesh accepted(const std::string& name) { return accept_mesh(load_mesh(name), cpatch_2pass_info()); }
 
 std::unique_ptr<CpatchCpuEvaluation> evaluate(const ControlMesh& quads, int rate, Backend backend = Backend::Cpu) {
@@ -44,14 +34,7 @@ std::unique_ptr<CpatchCpuEvaluation> evaluate(const ControlMesh& quads, int rate
   return eval;
 }
 
-double bbox_diagonal(const std::vector<Point3>& points) {
-  Point3 lo = points[0], hi = points[0];
-  for (const auto& p : points)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  double d = 0;
-  for (int k = 0; k < 3; ++k) d += double(hi[k] - lo[k]) * (hi[k] - lo[k]);
-  return std::sqrt(d);
-}
+double bbox_diagonal(const std::vector<Point3>& points) { return bounds_of(points).diagonal(); }
 
 double angle_degrees(const Point3& a, const Point3& b) {
   const double d = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
@@ -148,7 +131,7 @@ TEST(Lemma1, NormalsAgreeAcrossEveryEdgeOfBuiltInMeshes) {
 TEST(Lemma1, NormalsAgreeAcrossEveryEdgeOfTheCorpus) {
   int found = 0;
   for (const char* name : kCorpusMeshes) {
-    if (!corpus_present(name)) continue;
+    if (!corpus_has(name)) continue;
     ++found;
     for (int rate : {5, 9}) expect_lemma1(name, rate);
   }
@@ -168,7 +151,7 @@ TEST(Watertight, NoOpenEdgesOnBuiltInMeshes) {
 TEST(Watertight, NoOpenEdgesOnTheCorpus) {
   int found = 0;
   for (const char* name : kCorpusMeshes) {
-    if (!corpus_present(name)) continue;
+    if (!corpus_has(name)) continue;
     ++found;
     const ControlMesh quads = accepted(name);
     // The sword (89,512 quads after quadrangulation) stops at N = 9 to keep the suite's memory
@@ -198,7 +181,7 @@ TEST(Watertight, NoRayCracksOnBuiltInMeshes) {
 TEST(Watertight, NoRayCracksOnTheCorpus) {
   int found = 0;
   for (const char* name : {"crane/spot_control", "pmp/fandisk_quads"}) {
-    if (!corpus_present(name)) continue;
+    if (!corpus_has(name)) continue;
     ++found;
     expect_no_ray_cracks(name, 9);
   }
@@ -207,7 +190,7 @@ TEST(Watertight, NoRayCracksOnTheCorpus) {
 
 TEST(Backends, CpuAndCpuMtAreBitIdentical) {
   std::vector<std::string> names = {"frog-standin", "pole7"};
-  if (corpus_present("crane/spot_control")) names.push_back("crane/spot_control");
+  if (corpus_has("crane/spot_control")) names.push_back("crane/spot_control");
   for (const std::string& name : names) {
     const ControlMesh quads = accepted(name);
     for (int rate : {2, 9}) {
@@ -321,7 +304,7 @@ void report_deviation(const std::string& name, int rate) {
 TEST(Deviation, FromTheCatmullClarkLimitOnTheCorpus) {
   int found = 0;
   for (const char* name : {"crane/spot_control", "crane/blub_control", "pmp/fandisk_quads"}) {
-    if (!corpus_present(name)) continue;
+    if (!corpus_has(name)) continue;
     ++found;
     report_deviation(name, 9);
   }
@@ -334,6 +317,6 @@ TEST(Deviation, FromTheCatmullClarkLimitOnBuiltInMeshes) {
 
 // 7.25 M output vertices against the limit: a few seconds with the evaluator's TBB loop.
 TEST(Deviation, FromTheCatmullClarkLimitOnTheSword) {
-  if (!corpus_present("stein/sword_quad_dominant")) GTEST_SKIP() << "shared corpus not found";
+  if (!corpus_has("stein/sword_quad_dominant")) GTEST_SKIP() << "shared corpus not found";
   report_deviation("stein/sword_quad_dominant", 9);
 }

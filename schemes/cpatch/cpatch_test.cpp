@@ -39,13 +39,7 @@ Vec3d corner_point(const Vec3f* record, int corner, RecordEntry e) {
   return to_double(record[record_index(corner, kP)]) + to_double(record[record_index(corner, e)]);
 }
 
-double bbox_diagonal(const ControlMesh& m) {
-  std::array<float, 3> lo = m.positions[0], hi = m.positions[0];
-  for (const auto& p : m.positions)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  return std::sqrt(double(hi[0] - lo[0]) * (hi[0] - lo[0]) + double(hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                   double(hi[2] - lo[2]) * (hi[2] - lo[2]));
-}
+double bbox_diagonal(const ControlMesh& m) { return bounds_of(m.positions).diagonal(); }
 
 }  // namespace
 

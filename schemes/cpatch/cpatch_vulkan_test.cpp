@@ -26,26 +26,9 @@ namespace {
 
 constexpr GpuVariant kVariants[] = {GpuVariant::TwoPass, GpuVariant::OnePass, GpuVariant::Tessellation};
 
-bool corpus_present(const std::string& name) {
-  if (!corpus_dir()) return false;
-  try {
-    load_mesh(name);
-    return true;
-  } catch (const InputError&) {
-    return false;
-  }
-}
-
 ControlMesh accepted(const std::string& name) { return accept_mesh(load_mesh(name), cpatch_2pass_info()); }
 
-double bbox_diagonal(const std::vector<Point3>& points) {
-  Point3 lo = points[0], hi = points[0];
-  for (const auto& p : points)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  double d = 0;
-  for (int k = 0; k < 3; ++k) d += double(hi[k] - lo[k]) * (hi[k] - lo[k]);
-  return std::sqrt(d);
-}
+double bbox_diagonal(const std::vector<Point3>& points) { return bounds_of(points).diagonal(); }
 
 double distance(const Point3& a, const std::array<double, 3>& b) {
   double d = 0;
@@ -129,7 +112,7 @@ TEST_F(CpatchVulkanTest, AllRegularTorusIsTheCatmullClarkLimitInEveryVariant) {
 // diagonal; the figures printed say how close they really are.
 TEST_F(CpatchVulkanTest, VulkanOutputAgreesWithTheCpu) {
   std::vector<std::string> names = {"frog-standin", "pole7", "quadsphere"};
-  if (corpus_present("crane/spot_control")) names.push_back("crane/spot_control");
+  if (corpus_has("crane/spot_control")) names.push_back("crane/spot_control");
   for (const std::string& name : names) {
     const ControlMesh quads = accepted(name);
     const double diagonal = bbox_diagonal(quads.positions);
@@ -171,7 +154,7 @@ TEST_F(CpatchVulkanTest, ClosedMeshesGiveWatertightSurfaces) {
     std::vector<int> rates;
   };
   std::vector<Case> cases = {{"pole3", {2, 5, 9, 17, 33}}, {"frog-standin", {5, 9}}};
-  if (corpus_present("pmp/fandisk_quads")) cases.push_back({"pmp/fandisk_quads", {9}});
+  if (corpus_has("pmp/fandisk_quads")) cases.push_back({"pmp/fandisk_quads", {9}});
   for (const Case& c : cases) {
     const ControlMesh quads = accepted(c.mesh);
     for (GpuVariant variant : kVariants)
