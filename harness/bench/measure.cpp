@@ -122,8 +122,30 @@ std::shared_ptr<const ControlMesh> MeasureContext::accepted(const std::string& n
   return m;
 }
 
+namespace {
+
+template <typename T>
+void hash_bytes(size_t& h, const std::vector<T>& v) {
+  const std::string_view bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  h = h * 1099511628211ull ^ std::hash<std::string_view>{}(bytes);
+}
+
+// Identifies a surface: positions, faces and tags (two meshes with equal keys have the same limit).
+size_t content_key(const ControlMesh& m) {
+  size_t h = 14695981039346656037ull;
+  hash_bytes(h, m.positions);
+  hash_bytes(h, m.face_sizes);
+  hash_bytes(h, m.face_vertices);
+  hash_bytes(h, m.holes);
+  for (const auto& c : m.creases) h = h * 31 + std::hash<std::string>{}(std::to_string(c.v0) + "," + std::to_string(c.v1) + ":" + std::to_string(c.sharpness));
+  for (const auto& c : m.corners) h = h * 31 + std::hash<std::string>{}(std::to_string(c.vertex) + ":" + std::to_string(c.sharpness));
+  return h * 31 + static_cast<size_t>(m.boundary);
+}
+
+}  // namespace
+
 const LimitEvaluator& MeasureContext::reference(const std::shared_ptr<const ControlMesh>& m, SubdivisionRule rule) {
-  auto& slot = references_[m.get()];
+  auto& slot = references_[{content_key(*m), int(rule)}];
   if (!slot) {
     keep_alive_.push_back(m);
     slot = std::make_unique<LimitEvaluator>(*m, rule);
@@ -133,7 +155,8 @@ const LimitEvaluator& MeasureContext::reference(const std::shared_ptr<const Cont
 
 std::pair<const Tessellation*, const EmbreeTriangleScene*> MeasureContext::dense_reference(
     const std::shared_ptr<const ControlMesh>& m) {
-  auto it = dense_.find(m.get());
+  const size_t key = content_key(*m);
+  auto it = dense_.find(key);
   if (it != dense_.end()) return {&it->second.surface, it->second.scene.get()};
   keep_alive_.push_back(m);
   // About two million triangles: dense enough for 1e-4 of the diagonal on the meshes here.
@@ -142,7 +165,7 @@ std::pair<const Tessellation*, const EmbreeTriangleScene*> MeasureContext::dense
   const Scheme* bfr = find_scheme("osd-bfr");
   auto e = bfr->prepare(*m, {Backend::CpuMt, rate, 0});
   e->execute();
-  Dense& d = dense_[m.get()];
+  Dense& d = dense_[key];
   d.surface = e->result();
   d.scene = std::make_unique<EmbreeTriangleScene>(d.surface.positions, d.surface.triangles);
   return {&d.surface, d.scene.get()};

@@ -56,12 +56,15 @@ class MeasureContext {
   MachineInfo machine_;
   std::map<std::string, ControlMesh> meshes_;
   std::map<std::string, std::shared_ptr<const ControlMesh>> accepted_;
-  std::map<const ControlMesh*, std::unique_ptr<LimitEvaluator>> references_;
+  // Keyed by the mesh's content, not its address: a geometry image hands every run a new g0
+  // object, and caching those by address kept a 200 MB dense reference per run (the default
+  // run reached 24 GB and was killed).
+  std::map<std::pair<size_t, int>, std::unique_ptr<LimitEvaluator>> references_;
   struct Dense {
     Tessellation surface;
     std::unique_ptr<EmbreeTriangleScene> scene;
   };
-  std::map<const ControlMesh*, Dense> dense_;
+  std::map<size_t, Dense> dense_;
   std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
 };
 
