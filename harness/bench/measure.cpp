@@ -124,6 +124,9 @@ std::shared_ptr<const ControlMesh> MeasureContext::accepted(const std::string& n
 
 namespace {
 
+// Plain structs without padding: their bytes are their values.
+static_assert(sizeof(EdgeCrease) == 2 * sizeof(int) + sizeof(float) && sizeof(VertexCorner) == sizeof(int) + sizeof(float));
+
 template <typename T>
 void hash_bytes(size_t& h, const std::vector<T>& v) {
   const std::string_view bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
@@ -137,8 +140,8 @@ size_t content_key(const ControlMesh& m) {
   hash_bytes(h, m.face_sizes);
   hash_bytes(h, m.face_vertices);
   hash_bytes(h, m.holes);
-  for (const auto& c : m.creases) h = h * 31 + std::hash<std::string>{}(std::to_string(c.v0) + "," + std::to_string(c.v1) + ":" + std::to_string(c.sharpness));
-  for (const auto& c : m.corners) h = h * 31 + std::hash<std::string>{}(std::to_string(c.vertex) + ":" + std::to_string(c.sharpness));
+  hash_bytes(h, m.creases);
+  hash_bytes(h, m.corners);
   return h * 31 + static_cast<size_t>(m.boundary);
 }
 

@@ -33,12 +33,7 @@ class CpuEvaluation final : public Evaluation {
       rows_ = std::make_unique<TbbRows>(in.request.threads);
     else
       rows_ = std::make_unique<SerialRows>();
-    const int n = subdivider_.size(in.request.level);
-    out_.positions.resize(static_cast<size_t>(n) * n);
-    out_.normals.resize(out_.positions.size());
-    out_.triangles = grid_triangles(n);
-    out_.coords = grid_coords(in.base_size, in.request.level);
-    out_.reference = g0_;
+    out_ = grid_tessellation(in.base_size, in.request.level, subdivider_.size(in.request.level), g0_);
   }
 
   void execute() override {

@@ -29,4 +29,14 @@ std::vector<SurfaceCoord> grid_coords(int n0, int k) {
   return coords;
 }
 
+Tessellation grid_tessellation(int n0, int k, int n, std::shared_ptr<const ControlMesh> g0) {
+  Tessellation out;
+  out.positions.resize(static_cast<size_t>(n) * n);
+  out.normals.resize(out.positions.size());
+  out.triangles = grid_triangles(n);
+  out.coords = grid_coords(n0, k);
+  out.reference = std::move(g0);
+  return out;
+}
+
 }  // namespace sdb::gim

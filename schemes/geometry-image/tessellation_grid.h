@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "tessellation.h"
@@ -29,5 +30,9 @@ inline bool anti_diagonal(int x, int y, int n) {
 // SurfaceCoords (g0's quads, ptex u along image x, v along y) of the samples of level k of an
 // n0 x n0 image: sample (x, y) is image point (x, y) / 2^k. k < 0 for subsampled levels.
 std::vector<SurfaceCoord> grid_coords(int n0, int k);
+
+// An evaluation's output for level k (n x n samples) of an n0 x n0 image of `g0`: triangles,
+// coords and reference set, positions and normals sized for the subdivider to fill.
+Tessellation grid_tessellation(int n0, int k, int n, std::shared_ptr<const ControlMesh> g0);
 
 }  // namespace sdb::gim

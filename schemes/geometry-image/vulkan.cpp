@@ -16,12 +16,7 @@ class VulkanEvaluation final : public Evaluation {
  public:
   VulkanEvaluation(const EvaluationInput& in, std::shared_ptr<gpu::Context> ctx)
       : ctx_(std::move(ctx)), g0_(in.g0), subdivider_(*ctx_, in.base_size, in.request.level, in.plan) {
-    const int n = subdivider_.size(in.request.level);
-    out_.positions.resize(static_cast<size_t>(n) * n);
-    out_.normals.resize(out_.positions.size());
-    out_.triangles = grid_triangles(n);
-    out_.coords = grid_coords(in.base_size, in.request.level);
-    out_.reference = g0_;
+    out_ = grid_tessellation(in.base_size, in.request.level, subdivider_.size(in.request.level), g0_);
   }
 
   void execute() override {

@@ -33,14 +33,20 @@ layout(push_constant) uniform Push {
   uint first_quad;  // of this draw: the output chunk starts there
 } push;
 
+// Table 2 for this stage's quad, from the four corners' Table 1 data: its record and quad info.
+uint build_quad_record(out vec3 record[kRecordSize]) {
+  const uint info = quad_info[corner_quad[0]];
+  CornerData corner[4];
+  read_corners(corner);
+  build_record(corner, cpatch_index_of(info), record);
+  return info;
+}
+
 #if STORE_OUTPUT
 void main() {
   const int quad = corner_quad[0];
-  const uint info = quad_info[quad];
-  CornerData corner[4];
-  read_corners(corner);
   vec3 record[kRecordSize];
-  build_record(corner, cpatch_index_of(info), record);
+  const uint info = build_quad_record(record);
   for (int j = 0; j < kRate; ++j)
     for (int i = 0; i < kRate; ++i) {
       vec3 position, normal;
@@ -78,12 +84,8 @@ void emit(Row row, int i) {
 }
 
 void main() {
-  const int quad = corner_quad[0];
-  const uint info = quad_info[quad];
-  CornerData corner[4];
-  read_corners(corner);
   vec3 record[kRecordSize];
-  build_record(corner, cpatch_index_of(info), record);
+  const uint info = build_quad_record(record);
   Row lower = evaluate_row(record, info, 0);
   for (int j = 0; j + 1 < kRate; ++j) {
     const Row upper = evaluate_row(record, info, j + 1);
