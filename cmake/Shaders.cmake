@@ -86,7 +86,7 @@ function(sdb_add_shaders)
 #include <span>
 #include <string_view>
 
-#include \"spirv.h\"
+#include \"harness/gpu/spirv.h\"
 
 namespace @S_NAMESPACE@ {
 // The SPIR-V of the shader with this file name (\"subdivide.comp\"); throws std::out_of_range.

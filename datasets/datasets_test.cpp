@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "errors.h"
-#include "facts.h"
-#include "generators.h"
-#include "manifest.h"
+#include "datasets/generators.h"
+#include "datasets/manifest.h"
+#include "harness/core/errors.h"
+#include "harness/mesh/facts.h"
 
 using namespace sdb;
 

@@ -1,4 +1,4 @@
-#include "generators.h"
+#include "datasets/generators.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <tuple>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb::gen {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb::gen {
 

@@ -1,4 +1,4 @@
-#include "manifest.h"
+#include "datasets/manifest.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,10 +6,10 @@
 #include <functional>
 #include <regex>
 
-#include "analytic.h"
-#include "errors.h"
-#include "generators.h"
-#include "mesh_io.h"
+#include "datasets/generators.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "harness/mesh/mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -47,13 +47,19 @@ const std::vector<Builtin>& builtins() {
        [] { return gen::random_quads(1292, 0.59, 1); }},
       {"frog-party", "nine frog stand-ins (the paper's Frog Party)",
        [] { return gen::party(gen::random_quads(1292, 0.59, 1), 9); }},
-      // Analytic geometry images (schemes/geometry-image/analytic.h); any odd size via gim-sphere-N.
-      {"gim-sphere-31", "geometry image 31x31 of the unit sphere: its closed control mesh g0 (the paper's Table 2 size)",
-       [] { return *gim::analytic_mesh_from_name("gim-sphere-31"); }},
-      {"gim-ellipsoid-31", "geometry image 31x31 of an ellipsoid (radii 1.2, 0.8, 0.6): its control mesh g0",
-       [] { return *gim::analytic_mesh_from_name("gim-ellipsoid-31"); }},
   };
   return list;
+}
+
+// The generators' own meshes, then those the scheme folders provide (SDB_REGISTER_MESHES).
+const std::vector<NamedMesh>& named_meshes() {
+  static const std::vector<NamedMesh> all = [] {
+    std::vector<NamedMesh> list;
+    for (const Builtin& b : builtins()) list.push_back({b.name, b.description, b.make});
+    for (const MeshProvider& p : mesh_providers()) list.insert(list.end(), p.builtins.begin(), p.builtins.end());
+    return list;
+  }();
+  return all;
 }
 
 std::optional<ControlMesh> parametrised(const std::string& name) {
@@ -66,7 +72,9 @@ std::optional<ControlMesh> parametrised(const std::string& name) {
   if (std::regex_match(name, m, std::regex(R"(open-patch-(\d+)x(\d+))"))) return gen::open_patch(i(1), i(2));
   if (std::regex_match(name, m, std::regex(R"(random-(\d+)-(\d+)(?:-(\d+))?)")))
     return gen::random_quads(i(1), i(2) / 100.0, m[3].matched ? i(3) : 1);
-  if (auto image = gim::analytic_mesh_from_name(name)) return image;  // gim-sphere-N, gim-ellipsoid-N
+  for (const MeshProvider& p : mesh_providers())
+    if (p.parse)
+      if (auto mesh = p.parse(name)) return mesh;
   return std::nullopt;
 }
 
@@ -92,7 +100,7 @@ std::optional<std::string> corpus_dir() {
 
 std::vector<MeshEntry> list_meshes() {
   std::vector<MeshEntry> out;
-  for (const auto& b : builtins()) out.push_back({b.name, "builtin", b.description});
+  for (const auto& b : named_meshes()) out.push_back({b.name, "builtin", b.description});
   if (auto dir = corpus_dir()) {
     std::vector<MeshEntry> corpus;
     for (const auto& e : fs::recursive_directory_iterator(*dir)) {
@@ -127,7 +135,7 @@ std::optional<fs::path> corpus_file(const std::string& name) {
 bool corpus_has(const std::string& name) { return corpus_file(name).has_value(); }
 
 ControlMesh load_mesh(const std::string& name) {
-  for (const auto& b : builtins())
+  for (const auto& b : named_meshes())
     if (name == b.name) {
       ControlMesh m = b.make();
       m.name = b.name;

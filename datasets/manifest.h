@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb {
 
@@ -16,12 +16,14 @@ struct MeshEntry {
   std::string description;  // generator and parameters, or the file path
 };
 
-// Built-in names first (fixed list), then every .obj/.off/.ply of the corpus by relative path
-// without extension, e.g. "crane/spot_control".
+// Built-in names first (the generators' fixed list, then the meshes scheme folders register with
+// SDB_REGISTER_MESHES, e.g. gim-sphere-31), then every .obj/.off/.ply of the corpus by relative
+// path without extension, e.g. "crane/spot_control".
 std::vector<MeshEntry> list_meshes();
 
 // A manifest name, a parametrised generator name (torus-MxN, quadsphere-K, icosphere-L,
-// pole<N>, open-patch-MxN, random-Q-P[-S]), a corpus name, or a path to a file.
+// pole<N>, open-patch-MxN, random-Q-P[-S], and those of registered providers: gim-sphere-N), a
+// corpus name, or a path to a file.
 ControlMesh load_mesh(const std::string& name);
 
 std::optional<std::string> corpus_dir();

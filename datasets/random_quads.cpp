@@ -10,8 +10,8 @@
 #include <random>
 #include <unordered_map>
 
-#include "errors.h"
-#include "generators.h"
+#include "datasets/generators.h"
+#include "harness/core/errors.h"
 
 namespace sdb::gen {
 namespace {

@@ -34,17 +34,19 @@ def load(paths):
     return machine, created, rows
 
 
-def key(r):
-    return (r["mesh"], r["backend"], r["tessellation"])
-
-
 def peer_rates(rows):
-    """osd-bfr's triangle rate per (mesh, backend, tessellation): the CPU peer rows are read against."""
-    peers = {}
-    for r in rows:
-        if r["scheme"] == "osd-bfr" and r["status"] == "ok":
-            peers[key(r)] = r["triangle_rate_mtris"]
-    return peers
+    """Triangle rate per (scheme, mesh, backend, tessellation) of the ok rows."""
+    return {(r["scheme"], r["mesh"], r["backend"], r["tessellation"]): r["triangle_rate_mtris"]
+            for r in rows if r["status"] == "ok"}
+
+
+def peer_of(r, rates):
+    """The row's peer (the scheme's SchemeInfo, recorded in the row) and its rate at the same mesh and
+    tessellation on the row's peer backend; (name, None) when that row is not in the file."""
+    peer, backend = r.get("peer") or "", r.get("peer_backend") or ""
+    if not peer or not backend:
+        return None, None
+    return f"{peer} ({backend})", rates.get((peer, r["mesh"], backend, r["tessellation"]))
 
 
 def time_of(r):
@@ -60,22 +62,22 @@ def fmt(x, digits=3):
     return f"{x:.{digits}g}"
 
 
-COLUMNS = ["scheme", "backend", "mesh", "level", "tess", "triangles", "median ms", "Mtri/s", "× osd-bfr",
+COLUMNS = ["scheme", "backend", "mesh", "level", "tess", "triangles", "median ms", "Mtri/s", "× peer", "peer",
            "bw %", "open edges", "cracks / rays", "dev max %", "dev p95 %", "normal max °", "Hausdorff", "status"]
 
 
-def table_rows(rows, peers):
+def table_rows(rows, rates):
     out = []
     for r in rows:
         dev = r.get("deviation") or {}
         wt = r.get("watertight", {})
-        peer = peers.get(key(r))
-        ratio = r["triangle_rate_mtris"] / peer if peer and r["scheme"] != "osd-bfr" and r["status"] == "ok" else None
+        peer, peer_rate = peer_of(r, rates)
+        ratio = r["triangle_rate_mtris"] / peer_rate if peer_rate and r["status"] == "ok" else None
         cracks = f"{wt.get('ray_cracks')} / {wt.get('rays'):,}" if wt.get("ray_cracks", -1) >= 0 else "–"
         status = r["status"] + (f": {r['message']}" if r.get("message") else "")
-        out.append([r["scheme"], r["backend"], r["mesh"], str(r["level"]), str(r["tessellation"]), fmt(r["triangles"]),
+        out.append([r.get("spec") or r["scheme"], r["backend"], r["mesh"], str(r["level"]), str(r["tessellation"]), fmt(r["triangles"]),
                     fmt(time_of(r)) if r["status"] != "unsupported" else "–", fmt(r["triangle_rate_mtris"]),
-                    fmt(ratio), fmt(100 * r.get("bandwidth_fraction", 0)),
+                    fmt(ratio), peer or "–", fmt(100 * r.get("bandwidth_fraction", 0)),
                     fmt(wt.get("open_edges")) if wt.get("open_edges", -1) >= 0 else "–", cracks,
                     fmt(dev.get("pos_max_pct")), fmt(dev.get("pos_p95_pct")), fmt(dev.get("normal_max_deg")),
                     fmt(dev.get("hausdorff_rel")) if dev.get("hausdorff_rel", -1) >= 0 else "–", status])
@@ -151,8 +153,9 @@ def write_markdown(path, machine, created, table, plots, dev):
         f.write("# subdivbench report\n\n")
         for line in machine_lines(machine, created):
             f.write(f"- {line}\n")
-        f.write("\nTimes are medians over repetitions; vulkan rows use GPU timestamp time. `× osd-bfr` is the "
-                "triangle rate over osd-bfr's on the same mesh, backend and tessellation in this run; "
+        f.write("\nTimes are medians over repetitions; vulkan rows use GPU timestamp time. `× peer` is the "
+                "triangle rate over the row's peer's (the scheme's declared peer, on the backend named) on the "
+                "same mesh and tessellation in this run, measured once each, not paired; "
                 "`bw %` is the output bytes per second over the machine's write bandwidth.\n\n")
         f.write("## Runs\n\n| " + " | ".join(COLUMNS) + " |\n|" + "---|" * len(COLUMNS) + "\n")
         for row in table:

@@ -23,13 +23,15 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-inline CliResult run_cli(const std::string& args, const std::string& env = "") {
+// `executable`: subdivbench, or subdivbench-testing (the same verbs with the test-only schemes).
+inline CliResult run_cli(const std::string& args, const std::string& env = "",
+                         const std::string& executable = "subdivbench") {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() / ("sdb_cli_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path out = dir / ("out" + std::to_string(counter)), err = dir / ("err" + std::to_string(counter++));
-  const std::string cmd = env + " " + std::string(SDB_BINARY_DIR) + "/subdivbench " + args + " >" + out.string() +
+  const std::string cmd = env + " " + std::string(SDB_BINARY_DIR) + "/" + executable + " " + args + " >" + out.string() +
                           " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   CliResult r;

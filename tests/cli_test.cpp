@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cli_helpers.h"
+#include "tests/cli_helpers.h"
 
 namespace fs = std::filesystem;
 using sdb::test::run_cli;

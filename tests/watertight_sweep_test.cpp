@@ -3,11 +3,12 @@
 // lines per run (half random, half aimed at patch borders).
 #include <gtest/gtest.h>
 
-#include "errors.h"
-#include "facts.h"
-#include "manifest.h"
-#include "registry.h"
-#include "watertight.h"
+#include "datasets/manifest.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "harness/mesh/acceptance.h"
+#include "harness/mesh/facts.h"
+#include "harness/validate/watertight.h"
 
 using namespace sdb;
 
@@ -16,12 +17,6 @@ namespace {
 // Outputs above this are left to the benchmarks (the sword at N = 17 is 13M triangles).
 constexpr long kMaxTriangles = 3'000'000;
 
-long expected_triangles(const ControlMesh& m, const SchemeInfo& info, int level) {
-  const long s = segments_per_edge(info.level_kind, level);
-  long t = 0;
-  for (int n : m.face_sizes) t += (n == 4 ? 2 : n) * s * s;
-  return t;
-}
 
 }  // namespace
 
@@ -34,8 +29,10 @@ TEST(WatertightSweep, EveryPeerOnEveryClosedCorpusMesh) {
     const MeshFacts facts = compute_facts(mesh);
     if (!facts.closed || !facts.manifold() || !mesh.holes.empty()) continue;
     ++meshes;
-    for (const char* peer : {"osd-uniform", "osd-bfr", "embree-subdiv"}) {
-      const Scheme& scheme = *find_scheme(peer);
+    for (const auto& registered : all_schemes()) {
+      if (registered->info().role != SchemeRole::Peer) continue;
+      const Scheme& scheme = *registered;
+      const std::string& peer = scheme.info().name;
       ControlMesh accepted;
       try {
         accepted = accept_mesh(mesh, scheme.info());
@@ -44,10 +41,12 @@ TEST(WatertightSweep, EveryPeerOnEveryClosedCorpusMesh) {
       }
       const bool depth = scheme.info().level_kind == LevelKind::Depth;
       for (int level : depth ? std::vector<int>{1, 2, 3, 4} : std::vector<int>{2, 3, 5, 9, 17}) {
-        if (expected_triangles(accepted, scheme.info(), level) > kMaxTriangles) continue;
+        const RunRequest request{depth ? Backend::Cpu : Backend::CpuMt, level, 0,
+                                 Parameters::defaults(scheme.info().parameters)};
+        if (scheme.estimated_triangles(accepted, request) > kMaxTriangles) continue;
         std::unique_ptr<Evaluation> e;
         try {
-          e = scheme.prepare(accepted, {depth ? Backend::Cpu : Backend::CpuMt, level, 0});
+          e = scheme.prepare(accepted, request);
         } catch (const InputError&) {
           break;  // embree-subdiv refuses Chaikin creases
         }

@@ -5,12 +5,12 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "errors.h"
-#include "machine.h"
-#include "mann_whitney.h"
-#include "measure.h"
-#include "plan.h"
-#include "results.h"
+#include "harness/bench/machine.h"
+#include "harness/bench/mann_whitney.h"
+#include "harness/bench/measure.h"
+#include "harness/bench/plan.h"
+#include "harness/bench/results.h"
+#include "harness/core/errors.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;
@@ -62,7 +62,7 @@ TEST(Results, RoundTripAndRefuseUnknownSchema) {
 TEST(Measure, ValidatesOnceAndTimesAPeer) {
   MeasureContext ctx(describe_machine());
   const RunRow row = measure_run({"osd-bfr", "torus-8x8", Backend::Cpu, 5}, quick(), ctx);
-  EXPECT_EQ(row.status, "ok") << row.message;
+  EXPECT_EQ(row.status, RunStatus::Ok) << row.message;
   EXPECT_EQ(row.triangles, 64 * 2 * 16);
   EXPECT_EQ(row.tessellation, 4);
   EXPECT_EQ(row.watertight.open_edges, 0);
@@ -81,7 +81,7 @@ TEST(Measure, ValidatesOnceAndTimesAPeer) {
 TEST(Measure, UnsupportedBackendIsAStatusNotAFailure) {
   MeasureContext ctx(describe_machine());
   const RunRow row = measure_run({"osd-uniform", "cube", Backend::CpuMt, 2}, quick(), ctx);
-  EXPECT_EQ(row.status, "unsupported");
+  EXPECT_EQ(row.status, RunStatus::Unsupported);
   EXPECT_FALSE(row.message.empty());
 }
 

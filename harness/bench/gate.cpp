@@ -1,4 +1,4 @@
-#include "gate.h"
+#include "harness/bench/gate.h"
 
 #include <nlohmann/json.hpp>
 
@@ -8,31 +8,21 @@
 #include <optional>
 #include <regex>
 
-#include "errors.h"
-#include "mann_whitney.h"
+#include "harness/bench/mann_whitney.h"
+#include "harness/bench/measure.h"
+#include "harness/bench/statistics.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 namespace {
 
-std::string name_of(const RunRow& r) { return r.scheme + "/" + r.backend + "/" + r.mesh + "/" + std::to_string(r.level); }
-
 const TimeStats& timing(const RunRow& r) { return r.gpu_time_ms ? *r.gpu_time_ms : r.time_ms; }
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
-}
 
 struct Normalised {
   std::vector<double> samples;
   std::string by;
 };
 
-// Each repetition's time in units of the same run's osd-bfr time on the same mesh, tessellation
-// and backend; rows without such a peer (the peer itself) in units of the bandwidth probe.
-// When the run went in rounds, sample r is divided by the peer's sample r, measured moments
-// apart, which cancels a busy machine's drift. Otherwise the unit is the peer's fastest
-// repetition: interference only adds time, so the minimum is its most stable estimate.
 // Sample r of `t` over sample r of `unit` (same round) when the run went in rounds, else over the
 // unit's fastest sample: interference only adds time, so the minimum is its stablest estimate.
 std::vector<double> divided(const std::vector<double>& t, const std::vector<double>& unit, bool paired) {
@@ -46,31 +36,34 @@ std::vector<double> divided(const std::vector<double>& t, const std::vector<doub
   return out;
 }
 
+// The row's peer (RunRow::peer, from the scheme's SchemeInfo) at the same mesh and tessellation on
+// the row's peer backend; else the calibration probe of the row's backend.
 const RunRow* find_unit(const RunRow& row, const ResultsFile& file) {
-  if (row.scheme != "osd-bfr")
+  if (!row.peer.empty() && row.peer_backend)
     for (const RunRow& peer : file.runs)
-      if (peer.scheme == "osd-bfr" && peer.status == "ok" && peer.mesh == row.mesh &&
-          peer.tessellation == row.tessellation && peer.backend == (row.backend == "vulkan" ? "cpu-mt" : row.backend) &&
-          !timing(peer).samples.empty())
+      if (peer.scheme == row.peer && peer.status == RunStatus::Ok && peer.mesh == row.mesh &&
+          peer.tessellation == row.tessellation && peer.backend == *row.peer_backend && !timing(peer).samples.empty())
         return &peer;
   for (const RunRow& probe : file.runs)
-    if (probe.scheme == "calibration" && probe.backend == row.backend && !timing(probe).samples.empty()) return &probe;
+    if (probe.scheme == kCalibrationScheme && probe.backend == row.backend && !timing(probe).samples.empty()) return &probe;
   return nullptr;
 }
 
-// Each repetition's time in units of the same run's osd-bfr time on the same mesh, tessellation
-// and backend; rows without such a peer (the peer itself) in units of the calibration probe run
-// beside them (bench --rounds), or failing that of the machine's bandwidth probe.
+// Each repetition's time in units of the same run's peer time on the same mesh and tessellation;
+// rows without a peer (the anchor, osd-bfr) in units of the calibration probe run beside them
+// (bench --rounds), or failing that of the machine's bandwidth probe. When the run went in
+// rounds, sample r is divided by the unit's sample r, measured moments apart, which cancels a
+// busy machine's drift.
 std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file) {
   const TimeStats& t = timing(row);
   const bool paired = file.rounds > 0;
   if (const RunRow* unit = find_unit(row, file)) {
-    const std::string by = unit->scheme == "osd-bfr" ? "osd-bfr" : "write probe";
+    const std::string by = unit->scheme == kCalibrationScheme ? "write probe" : unit->scheme;
     return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
   }
-  const double bw = row.backend == "cpu-mt"   ? file.machine.write_bandwidth_mt_gbs
-                    : row.backend == "vulkan" ? file.machine.gpu_write_bandwidth_gbs
-                                              : file.machine.write_bandwidth_gbs;
+  const double bw = row.backend == Backend::CpuMt    ? file.machine.write_bandwidth_mt_gbs
+                    : row.backend == Backend::Vulkan ? file.machine.gpu_write_bandwidth_gbs
+                                                     : file.machine.write_bandwidth_gbs;
   if (bw <= 0) return std::nullopt;
   Normalised n{{}, "bandwidth probe"};
   for (double s : t.samples) n.samples.push_back(s * bw);
@@ -93,8 +86,16 @@ GateConfig read_gate_config(const std::string& path) {
     c.alpha = j.value("alpha", c.alpha);
     c.min_repetitions = j.value("min_repetitions", c.min_repetitions);
     c.default_threshold = j.value("default_threshold", c.default_threshold);
-    for (const auto& t : j.value("thresholds", nlohmann::json::array()))
-      c.thresholds.emplace_back(t.at("match").get<std::string>(), t.at("threshold").get<double>());
+    for (const auto& t : j.value("thresholds", nlohmann::json::array())) {
+      const std::string pattern = t.at("match").get<std::string>();
+      try {
+        (void)std::regex(pattern);
+      } catch (const std::regex_error& e) {
+        throw InputError(path, "threshold pattern '" + pattern + "' is not a regular expression: " + e.what());
+      }
+      c.thresholds.emplace_back(pattern, t.at("threshold").get<double>());
+    }
+    for (const auto& w : j.value("workload", nlohmann::json::array())) c.workload.push_back(parse_run_name(w.get<std::string>()));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path, std::string("malformed gate configuration: ") + e.what());
   }
@@ -105,14 +106,14 @@ GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, con
   GateReport report;
   std::map<std::string, const RunRow*> base;
   for (const RunRow& r : baseline.runs)
-    if (r.status == "ok") base[name_of(r)] = &r;
+    if (r.status == RunStatus::Ok) base[r.name()] = &r;
   for (const RunRow& cur : current.runs) {
-    if (cur.status != "ok" || cur.scheme == "calibration") continue;
-    const auto it = base.find(name_of(cur));
+    if (cur.status != RunStatus::Ok || cur.scheme == kCalibrationScheme) continue;
+    const auto it = base.find(cur.name());
     if (it == base.end()) continue;
     const RunRow& old = *it->second;
     GateEntry e;
-    e.name = name_of(cur);
+    e.name = cur.name();
     const int reps = std::min(timing(cur).reps, timing(old).reps);
     if (reps < config.min_repetitions || timing(cur).samples.size() < size_t(config.min_repetitions) ||
         timing(old).samples.size() < size_t(config.min_repetitions)) {
@@ -122,7 +123,8 @@ GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, con
     }
     const auto a = normalise(old, baseline), b = normalise(cur, current);
     if (!a || !b || a->by != b->by) {
-      report.problems.push_back(e.name + ": no common normaliser (osd-bfr peer or bandwidth probe) in both runs");
+      report.problems.push_back(e.name + ": no common normaliser (its peer " + (cur.peer.empty() ? "(none)" : cur.peer) +
+                                ", the write probe or the bandwidth probe) in both runs");
       continue;
     }
     e.normaliser = b->by;

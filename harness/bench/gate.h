@@ -1,14 +1,15 @@
 // The performance gate: compares a current results.json with a baseline on figures that a slower
-// or busier machine does not move: each repetition's time over the osd-bfr peer's median time on
-// the same mesh, tessellation and backend in the same run (peers themselves: time x the machine's
-// write bandwidth, the calibration probe). A benchmark regresses when the change is beyond its
+// or busier machine does not move: each repetition's time over its peer's (the row's `peer`, from
+// the scheme's SchemeInfo) on the same mesh and tessellation in the same round; rows without a
+// peer over the calibration probe's. A benchmark regresses when the change is beyond its
 // threshold AND a two-sided Mann-Whitney U test says it is significant.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "results.h"
+#include "harness/bench/results.h"
+#include "harness/bench/run_spec.h"
 
 namespace sdb {
 
@@ -17,14 +18,16 @@ struct GateConfig {
   int min_repetitions = 9;
   double default_threshold = 0.25;  // relative slowdown of the normalised figure
   std::vector<std::pair<std::string, double>> thresholds;  // (name regex, threshold), first match wins
+  std::vector<RunSpec> workload;  // what scripts/gate benchmarks (`bench --workload FILE`)
 };
 
-// Reads ci/gate.json; throws InputError on a malformed file.
+// Reads ci/gate.json; throws InputError on a malformed file, a bad threshold pattern or a
+// workload entry that is not scheme/backend/mesh/level.
 GateConfig read_gate_config(const std::string& path);
 
 struct GateEntry {
   std::string name;        // scheme/backend/mesh/level
-  std::string normaliser;  // "osd-bfr" or "bandwidth probe"
+  std::string normaliser;  // the peer's name, "write probe" or "bandwidth probe" (", paired" by round)
   double change = 0;       // median normalised figure, current / baseline - 1
   double p_value = 1;
   double threshold = 0;

@@ -1,7 +1,7 @@
-#include "machine.h"
+#include "harness/bench/machine.h"
 
-#include "device_info.h"
-#include "gpu.h"
+#include "harness/gpu/device_info.h"
+#include "harness/gpu/gpu.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>

@@ -1,7 +1,7 @@
 // The machine block of results.json, and the calibration probe every row is read against.
 #pragma once
 
-#include "results.h"
+#include "harness/bench/results.h"
 
 namespace sdb {
 

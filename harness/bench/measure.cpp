@@ -1,4 +1,4 @@
-#include "measure.h"
+#include "harness/bench/measure.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
@@ -7,20 +7,19 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdlib>
 #include <numeric>
 #include <random>
 #include <regex>
 
-#include "deviation.h"
-#include "deviation_ply.h"
-#include "errors.h"
-#include "facts.h"
-#include "gpu.h"
-#include "manifest.h"
-#include "registry.h"
-#include "watertight.h"
+#include "datasets/manifest.h"
+#include "harness/bench/statistics.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "harness/mesh/acceptance.h"
+#include "harness/mesh/facts.h"
+#include "harness/validate/deviation.h"
+#include "harness/validate/deviation_ply.h"
+#include "harness/validate/watertight.h"
 
 namespace sdb {
 namespace {
@@ -66,10 +65,9 @@ class TeeReporter : public CollectingReporter {
 TimeStats stats_of(const std::vector<double>& v) {
   TimeStats t;
   if (v.empty()) return t;
-  std::vector<double> s = v;
-  std::sort(s.begin(), s.end());
-  t.min = s.front(), t.max = s.back();
-  t.median = s.size() % 2 ? s[s.size() / 2] : 0.5 * (s[s.size() / 2 - 1] + s[s.size() / 2]);
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  t.min = *lo, t.max = *hi;
+  t.median = median(v);
   t.reps = static_cast<int>(v.size());
   t.samples = v;
   return t;
@@ -93,13 +91,24 @@ void execute_on(Evaluation& e, Backend backend) {
   one_thread.execute([&] { e.execute(); });
 }
 
-bool planted_slowdown(const std::string& scheme) {
-  const char* env = std::getenv("SUBDIVBENCH_PLANT_SLOWDOWN");
-  return env && scheme == env;
+ResolvedScheme resolve_scheme(const std::string& spelled) {
+  const SchemeSpec spec = parse_scheme_spec(spelled);
+  ResolvedScheme r;
+  r.scheme = find_scheme(spec.name);
+  if (!r.scheme) throw InputError(spec.name, "no such scheme (see `subdivbench list schemes`)");
+  r.parameters = Parameters::resolve(r.scheme->info().parameters, spec);
+  r.spec = spec.name + r.parameters.suffix();
+  return r;
 }
 
-std::string RunSpec::name() const {
-  return scheme + "/" + std::string(to_string(backend)) + "/" + mesh + "/" + std::to_string(level);
+std::optional<Backend> peer_backend_for(const SchemeInfo& info, Backend backend) {
+  const Scheme* peer = info.peer.empty() ? nullptr : find_scheme(info.peer);
+  if (!peer || peer->info().backends.empty()) return std::nullopt;
+  const auto& b = peer->info().backends;
+  if (std::find(b.begin(), b.end(), backend) != b.end()) return backend;
+  for (auto it = b.rbegin(); it != b.rend(); ++it)
+    if (*it != Backend::Vulkan) return *it;
+  return std::nullopt;
 }
 
 const ControlMesh& MeasureContext::mesh(const std::string& name) {
@@ -156,23 +165,31 @@ const LimitEvaluator& MeasureContext::reference(const std::shared_ptr<const Cont
   return *slot;
 }
 
-std::pair<const Tessellation*, const EmbreeTriangleScene*> MeasureContext::dense_reference(
-    const std::shared_ptr<const ControlMesh>& m) {
-  const size_t key = content_key(*m);
+const DenseLimit& MeasureContext::dense_reference(const std::shared_ptr<const ControlMesh>& m, SubdivisionRule rule) {
+  const std::pair<size_t, int> key{content_key(*m), int(rule)};
   auto it = dense_.find(key);
-  if (it != dense_.end()) return {&it->second.surface, it->second.scene.get()};
-  keep_alive_.push_back(m);
-  // About two million triangles: dense enough for 1e-4 of the diagonal on the meshes here.
-  const int faces = std::max(1, num_faces(*m));
-  const int rate = std::clamp(static_cast<int>(std::sqrt(1e6 / faces)) + 1, 3, 33);
-  const Scheme* bfr = find_scheme("osd-bfr");
-  auto e = bfr->prepare(*m, {Backend::CpuMt, rate, 0});
-  e->execute();
-  Dense& d = dense_[key];
-  d.surface = e->result();
-  d.scene = std::make_unique<EmbreeTriangleScene>(d.surface.positions, d.surface.triangles);
-  return {&d.surface, d.scene.get()};
+  if (it == dense_.end()) it = dense_.emplace(key, dense_limit(reference(m, rule))).first;
+  return it->second;
 }
+
+namespace {
+
+// A row past its scheme's declared bound fails, like a crack: the scheme promised the bound.
+void judge_deviation(RunRow& row) {
+  const DeviationFigures& d = row.deviation;
+  std::string past;
+  if (row.bound.pos_rel_diag >= 0 && d.pos_max_rel_diag > row.bound.pos_rel_diag)
+    past = "position deviation " + std::to_string(d.pos_max_rel_diag) + " of the diagonal, past the bound " +
+           std::to_string(row.bound.pos_rel_diag);
+  if (row.bound.normal_deg >= 0 && d.normal_max_deg > row.bound.normal_deg)
+    past += (past.empty() ? "" : "; ") + std::string("normal deviation ") + std::to_string(d.normal_max_deg) +
+            " degrees, past the bound " + std::to_string(row.bound.normal_deg);
+  if (past.empty()) return;
+  row.status = RunStatus::Failed;
+  row.message += (row.message.empty() ? "" : "; ") + past;
+}
+
+}  // namespace
 
 void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& ref_mesh,
                    SubdivisionRule rule, const MeasureOptions& o, MeasureContext& ctx) {
@@ -185,7 +202,7 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
     row.watertight.rays = r.rays;
     row.watertight.ray_cracks = r.cracks;
     if (row.watertight.open_edges > 0 || r.cracks > 0) {
-      row.status = "failed";
+      row.status = RunStatus::Failed;
       row.message = "closed input, but " + std::to_string(row.watertight.open_edges) + " open edges and " +
                     std::to_string(r.cracks) + " ray cracks";
     }
@@ -195,10 +212,11 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
     if (!o.deviation_ply.empty()) write_deviation_ply(t, d, o.deviation_ply);
     row.deviation = {true,  d.pos_max_pct,    d.pos_mean_pct,   d.pos_rms_pct, d.pos_p95_pct, d.pos_max_rel_diag,
                      d.normal_max_deg, d.normal_mean_deg, -1};
-    if (o.hausdorff && rule == SubdivisionRule::CatmullClark) {
-      const auto [dense, scene] = ctx.dense_reference(ref_mesh);
-      row.deviation.hausdorff_rel = hausdorff(t, *dense, *scene).max();
+    if (o.hausdorff) {
+      const DenseLimit& dense = ctx.dense_reference(ref_mesh, rule);
+      row.deviation.hausdorff_rel = hausdorff(t, dense.surface, *dense.scene).max();
     }
+    judge_deviation(row);
   }
 }
 
@@ -206,20 +224,18 @@ namespace {
 
 benchmark::internal::Benchmark* register_timing(const std::string& name, std::function<Evaluation*()> eval,
                                                 Backend backend) {
-  const bool slow = planted_slowdown(name.substr(0, name.find('/')));
   const bool gpu = backend == Backend::Vulkan;
-  auto* bench = benchmark::RegisterBenchmark(name.c_str(), [eval, gpu, slow, backend](benchmark::State& state) {
+  auto* bench = benchmark::RegisterBenchmark(name.c_str(), [eval, gpu, backend](benchmark::State& state) {
     Evaluation* e = eval();
     double wall = 0;
     for (auto _ : state) {
       const auto t0 = std::chrono::steady_clock::now();
       execute_on(*e, backend);
-      if (slow) execute_on(*e, backend);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       wall += ms;
       if (gpu) {
         const auto g = e->gpu_times();
-        state.SetIterationTime((g ? g->kernel_ms * (slow ? 2 : 1) : ms) / 1e3);
+        state.SetIterationTime((g ? g->kernel_ms : ms) / 1e3);
       }
     }
     state.counters["wall_ms"] = benchmark::Counter(wall, benchmark::Counter::kAvgIterations);
@@ -235,51 +251,74 @@ benchmark::internal::Benchmark* register_timing(const std::string& name, std::fu
   return bench;
 }
 
+double bandwidth_of(const MachineInfo& machine, Backend backend) {
+  switch (backend) {
+    case Backend::CpuMt: return machine.write_bandwidth_mt_gbs;
+    case Backend::Vulkan: return machine.gpu_write_bandwidth_gbs;
+    case Backend::Cpu: break;
+  }
+  return machine.write_bandwidth_gbs;
+}
+
 void fill_timing(RunRow& row, const CollectingReporter::Samples& s, Evaluation* e, bool gpu, const MachineInfo& machine) {
-  if (!s.error.empty()) throw std::runtime_error(row.scheme + "/" + row.mesh + ": " + s.error);
+  if (!s.error.empty()) throw std::runtime_error(row.name() + ": " + s.error);
   row.time_ms = stats_of(s.wall_ms);
   if (gpu) {
     row.gpu_time_ms = stats_of(s.time_ms);
     if (auto g = e->gpu_times()) {
       row.upload_ms = g->upload_ms;
       row.readback_ms = g->readback_ms;
-      row.gpu_passes.clear();
-      for (const auto& p : g->passes) row.gpu_passes.push_back({p.label, p.ms});
+      row.gpu_passes = g->passes;
     }
   }
   const double ms = gpu ? row.gpu_time_ms->median : row.time_ms.median;
   row.triangle_rate_mtris = ms > 0 ? row.triangles / (ms * 1e3) : 0;
-  const double bandwidth = row.backend == "cpu-mt" ? machine.write_bandwidth_mt_gbs
-                           : row.backend == "vulkan" ? machine.gpu_write_bandwidth_gbs
-                                                     : machine.write_bandwidth_gbs;
+  const double bandwidth = bandwidth_of(machine, row.backend);
   if (bandwidth > 0 && row.triangles > 0 && ms > 0) row.bandwidth_fraction = (row.bytes_out / (ms * 1e-3)) / (bandwidth * 1e9);
 }
 
-// The row's metadata; "unsupported" when the scheme declines the request. Throws InputError when
+// A run as the rows record it before anything is measured: what it is, its policy (peer, bound,
+// parameters), and "unsupported" when the scheme declines the request. Throws InputError when
 // the scheme refuses the mesh.
-RunRow describe_run(const RunSpec& spec, const Scheme& scheme, const MeasureOptions& o, MeasureContext& ctx,
-                    std::shared_ptr<const ControlMesh>* accepted) {
+struct DescribedRun {
   RunRow row;
-  row.scheme = spec.scheme;
-  row.backend = std::string(to_string(spec.backend));
+  const Scheme* scheme = nullptr;
+  RunRequest request;
+  std::shared_ptr<const ControlMesh> accepted;
+};
+
+DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
+  const ResolvedScheme resolved = resolve_scheme(spec.scheme);
+  const SchemeInfo& info = resolved.scheme->info();
+  DescribedRun d;
+  d.scheme = resolved.scheme;
+  d.request = {spec.backend, spec.level, o.threads, resolved.parameters};
+  RunRow& row = d.row;
+  row.scheme = info.name;
+  row.spec = resolved.spec;
+  row.role = std::string(to_string(info.role));
+  row.params.insert(resolved.parameters.values().begin(), resolved.parameters.values().end());
+  row.backend = spec.backend;
   row.mesh = spec.mesh;
   row.level = spec.level;
+  row.peer = info.peer;
+  row.peer_backend = peer_backend_for(info, spec.backend);
+  row.bound = info.bound;
   row.device = spec.backend == Backend::Vulkan ? ctx.machine().vulkan_device : ctx.machine().cpu_model;
-  const SchemeInfo& info = scheme.info();
   row.tessellation = segments_per_edge(info.level_kind, spec.level);
-  if (auto why = scheme.unsupported({spec.backend, spec.level, o.threads})) {
-    row.status = "unsupported";
+  if (auto why = d.scheme->unsupported(d.request)) {
+    row.status = RunStatus::Unsupported;
     row.message = *why;
-    return row;
+    return d;
   }
-  *accepted = ctx.accepted(spec.mesh, scheme);
+  d.accepted = ctx.accepted(spec.mesh, *d.scheme);
   const MeshFacts facts = compute_facts(ctx.mesh(spec.mesh));
   row.mesh_faces = facts.faces;
   row.mesh_vertices = facts.vertices;
   row.extraordinary_fraction = facts.all_triangles ? facts.extraordinary_vertex_fraction : facts.extraordinary_quad_fraction;
-  const auto& w = (*accepted)->warnings;
+  const auto& w = d.accepted->warnings;
   if (!w.empty() && w.back().rfind("quadrangulated", 0) == 0) row.message = "quadrangulated by one Catmull-Clark step";
-  return row;
+  return d;
 }
 
 void record_output(RunRow& row, Evaluation& e) {
@@ -292,23 +331,20 @@ void record_output(RunRow& row, Evaluation& e) {
 }  // namespace
 
 RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
-  const Scheme* scheme = find_scheme(spec.scheme);
-  if (!scheme) throw InputError(spec.scheme, "no such scheme (see `subdivbench list schemes`)");
-  std::shared_ptr<const ControlMesh> accepted;
-  RunRow row = describe_run(spec, *scheme, o, ctx, &accepted);
-  if (row.status == "unsupported") return row;
-  const RunRequest request{spec.backend, spec.level, o.threads};
+  DescribedRun d = describe_run(spec, o, ctx);
+  RunRow& row = d.row;
+  if (row.status == RunStatus::Unsupported) return row;
   std::unique_ptr<Evaluation> eval;
   try {
-    eval = scheme->prepare(*accepted, request);
-  } catch (const gpu::Unsupported& e) {
-    // A device limit that depends on the mesh (its output past the device's memory, say).
-    row.status = "unsupported";
+    eval = d.scheme->prepare(*d.accepted, d.request);
+  } catch (const Unsupported& e) {
+    // A device or size limit that depends on the mesh (its output past the device's memory, say).
+    row.status = RunStatus::Unsupported;
     row.message = e.what();
     return row;
   } catch (const InputError& e) {
     if (!o.refusals_as_rows) throw;
-    row.status = "unsupported";
+    row.status = RunStatus::Unsupported;
     row.message = e.what();
     return row;
   }
@@ -318,7 +354,7 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   record_output(row, *eval);
   if (o.validate) {
     const Tessellation& out = eval->result();
-    validate_into(row, out, out.reference ? out.reference : accepted, scheme->info().reference, o, ctx);
+    validate_into(row, out, out.reference ? out.reference : d.accepted, d.scheme->info().reference, o, ctx);
   }
   const bool gpu = spec.backend == Backend::Vulkan;
   if (!o.time) {
@@ -342,7 +378,7 @@ namespace {
 
 // The calibration probe as a benchmark: a streaming store over 64 MiB, one thread on `cpu`, TBB's
 // threads on `cpu-mt`. Run once per round beside the schemes, it gives the gate a paired unit
-// for rows that have no osd-bfr peer (the peer itself).
+// for rows that have no peer (the peers at the root, osd-bfr).
 class WriteProbe final : public Evaluation {
  public:
   explicit WriteProbe(Backend backend) : backend_(backend), buffer_((size_t(64) << 20) / sizeof(float)) {}
@@ -366,53 +402,49 @@ class WriteProbe final : public Evaluation {
   Tessellation empty_;
 };
 
+const char* const kCalibrationMesh = "write-64MiB";
+
+// One benchmark of a bench run, prepared on first use so that only what the filter selects is built.
+struct LazyRun {
+  DescribedRun run;
+  std::unique_ptr<Evaluation> eval;
+  Evaluation* get() {
+    if (!eval) eval = run.scheme->prepare(*run.accepted, run.request);
+    return eval.get();
+  }
+};
+
+std::unique_ptr<LazyRun> calibration_run(Backend backend) {
+  auto lazy = std::make_unique<LazyRun>();
+  RunRow& row = lazy->run.row;
+  row.scheme = row.spec = row.role = kCalibrationScheme;
+  row.backend = backend;
+  row.mesh = kCalibrationMesh;
+  row.message = "calibration probe: streaming store";
+  lazy->run.request.backend = backend;
+  lazy->eval = std::make_unique<WriteProbe>(backend);
+  return lazy;
+}
+
 }  // namespace
 
-std::string calibration_mesh() { return "write-64MiB"; }
-
-std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs_in, const MeasureOptions& o, MeasureContext& ctx,
+std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& o, MeasureContext& ctx,
                                benchmark::BenchmarkReporter* display, int rounds) {
-  std::vector<RunSpec> specs = specs_in;
-  if (rounds > 0)
-    for (Backend b : {Backend::Cpu, Backend::CpuMt})
-      if (std::any_of(specs_in.begin(), specs_in.end(), [b](const RunSpec& s) { return s.backend == b; }))
-        specs.push_back({"calibration", calibration_mesh(), b, 0});
-  struct Lazy {
-    RunRow row;
-    std::shared_ptr<const ControlMesh> mesh;
-    const Scheme* scheme;
-    RunRequest request;
-    std::unique_ptr<Evaluation> eval;
-    Evaluation* get() {  // prepared on first use, so that only what the filter selects is built
-      if (!eval) eval = scheme->prepare(*mesh, request);
-      return eval.get();
-    }
-  };
-  std::vector<std::unique_ptr<Lazy>> runs;
+  std::vector<std::unique_ptr<LazyRun>> runs;
   for (const RunSpec& spec : specs) {
-    if (spec.scheme == "calibration") {
-      auto lazy = std::make_unique<Lazy>();
-      lazy->row.scheme = spec.scheme;
-      lazy->row.backend = std::string(to_string(spec.backend));
-      lazy->row.mesh = spec.mesh;
-      lazy->row.message = "calibration probe: streaming store";
-      lazy->eval = std::make_unique<WriteProbe>(spec.backend);
-      runs.push_back(std::move(lazy));
-      continue;
-    }
-    const Scheme* scheme = find_scheme(spec.scheme);
-    if (!scheme) throw InputError(spec.scheme, "no such scheme (see `subdivbench list schemes`)");
-    auto lazy = std::make_unique<Lazy>();
-    lazy->row = describe_run(spec, *scheme, o, ctx, &lazy->mesh);
-    lazy->scheme = scheme;
-    lazy->request = {spec.backend, spec.level, o.threads};
+    auto lazy = std::make_unique<LazyRun>();
+    lazy->run = describe_run(spec, o, ctx);
     runs.push_back(std::move(lazy));
   }
+  if (rounds > 0)
+    for (Backend b : {Backend::Cpu, Backend::CpuMt})
+      if (std::any_of(specs.begin(), specs.end(), [b](const RunSpec& s) { return s.backend == b; }))
+        runs.push_back(calibration_run(b));
   auto register_all = [&](const std::vector<size_t>& order, int repetitions) {
     for (size_t i : order) {
-      Lazy* l = runs[i].get();
-      if (l->row.status == "unsupported") continue;
-      auto* b = register_timing(specs[i].name(), [l] { return l->get(); }, specs[i].backend);
+      LazyRun* l = runs[i].get();
+      if (l->run.row.status == RunStatus::Unsupported) continue;
+      auto* b = register_timing(l->run.row.name(), [l] { return l->get(); }, l->run.row.backend);
       if (repetitions > 0) b->Repetitions(repetitions);
     }
   };
@@ -435,12 +467,12 @@ std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs_in, const Measu
     }
   }
   std::vector<RunRow> rows;
-  for (size_t i = 0; i < runs.size(); ++i) {
-    Lazy& l = *runs[i];
-    if (!l.eval) continue;  // filtered out or unsupported
-    record_output(l.row, *l.eval);
-    fill_timing(l.row, tee.samples[specs[i].name()], l.eval.get(), l.request.backend == Backend::Vulkan, ctx.machine());
-    rows.push_back(std::move(l.row));
+  for (auto& l : runs) {
+    if (!l->eval) continue;  // filtered out or unsupported
+    RunRow& row = l->run.row;
+    record_output(row, *l->eval);
+    fill_timing(row, tee.samples[row.name()], l->eval.get(), row.backend == Backend::Vulkan, ctx.machine());
+    rows.push_back(std::move(row));
   }
   return rows;
 }

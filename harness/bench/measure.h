@@ -10,19 +10,29 @@
 
 #include <benchmark/benchmark.h>
 
-#include "embree_scene.h"
-#include "limit_evaluator.h"
-#include "results.h"
-#include "scheme.h"
+#include "harness/bench/results.h"
+#include "harness/bench/run_spec.h"
+#include "harness/core/scheme.h"
+#include "harness/reference/dense_limit.h"
+#include "harness/reference/limit_evaluator.h"
 
 namespace sdb {
 
-struct RunSpec {
-  std::string scheme, mesh;
-  Backend backend = Backend::Cpu;
-  int level = 0;
-  std::string name() const;  // scheme/backend/mesh/level: Google Benchmark's name and filter key
+// A scheme as spelled on the command line, looked up and its parameters resolved.
+struct ResolvedScheme {
+  const Scheme* scheme = nullptr;
+  Parameters parameters;
+  std::string spec;  // canonical: the name and the non-default parameters
 };
+// InputError for an unknown scheme or a bad parameter.
+ResolvedScheme resolve_scheme(const std::string& spelled);
+
+// The backend a row on `backend` reads its peer's row from: the same one where the peer has it,
+// else the peer's last (fastest) CPU backend; nullopt without a peer.
+std::optional<Backend> peer_backend_for(const SchemeInfo& info, Backend backend);
+
+// The scheme of the calibration probe's rows (bench --rounds): the gate's unit for rows without a peer.
+inline constexpr const char* kCalibrationScheme = "calibration";
 
 struct MeasureOptions {
   int reps = 5;
@@ -47,9 +57,9 @@ class MeasureContext {
   // The mesh as the scheme takes it (quadrangulated when it asks); throws InputError if refused.
   std::shared_ptr<const ControlMesh> accepted(const std::string& name, const Scheme& scheme);
   const LimitEvaluator& reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
-  // A dense Catmull-Clark tessellation of the limit (osd-bfr) and its Embree scene, for
-  // Hausdorff distances; built once per mesh.
-  std::pair<const Tessellation*, const EmbreeTriangleScene*> dense_reference(const std::shared_ptr<const ControlMesh>& mesh);
+  // A dense tessellation of the same limit and its Embree scene, for Hausdorff distances; built
+  // once per mesh and rule.
+  const DenseLimit& dense_reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
   const MachineInfo& machine() const { return machine_; }
 
  private:
@@ -60,23 +70,17 @@ class MeasureContext {
   // object, and caching those by address kept a 200 MB dense reference per run (the default
   // run reached 24 GB and was killed).
   std::map<std::pair<size_t, int>, std::unique_ptr<LimitEvaluator>> references_;
-  struct Dense {
-    Tessellation surface;
-    std::unique_ptr<EmbreeTriangleScene> scene;
-  };
-  std::map<size_t, Dense> dense_;
+  std::map<std::pair<size_t, int>, DenseLimit> dense_;
   std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
 };
 
 // Evaluation::execute() as a backend means it: on `cpu`, inside a one-thread TBB arena.
 void execute_on(Evaluation& e, Backend backend);
 
-// Test hook for the gate (tests/gate_test.cpp): true when $SUBDIVBENCH_PLANT_SLOWDOWN names this
-// scheme; the benchmark loop and the callgrind workload then execute it twice per iteration.
-bool planted_slowdown(const std::string& scheme);
-
 // Runs one spec start to finish. Throws InputError when the mesh is refused or the spec unknown;
-// returns a row with status "unsupported" when the scheme declines the backend or level.
+// returns a row with status "unsupported" when the scheme declines the backend or level, or runs
+// into a device or size limit (Unsupported), and "failed" when a check fails (an open edge or a ray
+// crack on a closed input, a deviation past the scheme's declared bound).
 RunRow measure_run(const RunSpec& spec, const MeasureOptions& options, MeasureContext& context);
 
 // Registers every spec with Google Benchmark (prepared lazily on first use) and runs them under

@@ -4,17 +4,18 @@
 #include <string>
 #include <vector>
 
-#include "measure.h"
+#include "harness/bench/measure.h"
 
 namespace sdb {
 
 struct Selection {
-  std::vector<std::string> schemes, meshes, backends;
+  std::vector<std::string> schemes;  // as spelled: "geometry-image:fit=129"
+  std::vector<std::string> meshes, backends;
   std::vector<int> levels;
   bool all_meshes = false;  // every built-in and every real corpus mesh instead of the curated set
   bool all_corpus = false;  // with all_meshes: OpenSubdiv's regression shapes too
   long max_triangles = 1'000'000;  // default levels only: skip outputs larger than this
-  bool headline = true;  // default set: also the runs the issues name as benchmark figures
+  bool headline = true;  // default set: also the schemes' headline runs (SchemeInfo::headline_runs)
 };
 
 struct Plan {
@@ -29,9 +30,10 @@ std::vector<Backend> available_backends();
 // scheme and one mesh and the scheme refuses the mesh.
 Plan make_plan(const Selection& selection, MeasureContext& context);
 
-// The meshes of the default set: a curated list (the papers' stand-ins, the real meshes the
-// issues name, a few structural built-ins) so that `run` takes minutes, not an hour; with `all`,
-// every built-in and every real corpus mesh (and OpenSubdiv's shapes with all_corpus).
+// The meshes of the default set: the union of the meshes the schemes ask for
+// (SchemeInfo::default_meshes: the papers' stand-ins, the real meshes the issues name, a few
+// structural built-ins), in the manifest's order, so that `run` takes minutes, not an hour; with
+// `all`, every built-in and every real corpus mesh (and OpenSubdiv's shapes with all_corpus).
 std::vector<std::string> default_meshes(bool all, bool all_corpus);
 
 }  // namespace sdb

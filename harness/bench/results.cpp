@@ -1,10 +1,11 @@
-#include "results.h"
+#include "harness/bench/results.h"
 
 #include <nlohmann/json.hpp>
 
 #include <fstream>
 
-#include "errors.h"
+#include "harness/bench/run_spec.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 
@@ -19,9 +20,33 @@ void from_json(const json& j, TimeStats& t) {
   t.samples = j.value("samples", std::vector<double>{});
 }
 
+namespace {
+
+Backend backend_from(const json& j, const char* key) {
+  const std::string s = j.at(key).get<std::string>();
+  const auto b = parse_backend(s);
+  if (!b) throw json::other_error::create(501, std::string("unknown backend '") + s + "' in " + key, &j);
+  return *b;
+}
+
+RunStatus status_from(const json& j) {
+  const std::string s = j.value("status", "ok");
+  const auto st = parse_run_status(s);
+  if (!st) throw json::other_error::create(501, "unknown status '" + s + "'", &j);
+  return *st;
+}
+
+}  // namespace
+
+std::string RunRow::name() const { return run_name(spec.empty() ? scheme : spec, backend, mesh, level); }
+
 void to_json(json& j, const RunRow& r) {
   j = {{"scheme", r.scheme},
-       {"backend", r.backend},
+       {"spec", r.spec.empty() ? r.scheme : r.spec},
+       {"role", r.role},
+       {"backend", to_string(r.backend)},
+       {"params", r.params},
+       {"peer", r.peer},
        {"device", r.device},
        {"mesh", r.mesh},
        {"mesh_faces", r.mesh_faces},
@@ -42,8 +67,11 @@ void to_json(json& j, const RunRow& r) {
          {"rays", r.watertight.rays},
          {"ray_cracks", r.watertight.ray_cracks},
          {"seed", r.watertight.seed}}},
-       {"status", r.status},
+       {"status", to_string(r.status)},
        {"message", r.message}};
+  if (r.peer_backend) j["peer_backend"] = to_string(*r.peer_backend);
+  if (r.bound.pos_rel_diag >= 0 || r.bound.normal_deg >= 0)
+    j["deviation_bound"] = {{"pos_rel_diag", r.bound.pos_rel_diag}, {"normal_deg", r.bound.normal_deg}};
   if (r.gpu_time_ms) j["gpu_time_ms"] = *r.gpu_time_ms;
   if (!r.gpu_passes.empty()) {
     json passes = json::array();
@@ -62,7 +90,15 @@ void to_json(json& j, const RunRow& r) {
 }
 
 void from_json(const json& j, RunRow& r) {
-  r.scheme = j.at("scheme"), r.backend = j.at("backend"), r.device = j.value("device", "");
+  r.scheme = j.at("scheme"), r.backend = backend_from(j, "backend"), r.device = j.value("device", "");
+  r.spec = j.value("spec", r.scheme), r.role = j.value("role", "");
+  r.params = j.value("params", std::map<std::string, double>{});
+  r.peer = j.value("peer", "");
+  if (j.contains("peer_backend")) r.peer_backend = backend_from(j, "peer_backend");
+  if (j.contains("deviation_bound")) {
+    r.bound.pos_rel_diag = j["deviation_bound"].value("pos_rel_diag", -1.0);
+    r.bound.normal_deg = j["deviation_bound"].value("normal_deg", -1.0);
+  }
   r.mesh = j.at("mesh");
   r.mesh_faces = j.value("mesh_faces", 0), r.mesh_vertices = j.value("mesh_vertices", 0);
   r.extraordinary_fraction = j.value("extraordinary_fraction", 0.0);
@@ -89,7 +125,7 @@ void from_json(const json& j, RunRow& r) {
     r.deviation.normal_max_deg = d.value("normal_max_deg", 0.0), r.deviation.normal_mean_deg = d.value("normal_mean_deg", 0.0);
     r.deviation.hausdorff_rel = d.value("hausdorff_rel", -1.0);
   }
-  r.status = j.value("status", "ok"), r.message = j.value("message", "");
+  r.status = status_from(j), r.message = j.value("message", "");
 }
 
 void to_json(json& j, const MachineInfo& m) {

@@ -2,9 +2,14 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "harness/core/backend.h"
+#include "harness/core/run_status.h"
+#include "harness/core/scheme.h"
 
 namespace sdb {
 
@@ -31,13 +36,17 @@ struct DeviationFigures {
   double hausdorff_rel = -1;  // -1: not measured
 };
 
-struct GpuPass {
-  std::string label;
-  double ms = 0;
-};
-
 struct RunRow {
-  std::string scheme, backend, device, mesh;
+  std::string scheme;  // the registered name
+  std::string spec;    // the scheme as spelled with its non-default parameters (= scheme without)
+  std::string role;    // "method" | "peer" | "test" | "calibration"
+  Backend backend = Backend::Cpu;
+  std::string device, mesh;
+  std::map<std::string, double> params;  // every parameter the scheme declares, as used
+  // The row this one is read against (SchemeInfo::peer): same mesh and tessellation, this backend.
+  std::string peer;
+  std::optional<Backend> peer_backend;
+  DeviationBound bound;  // the scheme's declared bound (negative: none)
   int mesh_faces = 0, mesh_vertices = 0;
   double extraordinary_fraction = 0;
   int level = 0;
@@ -46,14 +55,15 @@ struct RunRow {
   TimeStats time_ms;                     // wall time of Evaluation::execute()
   std::optional<TimeStats> gpu_time_ms;  // vulkan: kernel time from timestamp queries
   double upload_ms = 0, readback_ms = 0;
-  std::vector<GpuPass> gpu_passes;
+  std::vector<GpuPassTime> gpu_passes;
   double triangle_rate_mtris = 0;  // from the median time (GPU time for vulkan)
   long bytes_out = 0;
   double bandwidth_fraction = 0;  // rate x bytes per triangle / the machine's write bandwidth
   WatertightFigures watertight;
   DeviationFigures deviation;
-  std::string status = "ok";  // "ok" | "failed" | "unsupported"
+  RunStatus status = RunStatus::Ok;
   std::string message;
+  std::string name() const;  // spec/backend/mesh/level (run_spec.h)
 };
 
 struct MachineInfo {

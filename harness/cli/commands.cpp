@@ -1,4 +1,4 @@
-#include "commands.h"
+#include "harness/cli/commands.h"
 
 #include <nlohmann/json.hpp>
 
@@ -8,24 +8,20 @@
 #include <map>
 #include <thread>
 
-#include "device_info.h"
-#include "errors.h"
-#include "facts.h"
-#include "manifest.h"
-#include "registry.h"
-#include "gate_commands.h"
-#include "run_commands.h"
+#include "datasets/manifest.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "harness/gpu/device_info.h"
+#include "harness/mesh/facts.h"
 
 namespace sdb::cli {
 namespace {
 
-struct Options {
+struct MeshVerbOptions {
   std::string list_what = "schemes";
   std::string mesh;
   bool json = false;
 };
-Options opts;
-std::map<std::string, std::function<int()>> verbs;
 
 nlohmann::json facts_json(const ControlMesh& m, const MeshFacts& f) {
   auto hist = [](const std::map<int, int>& h) {
@@ -65,7 +61,7 @@ std::string histogram_text(const std::map<int, int>& h) {
   return s;
 }
 
-int info() {
+int info(const MeshVerbOptions& opts) {
   const ControlMesh mesh = load_mesh(opts.mesh);
   const MeshFacts f = compute_facts(mesh);
   if (opts.json) {
@@ -112,13 +108,20 @@ int list_schemes_cmd() {
     std::printf("no schemes built yet\n");
     return 0;
   }
-  std::printf("%-24s %-22s %-8s %s\n", "scheme", "backends", "levels", "paper");
+  std::printf("%-24s %-7s %-22s %-7s %-13s %s\n", "scheme", "role", "backends", "levels", "peer", "paper");
   for (const auto& s : all_schemes()) {
     const SchemeInfo& i = s->info();
-    std::string backends, levels;
+    std::string backends;
     for (Backend b : i.backends) backends += (backends.empty() ? "" : ",") + std::string(to_string(b));
-    levels = i.level_kind == LevelKind::Depth ? "depth" : "rate N";
-    std::printf("%-24s %-22s %-8s %s\n", i.name.c_str(), backends.c_str(), levels.c_str(), i.paper.c_str());
+    std::printf("%-24s %-7s %-22s %-7s %-13s %s\n", i.name.c_str(), std::string(to_string(i.role)).c_str(),
+                backends.c_str(), i.level_kind == LevelKind::Depth ? "depth" : "rate N",
+                i.peer.empty() ? "-" : i.peer.c_str(), i.paper.c_str());
+    for (const ParameterSpec& p : i.parameters)
+      std::printf("    %s:%s=V  %s (%s %s..%s%s, default %s)\n", i.name.c_str(), p.name.c_str(), p.description.c_str(),
+                  p.integer ? "integer" : "number", format_parameter(p.min, p.integer).c_str(),
+                  format_parameter(p.max, p.integer).c_str(),
+                  p.step > 0 ? (" in steps of " + format_parameter(p.step, p.integer)).c_str() : "",
+                  format_parameter(p.default_value, p.integer).c_str());
   }
   return 0;
 }
@@ -133,7 +136,7 @@ int list_backends_cmd() {
   return 0;
 }
 
-int list() {
+int list(const MeshVerbOptions& opts) {
   if (opts.list_what == "meshes") return list_meshes_cmd();
   if (opts.list_what == "backends") return list_backends_cmd();
   return list_schemes_cmd();
@@ -141,23 +144,28 @@ int list() {
 
 }  // namespace
 
-void register_commands(CLI::App& app) {
+void add_mesh_verbs(CLI::App& app, Verbs& verbs) {
+  auto opts = std::make_shared<MeshVerbOptions>();
   auto* list_cmd = app.add_subcommand("list", "List schemes, meshes or backends");
-  list_cmd->add_option("what", opts.list_what, "schemes | meshes | backends")
+  list_cmd->add_option("what", opts->list_what, "schemes | meshes | backends")
       ->check(CLI::IsMember({"schemes", "meshes", "backends"}));
-  verbs["list"] = list;
+  verbs["list"] = [opts] { return list(*opts); };
 
   auto* info_cmd = app.add_subcommand("info", "Facts of a mesh: counts, histograms, genus, extraordinary share");
-  info_cmd->add_option("mesh", opts.mesh, "manifest name or path")->required();
-  info_cmd->add_flag("--json", opts.json, "print one JSON object");
-  verbs["info"] = info;
-
-  register_run_commands(app, verbs);
-  register_gate_commands(app, verbs);
-
+  info_cmd->add_option("mesh", opts->mesh, "manifest name or path")->required();
+  info_cmd->add_flag("--json", opts->json, "print one JSON object");
+  verbs["info"] = [opts] { return info(*opts); };
 }
 
-int run_selected(const CLI::App& app) {
+Verbs register_commands(CLI::App& app) {
+  Verbs verbs;
+  add_mesh_verbs(app, verbs);
+  add_run_verbs(app, verbs);
+  add_gate_verbs(app, verbs);
+  return verbs;
+}
+
+int run_selected(const CLI::App& app, const Verbs& verbs) {
   for (const auto* sub : app.get_subcommands()) return verbs.at(sub->get_name())();
   return 2;
 }

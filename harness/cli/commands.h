@@ -1,10 +1,24 @@
+// The verbs of subdivbench. Each add_*_verbs adds its subcommands to `app` and their actions to
+// `verbs` by name; options live in state the actions capture, not in globals.
 #pragma once
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
+#include <map>
+#include <string>
+
 namespace sdb::cli {
 
-void register_commands(CLI::App& app);
-int run_selected(const CLI::App& app);  // the chosen verb's exit code
+using Verbs = std::map<std::string, std::function<int()>>;
+
+Verbs register_commands(CLI::App& app);
+int run_selected(const CLI::App& app, const Verbs& verbs);  // the chosen verb's exit code
+
+// list, info (commands.cpp); validate, run (run_commands.cpp); bench, gate, report, paper and the
+// hidden workload (gate_commands.cpp).
+void add_mesh_verbs(CLI::App& app, Verbs& verbs);
+void add_run_verbs(CLI::App& app, Verbs& verbs);
+void add_gate_verbs(CLI::App& app, Verbs& verbs);
 
 }  // namespace sdb::cli

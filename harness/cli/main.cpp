@@ -8,8 +8,11 @@
 #include <string>
 #include <iostream>
 
-#include "commands.h"
-#include "errors.h"
+#include "harness/cli/commands.h"
+#include "harness/cli/main.h"
+#include "harness/core/errors.h"
+
+namespace sdb::cli {
 
 int main(int argc, char** argv) {
   CLI::App app{"subdivbench: GPU subdivision methods on identical meshes, measured and validated"};
@@ -17,12 +20,12 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "Every verb's options");
   std::string device;
   app.add_option("--device", device, "Vulkan device: a substring of its name (or $SUBDIVBENCH_VK_DEVICE)");
-  sdb::cli::register_commands(app);
+  const Verbs verbs = register_commands(app);
   try {
     app.parse(argc, argv);
     // Device choice reads the variable wherever a Context or probe is made.
     if (!device.empty()) setenv("SUBDIVBENCH_VK_DEVICE", device.c_str(), 1);
-    return sdb::cli::run_selected(app);
+    return run_selected(app, verbs);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -33,8 +36,14 @@ int main(int argc, char** argv) {
   } catch (const sdb::InputError& e) {
     std::cerr << "subdivbench: " << e.what() << "\n";
     return 2;
+  } catch (const sdb::Unsupported& e) {
+    // A limit the one request asked for runs into (validate, workload): bad usage, said in one line.
+    std::cerr << "subdivbench: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "subdivbench: internal error: " << e.what() << "\n";
     return 3;
   }
 }
+
+}  // namespace sdb::cli

@@ -1,4 +1,4 @@
-#include "buffer.h"
+#include "harness/gpu/buffer.h"
 
 #include <algorithm>
 #include <bit>
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "commands.h"
-#include "errors.h"
-#include "memory.h"
+#include "harness/gpu/commands.h"
+#include "harness/gpu/errors.h"
+#include "harness/gpu/memory.h"
 
 namespace sdb::gpu {
 

@@ -15,7 +15,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "context.h"
+#include "harness/gpu/context.h"
 
 namespace sdb::gpu {
 

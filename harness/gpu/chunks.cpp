@@ -1,4 +1,4 @@
-#include "chunks.h"
+#include "harness/gpu/chunks.h"
 
 #include <algorithm>
 #include <numeric>

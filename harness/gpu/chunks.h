@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "commands.h"
-#include "device_info.h"
+#include "harness/gpu/commands.h"
+#include "harness/gpu/device_info.h"
 
 namespace sdb::gpu {
 

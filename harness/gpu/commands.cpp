@@ -1,4 +1,4 @@
-#include "commands.h"
+#include "harness/gpu/commands.h"
 
 #include <stdexcept>
 #include <string>

@@ -6,9 +6,9 @@
 #include <array>
 #include <cstdint>
 
-#include "buffer.h"
-#include "context.h"
-#include "pipeline.h"
+#include "harness/gpu/buffer.h"
+#include "harness/gpu/context.h"
+#include "harness/gpu/pipeline.h"
 
 namespace sdb::gpu {
 

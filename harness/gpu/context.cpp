@@ -1,14 +1,14 @@
-#include "context.h"
+#include "harness/gpu/context.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
-#include "commands.h"
-#include "errors.h"
-#include "loader.h"
-#include "physical_device.h"
+#include "harness/gpu/commands.h"
+#include "harness/gpu/errors.h"
+#include "harness/gpu/loader.h"
+#include "harness/gpu/physical_device.h"
 
 namespace sdb::gpu {
 

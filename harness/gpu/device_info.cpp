@@ -1,11 +1,11 @@
-#include "device_info.h"
+#include "harness/gpu/device_info.h"
 
 #include <cstdio>
 #include <exception>
 
-#include "errors.h"
-#include "loader.h"
-#include "physical_device.h"
+#include "harness/gpu/errors.h"
+#include "harness/gpu/loader.h"
+#include "harness/gpu/physical_device.h"
 
 namespace sdb::gpu {
 

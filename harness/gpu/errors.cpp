@@ -1,4 +1,4 @@
-#include "errors.h"
+#include "harness/gpu/errors.h"
 
 namespace sdb::gpu {
 

@@ -9,7 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "vk_functions.h"
+#include "harness/core/errors.h"
+#include "harness/gpu/vk_functions.h"
 
 namespace sdb::gpu {
 
@@ -18,10 +19,9 @@ class Unavailable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-class Unsupported : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// The harness-wide Unsupported (harness/core/errors.h): a device limit is one of the limits a
+// request runs into, and becomes an "unsupported" row like any other.
+using Unsupported = sdb::Unsupported;
 
 class VulkanError : public std::runtime_error {
  public:

@@ -1,4 +1,4 @@
-#include "image.h"
+#include "harness/gpu/image.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,4 +1,4 @@
-#include "loader.h"
+#include "harness/gpu/loader.h"
 
 #include <dlfcn.h>
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "vk_functions.h"
+#include "harness/gpu/vk_functions.h"
 
 namespace sdb::gpu {
 

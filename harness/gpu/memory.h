@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "buffer.h"
-#include "vk_functions.h"
+#include "harness/gpu/buffer.h"
+#include "harness/gpu/vk_functions.h"
 
 namespace sdb::gpu {
 

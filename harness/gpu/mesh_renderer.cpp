@@ -1,4 +1,4 @@
-#include "mesh_renderer.h"
+#include "harness/gpu/mesh_renderer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,13 +5,13 @@
 #include <array>
 #include <cstdint>
 
-#include "buffer.h"
-#include "commands.h"
-#include "context.h"
-#include "image.h"
-#include "pipeline.h"
-#include "render_target.h"
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
+#include "harness/gpu/buffer.h"
+#include "harness/gpu/commands.h"
+#include "harness/gpu/context.h"
+#include "harness/gpu/image.h"
+#include "harness/gpu/pipeline.h"
+#include "harness/gpu/render_target.h"
 
 namespace sdb::gpu {
 

@@ -1,12 +1,12 @@
-#include "physical_device.h"
+#include "harness/gpu/physical_device.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
 
-#include "errors.h"
-#include "loader.h"
+#include "harness/gpu/errors.h"
+#include "harness/gpu/loader.h"
 
 namespace sdb::gpu {
 

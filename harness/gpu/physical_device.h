@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "device_info.h"
-#include "vk_functions.h"
+#include "harness/gpu/device_info.h"
+#include "harness/gpu/vk_functions.h"
 
 namespace sdb::gpu {
 

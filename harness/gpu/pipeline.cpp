@@ -1,9 +1,9 @@
-#include "pipeline.h"
+#include "harness/gpu/pipeline.h"
 
 #include <stdexcept>
 #include <utility>
 
-#include "errors.h"
+#include "harness/gpu/errors.h"
 
 namespace sdb::gpu {
 

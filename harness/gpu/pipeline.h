@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "buffer.h"
-#include "context.h"
-#include "spirv.h"
+#include "harness/gpu/buffer.h"
+#include "harness/gpu/context.h"
+#include "harness/gpu/spirv.h"
 
 namespace sdb::gpu {
 

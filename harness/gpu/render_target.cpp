@@ -1,10 +1,10 @@
-#include "render_target.h"
+#include "harness/gpu/render_target.h"
 
 #include <stdexcept>
 #include <string>
 
-#include "errors.h"
-#include "memory.h"
+#include "harness/gpu/errors.h"
+#include "harness/gpu/memory.h"
 
 namespace sdb::gpu {
 

@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <functional>
 
-#include "buffer.h"
-#include "commands.h"
-#include "context.h"
-#include "image.h"
+#include "harness/gpu/buffer.h"
+#include "harness/gpu/commands.h"
+#include "harness/gpu/context.h"
+#include "harness/gpu/image.h"
 
 namespace sdb::gpu {
 

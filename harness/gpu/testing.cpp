@@ -1,9 +1,9 @@
-#include "testing.h"
+#include "harness/gpu/testing.h"
 
 #include <cstdio>
 #include <memory>
 
-#include "errors.h"
+#include "harness/gpu/errors.h"
 
 namespace sdb::gpu::testing {
 
@@ -57,21 +57,31 @@ Context* test_context() {
 
 const std::string& unavailable_reason() { return state().reason; }
 
+uint64_t begin_vulkan_test() {
+  Context* ctx = test_context();
+  return ctx ? ctx->validation_errors() : 0;
+}
+
+void end_vulkan_test(uint64_t errors_before) {
+  Context* ctx = test_context();
+  if (!ctx) return;
+  const uint64_t errors = ctx->validation_errors() - errors_before;
+  if (errors > 0) {
+    std::string messages;
+    for (const std::string& m : ctx->validation_messages()) messages += "\n  " + m;
+    ADD_FAILURE() << errors << " Vulkan validation error(s) during this test:" << messages;
+  }
+  if (!::testing::Test::IsSkipped()) ++state().ran;
+}
+
 void VulkanTest::SetUp() {
   ctx_ = test_context();
   if (!ctx_) GTEST_SKIP() << unavailable_reason();
-  errors_before_ = ctx_->validation_errors();
+  errors_before_ = begin_vulkan_test();
 }
 
 void VulkanTest::TearDown() {
-  if (!ctx_) return;
-  const uint64_t errors = ctx_->validation_errors() - errors_before_;
-  if (errors > 0) {
-    std::string messages;
-    for (const std::string& m : ctx_->validation_messages()) messages += "\n  " + m;
-    ADD_FAILURE() << errors << " Vulkan validation error(s) during this test:" << messages;
-  }
-  if (!IsSkipped()) ++state().ran;
+  if (ctx_) end_vulkan_test(errors_before_);
 }
 
 }  // namespace sdb::gpu::testing

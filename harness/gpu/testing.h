@@ -14,13 +14,20 @@
 
 #include <string>
 
-#include "context.h"
+#include "harness/gpu/context.h"
 
 namespace sdb::gpu::testing {
 
 // The shared context, created on first use for tests; null when there is no device.
 Context* test_context();
 const std::string& unavailable_reason();
+
+// For tests that run Vulkan work in some of their cases only (a parameterized suite): call
+// begin_vulkan_test() at the start of such a case (it returns the context's validation error
+// count) and end_vulkan_test() at its end, which fails the test on new validation errors and
+// counts it in "vulkan tests run on <device>: N". VulkanTest does the same.
+uint64_t begin_vulkan_test();
+void end_vulkan_test(uint64_t errors_before);
 
 class VulkanTest : public ::testing::Test {
  protected:

@@ -1,9 +1,9 @@
-#include "timer.h"
+#include "harness/gpu/timer.h"
 
 #include <stdexcept>
 #include <utility>
 
-#include "errors.h"
+#include "harness/gpu/errors.h"
 
 namespace sdb::gpu {
 

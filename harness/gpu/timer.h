@@ -1,5 +1,5 @@
 // GpuTimer: timestamp queries around labelled passes of a command buffer, read back as the
-// sdb::GpuTimes that schemes report (schemes/scheme.h).
+// sdb::GpuTimes that schemes report (harness/core/gpu_times.h).
 //
 //   timer.reset(cmd);                                   // first, outside a render pass
 //   timer.begin(cmd, PassKind::Upload, "upload"); cmd.upload(...); timer.end(cmd);
@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "commands.h"
-#include "context.h"
-#include "scheme.h"
+#include "harness/core/gpu_times.h"
+#include "harness/gpu/commands.h"
+#include "harness/gpu/context.h"
 
 namespace sdb::gpu {
 

@@ -1,11 +1,11 @@
-#include "facts.h"
+#include "harness/mesh/facts.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
 #include <unordered_map>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb {
 

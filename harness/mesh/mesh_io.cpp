@@ -1,4 +1,4 @@
-#include "mesh_io.h"
+#include "harness/mesh/mesh_io.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 namespace {

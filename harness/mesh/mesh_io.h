@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb {
 

@@ -3,10 +3,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "errors.h"
-#include "facts.h"
-#include "mesh_io.h"
-#include "quadrangulate.h"
+#include "harness/core/errors.h"
+#include "harness/mesh/facts.h"
+#include "harness/mesh/mesh_io.h"
+#include "harness/mesh/quadrangulate.h"
 
 namespace fs = std::filesystem;
 using namespace sdb;

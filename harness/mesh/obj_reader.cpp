@@ -6,8 +6,8 @@
 #include <sstream>
 #include <unordered_set>
 
-#include "errors.h"
-#include "mesh_io.h"
+#include "harness/core/errors.h"
+#include "harness/mesh/mesh_io.h"
 
 namespace sdb {
 namespace {

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "errors.h"
-#include "mesh_io.h"
+#include "harness/core/errors.h"
+#include "harness/mesh/mesh_io.h"
 
 namespace sdb {
 namespace {

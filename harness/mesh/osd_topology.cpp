@@ -1,4 +1,4 @@
-#include "osd_topology.h"
+#include "harness/mesh/osd_topology.h"
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/primvarRefiner.h>
@@ -6,7 +6,7 @@
 
 #include <mutex>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 namespace {

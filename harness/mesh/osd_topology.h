@@ -6,11 +6,9 @@
 
 #include <memory>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb {
-
-enum class SubdivisionRule { CatmullClark, Loop };
 
 // A point as Far::PrimvarRefiner interpolates it (Clear, AddWithWeight).
 struct PrimvarPoint {

@@ -1,6 +1,6 @@
-#include "quadrangulate.h"
+#include "harness/mesh/quadrangulate.h"
 
-#include "osd_topology.h"
+#include "harness/mesh/osd_topology.h"
 
 namespace sdb {
 

@@ -2,7 +2,7 @@
 // limit surface (the c-patch paper's preprocessing).
 #pragma once
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb {
 

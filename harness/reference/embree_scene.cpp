@@ -1,4 +1,4 @@
-#include "embree_scene.h"
+#include "harness/reference/embree_scene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb {
 

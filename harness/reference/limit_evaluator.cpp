@@ -1,4 +1,4 @@
-#include "limit_evaluator.h"
+#include "harness/reference/limit_evaluator.h"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 

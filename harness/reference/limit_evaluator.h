@@ -8,9 +8,9 @@
 #include <memory>
 #include <utility>
 
-#include "control_mesh.h"
-#include "osd_topology.h"
-#include "tessellation.h"
+#include "harness/core/control_mesh.h"
+#include "harness/core/tessellation.h"
+#include "harness/mesh/osd_topology.h"
 
 namespace sdb {
 

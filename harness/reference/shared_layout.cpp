@@ -1,4 +1,4 @@
-#include "shared_layout.h"
+#include "harness/reference/shared_layout.h"
 
 #include <opensubdiv/bfr/parameterization.h>
 #include <opensubdiv/bfr/tessellation.h>

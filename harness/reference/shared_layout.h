@@ -9,8 +9,8 @@
 #include <array>
 #include <vector>
 
-#include "osd_topology.h"
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
+#include "harness/mesh/osd_topology.h"
 
 namespace sdb {
 

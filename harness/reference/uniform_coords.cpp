@@ -3,7 +3,7 @@
 // or the face itself (centre). This needs no assumption about how Far orders or rotates child
 // faces. The one special case is the first Catmull-Clark level of an n-gon, whose children are
 // the ptex sub-faces: corner (0,0), next edge (1,0), centre (1,1), previous edge (0,1).
-#include "uniform_coords.h"
+#include "harness/reference/uniform_coords.h"
 
 #include <opensubdiv/far/ptexIndices.h>
 

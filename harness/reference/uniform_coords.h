@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "osd_topology.h"
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
+#include "harness/mesh/osd_topology.h"
 
 namespace sdb {
 

@@ -1,4 +1,4 @@
-#include "deviation.h"
+#include "harness/validate/deviation.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "embree_scene.h"
+#include "harness/reference/embree_scene.h"
 
 namespace sdb {
 namespace {

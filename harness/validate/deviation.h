@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "embree_scene.h"
-#include "limit_evaluator.h"
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
+#include "harness/reference/embree_scene.h"
+#include "harness/reference/limit_evaluator.h"
 
 namespace sdb {
 

@@ -1,9 +1,9 @@
-#include "deviation_ply.h"
+#include "harness/validate/deviation_ply.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "deviation.h"
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
+#include "harness/validate/deviation.h"
 
 namespace sdb {
 

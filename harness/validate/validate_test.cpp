@@ -2,28 +2,22 @@
 
 #include <cmath>
 
-#include "deviation.h"
-#include "generators.h"
-#include "limit_evaluator.h"
-#include "peers.h"
-#include "watertight.h"
+#include "datasets/generators.h"
+#include "harness/reference/dense_limit.h"
+#include "harness/reference/limit_evaluator.h"
+#include "harness/validate/deviation.h"
+#include "harness/validate/watertight.h"
 
 using namespace sdb;
 
 namespace {
 
-Tessellation bfr_torus(int rate) {
-  static const auto peers = make_peer_schemes();
+// The torus's limit at rate N (N - 1 segments a side), watertight: the surface the checks are tried on.
+Tessellation limit_torus(int rate) {
   const ControlMesh torus = gen::torus(8, 12);
-  for (const auto& p : peers)
-    if (p->info().name == "osd-bfr") {
-      auto e = p->prepare(torus, {Backend::Cpu, rate, 0});
-      e->execute();
-      Tessellation t = e->result();
-      t.reference = std::make_shared<ControlMesh>(torus);
-      return t;
-    }
-  throw std::logic_error("no osd-bfr");
+  Tessellation t = limit_tessellation(LimitEvaluator(torus, SubdivisionRule::CatmullClark), rate - 1);
+  t.reference = std::make_shared<ControlMesh>(torus);
+  return t;
 }
 
 // Gives one face its own copy of a border vertex (as patch schemes have), displaced by `offset`
@@ -55,7 +49,7 @@ uint32_t split_border_vertex(Tessellation& t, float offset) {
 }  // namespace
 
 TEST(ExactWeld, ClosedAndOpenSurfaces) {
-  EXPECT_EQ(count_open_edges(bfr_torus(5)), 0);
+  EXPECT_EQ(count_open_edges(limit_torus(5)), 0);
   Tessellation patch;
   patch.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   patch.triangles = {0, 1, 2, 0, 2, 3};
@@ -63,24 +57,24 @@ TEST(ExactWeld, ClosedAndOpenSurfaces) {
 }
 
 TEST(ExactWeld, CatchesAOneUlpSplit) {
-  Tessellation same = bfr_torus(5);
+  Tessellation same = limit_torus(5);
   split_border_vertex(same, 0.0f);
   EXPECT_EQ(count_open_edges(same), 0) << "bit-identical copies must weld";
-  Tessellation split = bfr_torus(5);
+  Tessellation split = limit_torus(5);
   const uint32_t copy = split_border_vertex(split, 0.0f);
   split.positions[copy][0] = std::nextafter(split.positions[copy][0], 1e9f);
   EXPECT_GT(count_open_edges(split), 0);
 }
 
 TEST(RayCrackCheck, WatertightTorusHasNoCracks) {
-  const RayCrackReport r = ray_crack_check(bfr_torus(9), {100000, 100000, 42});
+  const RayCrackReport r = ray_crack_check(limit_torus(9), {100000, 100000, 42});
   EXPECT_EQ(r.rays, 200000);
   EXPECT_EQ(r.cracks, 0);
   EXPECT_EQ(r.seed, 42u);
 }
 
 TEST(RayCrackCheck, FindsAPlantedCrack) {
-  Tessellation t = bfr_torus(9);
+  Tessellation t = limit_torus(9);
   const float offset = static_cast<float>(1e-3 * bounds_of(t.positions).diagonal());
   split_border_vertex(t, offset);
   const RayCrackReport r = ray_crack_check(t, {100000, 100000, 42});
@@ -91,7 +85,7 @@ TEST(RayCrackCheck, FindsAPlantedCrack) {
 TEST(Deviation, ReadsBackAPlantedOffset) {
   const ControlMesh torus = gen::torus(8, 12);
   const LimitEvaluator ref(torus, SubdivisionRule::CatmullClark);
-  Tessellation t = bfr_torus(5);
+  Tessellation t = limit_torus(5);
   const DeviationReport base = measure_deviation(t, ref);
   EXPECT_LE(base.pos_max_pct, 1e-3);
   // Move every vertex along its normal by 2% of its face's local size.
@@ -116,7 +110,7 @@ TEST(Deviation, ReadsBackAPlantedOffset) {
 }
 
 TEST(Hausdorff, ReadsBackAnOffsetSurface) {
-  const Tessellation a = bfr_torus(9);
+  const Tessellation a = limit_torus(9);
   Tessellation b = a;
   const double diag = bounds_of(a.positions).diagonal(), delta = 1e-3 * diag;
   for (size_t i = 0; i < b.positions.size(); ++i)

@@ -1,4 +1,4 @@
-#include "watertight.h"
+#include "harness/validate/watertight.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "embree_scene.h"
+#include "harness/reference/embree_scene.h"
 
 namespace sdb {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
 
 namespace sdb {
 

@@ -3,7 +3,7 @@
 // Used to tabulate the SampleGrid's weights and by the reference evaluation. Internal.
 #pragma once
 
-#include "evaluation.h"
+#include "schemes/cpatch/evaluation.h"
 
 namespace sdb::cpatch {
 

@@ -11,8 +11,8 @@
 #include <cmath>
 #include <limits>
 
-#include "conversion.h"
-#include "evaluation.h"
+#include "schemes/cpatch/conversion.h"
+#include "schemes/cpatch/evaluation.h"
 
 namespace sdb::cpatch {
 namespace {

@@ -1,4 +1,4 @@
-#include "conversion.h"
+#include "schemes/cpatch/conversion.h"
 
 namespace sdb::cpatch {
 

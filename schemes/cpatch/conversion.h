@@ -9,8 +9,8 @@
 #include <array>
 #include <vector>
 
-#include "topology.h"
-#include "vec3.h"
+#include "schemes/cpatch/topology.h"
+#include "schemes/cpatch/vec3.h"
 
 namespace sdb::cpatch {
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "scheme.h"
+#include "harness/core/scheme.h"
 
 namespace sdb {
 

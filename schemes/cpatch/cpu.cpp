@@ -1,4 +1,4 @@
-#include "cpu.h"
+#include "schemes/cpatch/cpu.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb::cpatch {
 
@@ -22,7 +22,7 @@ CpatchCpuEvaluation::CpatchCpuEvaluation(const ControlMesh& quads, int rate, boo
       thread_scratch_([rate] { return PatchScratch(rate * rate); }) {
   // Tessellation indexes vertices with uint32_t.
   if (static_cast<uint64_t>(topology_.num_quads) * grid_.samples() > std::numeric_limits<uint32_t>::max())
-    throw InputError(quads.source, "cpatch-2pass at N = " + std::to_string(rate) + " on " +
+    throw Unsupported(quads.source + ": cpatch-2pass at N = " + std::to_string(rate) + " on " +
                                        std::to_string(topology_.num_quads) + " quads exceeds 2^32 output vertices");
   positions_.reserve(quads.positions.size());
   for (const Point3& p : quads.positions) positions_.push_back(to_vec3(p));

@@ -13,10 +13,10 @@
 #include <memory>
 #include <vector>
 
-#include "conversion.h"
-#include "evaluation.h"
-#include "scheme.h"
-#include "topology.h"
+#include "harness/core/scheme.h"
+#include "schemes/cpatch/conversion.h"
+#include "schemes/cpatch/evaluation.h"
+#include "schemes/cpatch/topology.h"
 
 namespace sdb::cpatch {
 

@@ -1,11 +1,11 @@
-#include "evaluation.h"
+#include "schemes/cpatch/evaluation.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "bernstein.h"
-#include "conversion.h"
-#include "patch_control.h"
+#include "schemes/cpatch/bernstein.h"
+#include "schemes/cpatch/conversion.h"
+#include "schemes/cpatch/patch_control.h"
 
 namespace sdb::cpatch {
 namespace {

@@ -16,11 +16,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "control_mesh.h"
-#include "conversion.h"
-#include "tessellation.h"
-#include "topology.h"
-#include "vec3.h"
+#include "harness/core/control_mesh.h"
+#include "harness/core/tessellation.h"
+#include "schemes/cpatch/conversion.h"
+#include "schemes/cpatch/topology.h"
+#include "schemes/cpatch/vec3.h"
 
 // The hot loops are built for AVX2 and for the x86-64 baseline, picked at load time; both give
 // the same bits (no fused multiply-adds). Define SDB_CPATCH_BASELINE_ONLY to build the baseline

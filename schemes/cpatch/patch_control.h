@@ -4,9 +4,9 @@
 
 #include <array>
 
-#include "conversion.h"
-#include "evaluation.h"
-#include "vec3.h"
+#include "schemes/cpatch/conversion.h"
+#include "schemes/cpatch/evaluation.h"
+#include "schemes/cpatch/vec3.h"
 
 namespace sdb::cpatch {
 

@@ -1,8 +1,8 @@
 // Reference evaluation of patch records in double precision, directly from the Bernstein bases:
 // independent of the SampleGrid's tables, the piece order and the float paths, for tests.
-#include "bernstein.h"
-#include "evaluation.h"
-#include "patch_control.h"
+#include "schemes/cpatch/bernstein.h"
+#include "schemes/cpatch/evaluation.h"
+#include "schemes/cpatch/patch_control.h"
 
 namespace sdb::cpatch {
 namespace {

@@ -1,11 +1,11 @@
-#include "topology.h"
+#include "schemes/cpatch/topology.h"
 
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <unordered_map>
 
-#include "errors.h"
+#include "harness/core/errors.h"
 
 namespace sdb::cpatch {
 namespace {

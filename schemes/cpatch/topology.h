@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb::cpatch {
 

@@ -1,4 +1,4 @@
-#include "vulkan.h"
+#include "schemes/cpatch/vulkan.h"
 
 #include <algorithm>
 #include <cstring>
@@ -6,9 +6,10 @@
 #include <span>
 #include <stdexcept>
 
-#include "errors.h"
-#include "vulkan_pipelines.h"
-#include "vulkan_resources.h"
+#include "harness/core/errors.h"
+#include "harness/gpu/errors.h"
+#include "schemes/cpatch/vulkan_pipelines.h"
+#include "schemes/cpatch/vulkan_resources.h"
 
 namespace sdb::cpatch {
 namespace {
@@ -227,7 +228,7 @@ CpatchVulkan::CpatchVulkan(const ControlMesh& quads, int rate, const GpuOptions&
   const std::string what = describe(options.variant, rate, topology_.num_quads);
   const uint64_t vertices = uint64_t(topology_.num_quads) * grid_.samples();
   if (vertices > std::numeric_limits<uint32_t>::max())
-    throw InputError(quads.source, what + " exceeds 2^32 output vertices");
+    throw Unsupported(quads.source + ": " + what + " exceeds 2^32 output vertices");
   if (!options.heat_values.empty() &&
       (options.variant != GpuVariant::TwoPass || options.mode != GpuMode::Render || options.heat_values.size() != vertices))
     throw std::invalid_argument("c-patch heat map: 2-pass render mode, one value per output vertex");

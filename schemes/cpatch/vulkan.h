@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "evaluation.h"
-#include "gpu.h"
-#include "scheme.h"
-#include "topology.h"
-#include "vec3.h"
+#include "harness/core/scheme.h"
+#include "harness/gpu/gpu.h"
+#include "schemes/cpatch/evaluation.h"
+#include "schemes/cpatch/topology.h"
+#include "schemes/cpatch/vec3.h"
 
 namespace sdb::cpatch {
 

@@ -1,4 +1,4 @@
-#include "vulkan_pipelines.h"
+#include "schemes/cpatch/vulkan_pipelines.h"
 
 #include <algorithm>
 #include <string>

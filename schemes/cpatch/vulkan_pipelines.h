@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "gpu.h"
-#include "vulkan.h"
-#include "vulkan_resources.h"
+#include "harness/gpu/gpu.h"
+#include "schemes/cpatch/vulkan.h"
+#include "schemes/cpatch/vulkan_resources.h"
 
 namespace sdb::cpatch {
 

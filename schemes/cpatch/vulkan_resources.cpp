@@ -1,4 +1,4 @@
-#include "vulkan_resources.h"
+#include "schemes/cpatch/vulkan_resources.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "evaluation.h"
-#include "gpu.h"
-#include "tessellation.h"
-#include "topology.h"
-#include "vec3.h"
+#include "harness/core/tessellation.h"
+#include "harness/gpu/gpu.h"
+#include "schemes/cpatch/evaluation.h"
+#include "schemes/cpatch/topology.h"
+#include "schemes/cpatch/vec3.h"
 
 namespace sdb::cpatch {
 

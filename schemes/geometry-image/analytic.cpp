@@ -1,10 +1,10 @@
-#include "analytic.h"
+#include "schemes/geometry-image/analytic.h"
 
 #include <regex>
 
-#include "closed_mesh.h"
-#include "errors.h"
-#include "octahedral_map.h"
+#include "harness/core/errors.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/octahedral_map.h"
 
 namespace sdb::gim {
 

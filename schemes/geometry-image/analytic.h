@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "control_mesh.h"
-#include "image.h"
+#include "harness/core/control_mesh.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "scheme.h"
-#include "subdivision.h"
+#include "harness/core/scheme.h"
+#include "schemes/geometry-image/subdivision.h"
 
 namespace sdb::gim {
 
@@ -22,7 +22,7 @@ struct EvaluationInput {
 // cpu (one thread) and cpu-mt (TBB's threads).
 std::unique_ptr<Evaluation> make_cpu_evaluation(const EvaluationInput& input);
 
-// vulkan, on gpu::shared_context(). Throws InputError (named after `mesh_name`) when the device
+// vulkan, on gpu::shared_context(). Throws Unsupported (naming `mesh_name`) when the device
 // cannot hold the request, gpu::Unavailable without a device.
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const EvaluationInput& input, const std::string& mesh_name);
 

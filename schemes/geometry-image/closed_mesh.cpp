@@ -1,4 +1,4 @@
-#include "closed_mesh.h"
+#include "schemes/geometry-image/closed_mesh.h"
 
 #include <algorithm>
 #include <cmath>

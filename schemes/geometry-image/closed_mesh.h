@@ -12,9 +12,9 @@
 
 #include <optional>
 
-#include "control_mesh.h"
-#include "image.h"
-#include "tessellation.h"
+#include "harness/core/control_mesh.h"
+#include "harness/core/tessellation.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

@@ -3,8 +3,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "backends.h"
-#include "tessellation_grid.h"
+#include "schemes/geometry-image/backends.h"
+#include "schemes/geometry-image/tessellation_grid.h"
 
 namespace sdb::gim {
 

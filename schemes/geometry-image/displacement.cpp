@@ -1,8 +1,8 @@
-#include "displacement.h"
+#include "schemes/geometry-image/displacement.h"
 
 #include <stdexcept>
 
-#include "image.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

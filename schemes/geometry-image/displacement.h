@@ -10,7 +10,7 @@
 #include <functional>
 #include <vector>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb::gim {
 

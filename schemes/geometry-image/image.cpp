@@ -1,4 +1,4 @@
-#include "image.h"
+#include "schemes/geometry-image/image.h"
 
 #include <algorithm>
 #include <bit>

@@ -19,7 +19,7 @@
 #include <array>
 #include <vector>
 
-#include "control_mesh.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb::gim {
 

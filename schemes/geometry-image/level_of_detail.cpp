@@ -1,11 +1,11 @@
-#include "level_of_detail.h"
+#include "schemes/geometry-image/level_of_detail.h"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "closed_mesh.h"
-#include "subdivision.h"
-#include "tessellation_grid.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/subdivision.h"
+#include "schemes/geometry-image/tessellation_grid.h"
 
 namespace sdb::gim {
 

@@ -13,9 +13,9 @@
 
 #include <vector>
 
-#include "control_mesh.h"
-#include "image.h"
-#include "tessellation.h"
+#include "harness/core/control_mesh.h"
+#include "harness/core/tessellation.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

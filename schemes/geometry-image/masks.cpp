@@ -1,4 +1,4 @@
-#include "masks.h"
+#include "schemes/geometry-image/masks.h"
 
 #include <algorithm>
 #include <cmath>

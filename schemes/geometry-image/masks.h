@@ -29,8 +29,8 @@
 #include <array>
 #include <vector>
 
-#include "control_mesh.h"
-#include "image.h"
+#include "harness/core/control_mesh.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

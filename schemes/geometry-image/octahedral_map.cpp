@@ -1,4 +1,4 @@
-#include "octahedral_map.h"
+#include "schemes/geometry-image/octahedral_map.h"
 
 #include <algorithm>
 #include <cmath>

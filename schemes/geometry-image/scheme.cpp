@@ -1,14 +1,15 @@
 // The geometry-image schemes: "geometry-image" (fused passes, the default) and
 // "geometry-image-permask" (one pass per mask, as the paper's Radeon implementation). prepare()
 // finds or creates the image and hands its closed mesh g0 to the backend (backends.h).
-#include <cstdlib>
 #include <string>
 
-#include "backends.h"
-#include "closed_mesh.h"
-#include "creation/create.h"
-#include "errors.h"
-#include "geometry_image.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "schemes/geometry-image/analytic.h"
+#include "schemes/geometry-image/backends.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/creation/create.h"
+#include "schemes/geometry-image/geometry_image.h"
 
 namespace sdb {
 
@@ -22,9 +23,9 @@ constexpr long long kMaxOutputVertices = 1ll << 26;
 
 class GeometryImageScheme final : public Scheme {
  public:
-  explicit GeometryImageScheme(const GeometryImageOptions& options) : options_(options) {
-    const bool per_mask = options.plan == PassPlan::PerMask;
-    info_.name = geometry_image_scheme_name(options.plan);
+  explicit GeometryImageScheme(PassPlan plan) : plan_(plan) {
+    const bool per_mask = plan == PassPlan::PerMask;
+    info_.name = geometry_image_scheme_name(plan);
     info_.paper = "Losasso, Hoppe, Schaefer, Warren 2003: Smooth Geometry Images";
     info_.description = per_mask ? "geometry image subdivided one pass per mask (L, A, E, T), as the paper's GPU"
                                  : "one bicubic B-spline patch stored as a geometry image, subdivided by image masks";
@@ -36,6 +37,14 @@ class GeometryImageScheme final : public Scheme {
     info_.accepts.manifold = true;
     info_.accepts.closed = true;
     info_.accepts.genus0 = true;
+    // osd-bfr at the same segments per edge on the same mesh (on an analytic image's g0, the same
+    // surface); the paper's own comparison, osd-uniform on the same g0, is losasso2003-table2.
+    info_.peer = "osd-bfr";
+    // Against the Catmull-Clark limit of g0: 1e-7 of the diagonal away from the four cut
+    // vertices, 0.13% next to them (Spot, depth 1), normals up to 41 degrees there (Blub).
+    info_.bound = {0.005, 60};
+    info_.default_meshes = {"gim-sphere-31", "crane/spot_control", "crane/blub_control", "stanford/bunny"};
+    info_.parameters = {fit_size_parameter()};
   }
 
   const SchemeInfo& info() const override { return info_; }
@@ -49,38 +58,38 @@ class GeometryImageScheme final : public Scheme {
   // The output is the image subdivided, whatever the input's size: 2 ((n - 1) 2^k)^2 triangles.
   long estimated_triangles(const ControlMesh& mesh, const RunRequest& request) const override {
     const auto image = image_from_closed_mesh(mesh);
-    const long n = image ? image->size : resolved_fit_size(options_);
+    const long n = image ? image->size : request.parameters.integer("fit");
     const long side = (n - 1) << request.level;
     return 2 * side * side;
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
     if (auto why = unsupported(request)) throw InputError(mesh.name, *why);
-    GeometryImage image = select_image(mesh);
+    GeometryImage image = select_image(mesh, request.parameters.integer("fit"));
     const long long n = level_size(image.size, request.level);
     if (n * n > kMaxOutputVertices)
-      throw InputError(mesh.name, "a " + std::to_string(image.size) + " x " + std::to_string(image.size) +
+      throw Unsupported(mesh.name + ": a " + std::to_string(image.size) + " x " + std::to_string(image.size) +
                                       " image at depth " + std::to_string(request.level) + " gives " +
                                       std::to_string(n * n) + " vertices, more than this scheme allocates");
     EvaluationInput input;
     input.g0 = std::make_shared<const ControlMesh>(closed_mesh(image, mesh.name + " (g0)", mesh.source));
     input.base_size = image.size;
     input.request = request;
-    input.plan = options_.plan;
+    input.plan = plan_;
     if (request.backend == Backend::Vulkan) return make_vulkan_evaluation(input, mesh.name);
     return make_cpu_evaluation(input);
   }
 
  private:
-  // The mesh is an image's g0 (taken as is), or a surface to fit an image of fit_size to.
-  GeometryImage select_image(const ControlMesh& mesh) const {
+  // The mesh is an image's g0 (taken as is), or a surface to fit an image of `fit` samples a side to.
+  static GeometryImage select_image(const ControlMesh& mesh, int fit) {
     if (auto image = image_from_closed_mesh(mesh)) return std::move(*image);
     CreationOptions creation;
-    creation.size = resolved_fit_size(options_);
+    creation.size = fit;
     return create_geometry_image(mesh, creation).image;
   }
 
-  GeometryImageOptions options_;
+  PassPlan plan_;
   SchemeInfo info_;
 };
 
@@ -90,19 +99,40 @@ std::string geometry_image_scheme_name(gim::PassPlan plan) {
   return plan == gim::PassPlan::PerMask ? "geometry-image-permask" : "geometry-image";
 }
 
-int resolved_fit_size(const GeometryImageOptions& options) {
-  if (options.fit_size != 0) return options.fit_size;
-  const char* env = std::getenv("SUBDIVBENCH_GIM_SIZE");
-  if (!env || !*env) return kDefaultFitSize;
-  char* end = nullptr;
-  const long n = std::strtol(env, &end, 10);
-  if (*end != '\0' || n < 5 || n > 1025 || n % 2 == 0)
-    throw InputError("SUBDIVBENCH_GIM_SIZE", "must be an odd number from 5 to 1025, not '" + std::string(env) + "'");
-  return static_cast<int>(n);
+ParameterSpec fit_size_parameter() {
+  return {"fit", "samples a side of the image fitted to a mesh that is not one", true, kDefaultFitSize, 5, 1025, 2};
 }
 
-std::unique_ptr<Scheme> make_geometry_image_scheme(const GeometryImageOptions& options) {
-  return std::make_unique<GeometryImageScheme>(options);
+std::unique_ptr<Scheme> make_geometry_image_scheme(PassPlan plan) { return std::make_unique<GeometryImageScheme>(plan); }
+
+std::vector<std::unique_ptr<Scheme>> make_geometry_image_schemes() {
+  std::vector<std::unique_ptr<Scheme>> schemes;
+  schemes.push_back(make_geometry_image_scheme(PassPlan::Fused));
+  schemes.push_back(make_geometry_image_scheme(PassPlan::PerMask));
+  return schemes;
 }
+
+namespace {
+
+// gim-sphere-31 and gim-ellipsoid-31 by name, any odd size through gim-sphere-<n>.
+MeshProvider analytic_meshes() {
+  MeshProvider p;
+  p.builtins = {
+      {"gim-sphere-31", "geometry image 31x31 of the unit sphere: its closed control mesh g0 (the paper's Table 2 size)",
+       [] { return *gim::analytic_mesh_from_name("gim-sphere-31"); }},
+      {"gim-ellipsoid-31", "geometry image 31x31 of an ellipsoid (radii 1.2, 0.8, 0.6): its control mesh g0",
+       [] { return *gim::analytic_mesh_from_name("gim-ellipsoid-31"); }},
+  };
+  p.parse = [](const std::string& name) { return gim::analytic_mesh_from_name(name); };
+  return p;
+}
+
+}  // namespace
+
+std::vector<PaperTable> geometry_image_paper_tables();  // paper/paper.cpp
+
+SDB_REGISTER_SCHEMES(geometry_image, make_geometry_image_schemes);
+SDB_REGISTER_PAPER_TABLES(geometry_image, geometry_image_paper_tables);
+SDB_REGISTER_MESHES(geometry_image, analytic_meshes);
 
 }  // namespace sdb

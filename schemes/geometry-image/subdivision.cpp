@@ -1,4 +1,4 @@
-#include "subdivision.h"
+#include "schemes/geometry-image/subdivision.h"
 
 #include <stdexcept>
 

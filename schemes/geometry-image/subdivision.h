@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "masks.h"
+#include "schemes/geometry-image/masks.h"
 
 namespace sdb::gim {
 

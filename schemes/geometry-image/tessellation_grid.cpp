@@ -1,8 +1,8 @@
-#include "tessellation_grid.h"
+#include "schemes/geometry-image/tessellation_grid.h"
 
 #include <cmath>
 
-#include "closed_mesh.h"
+#include "schemes/geometry-image/closed_mesh.h"
 
 namespace sdb::gim {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "tessellation.h"
+#include "harness/core/tessellation.h"
 
 namespace sdb::gim {
 

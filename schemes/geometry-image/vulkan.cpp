@@ -2,11 +2,11 @@
 // g0 and runs the passes (timed by timestamps); result() reads p^k and n^k back, a separately
 // timed submission, as the paper's timings stop before rendering (its RENDER_TO_VERTEX kept the
 // vertices on the GPU; ours stay in device buffers made for vertex use as well).
-#include "backends.h"
-#include "errors.h"
-#include "gpu.h"
-#include "tessellation_grid.h"
-#include "vulkan_subdivider.h"
+#include "harness/core/errors.h"
+#include "harness/gpu/gpu.h"
+#include "schemes/geometry-image/backends.h"
+#include "schemes/geometry-image/tessellation_grid.h"
+#include "schemes/geometry-image/vulkan_subdivider.h"
 
 namespace sdb::gim {
 
@@ -44,7 +44,7 @@ class VulkanEvaluation final : public Evaluation {
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const EvaluationInput& input, const std::string& mesh_name) {
   std::shared_ptr<gpu::Context> ctx = gpu::shared_context();
   if (auto why = VulkanSubdivider::unsupported(*ctx, input.base_size, input.request.level, input.plan))
-    throw InputError(mesh_name, *why);
+    throw Unsupported(mesh_name + ": " + *why);
   return std::make_unique<VulkanEvaluation>(input, std::move(ctx));
 }
 

@@ -1,4 +1,4 @@
-#include "vulkan_subdivider.h"
+#include "schemes/geometry-image/vulkan_subdivider.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "gpu.h"
-#include "masks.h"
-#include "subdivision.h"
+#include "harness/gpu/gpu.h"
+#include "schemes/geometry-image/masks.h"
+#include "schemes/geometry-image/subdivision.h"
 
 namespace sdb::gim {
 

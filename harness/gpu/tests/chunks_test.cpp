@@ -1,7 +1,7 @@
 // plan_chunks and groups_for against given limits; no device needed.
 #include <gtest/gtest.h>
 
-#include "chunks.h"
+#include "harness/gpu/chunks.h"
 
 namespace sdb::gpu {
 namespace {

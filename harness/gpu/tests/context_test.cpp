@@ -3,9 +3,9 @@
 
 #include <cstdio>
 
-#include "gpu.h"
-#include "physical_device.h"
-#include "testing.h"
+#include "harness/gpu/gpu.h"
+#include "harness/gpu/physical_device.h"
+#include "harness/gpu/testing.h"
 
 namespace sdb::gpu {
 namespace {

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "gpu.h"
 #include "gpu_test_shaders.h"
-#include "testing.h"
+#include "harness/gpu/gpu.h"
+#include "harness/gpu/testing.h"
 
 namespace sdb::gpu {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <cstdlib>
 
-#include "gpu.h"
-#include "loader.h"
-#include "testing.h"
+#include "harness/gpu/gpu.h"
+#include "harness/gpu/loader.h"
+#include "harness/gpu/testing.h"
 
 namespace {
 const bool k_no_driver = [] {

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "gpu.h"
-#include "testing.h"
+#include "harness/gpu/gpu.h"
+#include "harness/gpu/testing.h"
 
 namespace sdb::gpu {
 namespace {

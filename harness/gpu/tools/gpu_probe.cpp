@@ -2,7 +2,7 @@
 // status 0 when a device is available, 1 when not.
 #include <cstdio>
 
-#include "device_info.h"
+#include "harness/gpu/device_info.h"
 
 int main(int argc, char** argv) {
   const sdb::gpu::DeviceInfo info = sdb::gpu::probe(argc > 1 ? argv[1] : "");

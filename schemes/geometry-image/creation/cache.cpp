@@ -1,4 +1,4 @@
-#include "cache.h"
+#include "schemes/geometry-image/creation/cache.h"
 
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>

@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "image.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

@@ -1,4 +1,4 @@
-#include "create.h"
+#include "schemes/geometry-image/creation/create.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "errors.h"
-#include "surface_sampler.h"
+#include "harness/core/errors.h"
+#include "schemes/geometry-image/creation/surface_sampler.h"
 
 namespace sdb::gim {
 

@@ -7,12 +7,12 @@
 #include <optional>
 #include <string>
 
-#include "cache.h"
-#include "control_mesh.h"
-#include "fit.h"
-#include "image.h"
-#include "parametrize.h"
-#include "triangle_mesh.h"
+#include "harness/core/control_mesh.h"
+#include "schemes/geometry-image/creation/cache.h"
+#include "schemes/geometry-image/creation/fit.h"
+#include "schemes/geometry-image/creation/parametrize.h"
+#include "schemes/geometry-image/creation/triangle_mesh.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim {
 

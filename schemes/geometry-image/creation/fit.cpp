@@ -1,4 +1,4 @@
-#include "fit.h"
+#include "schemes/geometry-image/creation/fit.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>

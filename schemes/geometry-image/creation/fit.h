@@ -14,8 +14,8 @@
 
 #include <vector>
 
-#include "image.h"
-#include "octahedral_map.h"
+#include "schemes/geometry-image/image.h"
+#include "schemes/geometry-image/octahedral_map.h"
 
 namespace sdb::gim {
 

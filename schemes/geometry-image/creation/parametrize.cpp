@@ -1,4 +1,4 @@
-#include "parametrize.h"
+#include "schemes/geometry-image/creation/parametrize.h"
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>

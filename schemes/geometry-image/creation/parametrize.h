@@ -29,7 +29,7 @@
 
 #include <vector>
 
-#include "triangle_mesh.h"
+#include "schemes/geometry-image/creation/triangle_mesh.h"
 
 namespace sdb::gim {
 

@@ -1,4 +1,4 @@
-#include "surface_sampler.h"
+#include "schemes/geometry-image/creation/surface_sampler.h"
 
 #include <embree3/rtcore.h>
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "triangle_mesh.h"
+#include "schemes/geometry-image/creation/triangle_mesh.h"
 
 namespace sdb::gim {
 

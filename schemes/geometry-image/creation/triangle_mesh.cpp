@@ -1,4 +1,4 @@
-#include "triangle_mesh.h"
+#include "schemes/geometry-image/creation/triangle_mesh.h"
 
 #include <algorithm>
 #include <bit>
@@ -7,8 +7,8 @@
 #include <map>
 #include <string>
 
-#include "errors.h"
-#include "facts.h"
+#include "harness/core/errors.h"
+#include "harness/mesh/facts.h"
 
 namespace sdb::gim {
 

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "control_mesh.h"
-#include "octahedral_map.h"
+#include "harness/core/control_mesh.h"
+#include "schemes/geometry-image/octahedral_map.h"
 
 namespace sdb::gim {
 

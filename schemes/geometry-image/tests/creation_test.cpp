@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "closed_mesh.h"
-#include "creation/parametrize.h"
-#include "octahedral_map.h"
-#include "test_support.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/creation/parametrize.h"
+#include "schemes/geometry-image/octahedral_map.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;

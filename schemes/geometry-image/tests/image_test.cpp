@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "closed_mesh.h"
-#include "facts.h"
-#include "octahedral_map.h"
-#include "test_support.h"
+#include "harness/mesh/facts.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/octahedral_map.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;

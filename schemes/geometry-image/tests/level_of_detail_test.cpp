@@ -4,10 +4,10 @@
 #include <cmath>
 #include <set>
 
-#include "displacement.h"
-#include "level_of_detail.h"
-#include "test_support.h"
-#include "watertight.h"
+#include "harness/validate/watertight.h"
+#include "schemes/geometry-image/displacement.h"
+#include "schemes/geometry-image/level_of_detail.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "control_mesh.h"
-#include "image.h"
-#include "limit_evaluator.h"
-#include "tessellation.h"
+#include "harness/core/control_mesh.h"
+#include "harness/core/tessellation.h"
+#include "harness/reference/limit_evaluator.h"
+#include "schemes/geometry-image/image.h"
 
 namespace sdb::gim::testing {
 

@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "closed_mesh.h"
-#include "osd_topology.h"
-#include "subdivision.h"
-#include "test_support.h"
+#include "harness/mesh/osd_topology.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/subdivision.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "closed_mesh.h"
-#include "geometry_image.h"
-#include "gpu.h"
-#include "test_support.h"
+#include "harness/gpu/gpu.h"
+#include "harness/mesh/acceptance.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/geometry_image.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;
@@ -15,9 +16,12 @@ using namespace sdb::gim::testing;
 
 namespace {
 
+// `parameters`: as the command line spells them after the scheme's name, e.g. ":fit=17".
 const Tessellation& run(const Scheme& scheme, const ControlMesh& mesh, Backend backend, int level,
-                        std::unique_ptr<Evaluation>& keep) {
-  keep = scheme.prepare(accept_mesh(mesh, scheme.info()), {backend, level, 0});
+                        std::unique_ptr<Evaluation>& keep, const std::string& parameters = "") {
+  RunRequest request = default_request(scheme.info(), backend, level);
+  request.parameters = Parameters::resolve(scheme.info().parameters, parse_scheme_spec(scheme.info().name + parameters));
+  keep = scheme.prepare(accept_mesh(mesh, scheme.info()), request);
   keep->execute();
   return keep->result();
 }
@@ -65,10 +69,10 @@ TEST(GeometryImageScheme, DeclaresWhatItIsAndRefusesMeshesItCannotTake) {
 
 TEST(GeometryImageScheme, EachPassPlanIsASchemeName) {
   EXPECT_EQ(make_geometry_image_scheme()->info().name, "geometry-image");
-  EXPECT_EQ(make_geometry_image_scheme({.plan = PassPlan::PerMask})->info().name, "geometry-image-permask");
+  EXPECT_EQ(make_geometry_image_scheme(PassPlan::PerMask)->info().name, "geometry-image-permask");
   EXPECT_EQ(geometry_image_scheme_name(PassPlan::Fused), "geometry-image");
   for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
-    const SchemeInfo info = make_geometry_image_scheme({.plan = plan})->info();
+    const SchemeInfo info = make_geometry_image_scheme(plan)->info();
     EXPECT_EQ(info.backends, (std::vector<Backend>{Backend::Cpu, Backend::CpuMt, Backend::Vulkan}));
   }
 }
@@ -107,7 +111,7 @@ TEST(GeometryImageScheme, SubdividesAnAnalyticImageIntoTheOpenedGrid) {
 TEST(GeometryImageScheme, CpuAndCpuMtGiveIdenticalNumbers) {
   const ControlMesh mesh = load_mesh("gim-ellipsoid-31");
   for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
-    const auto scheme = make_geometry_image_scheme({.fit_size = 0, .plan = plan});
+    const auto scheme = make_geometry_image_scheme(plan);
     std::unique_ptr<Evaluation> one, many;
     const Tessellation& a = run(*scheme, mesh, Backend::Cpu, 4, one);
     const Tessellation& b = run(*scheme, mesh, Backend::CpuMt, 4, many);
@@ -125,9 +129,9 @@ TEST(GeometryImageScheme, CpuAndCpuMtGiveIdenticalNumbers) {
 
 TEST(GeometryImageScheme, FitsAnImageToAMeshThatIsNotOne) {
   const Env cache("SUBDIVBENCH_CACHE", test_cache_dir().c_str());
-  const auto scheme = make_geometry_image_scheme({.fit_size = 17});
+  const auto scheme = make_geometry_image_scheme();
   std::unique_ptr<Evaluation> eval;
-  const Tessellation& t = run(*scheme, load_mesh("icosphere"), Backend::Cpu, 2, eval);
+  const Tessellation& t = run(*scheme, load_mesh("icosphere"), Backend::Cpu, 2, eval, ":fit=17");
   ASSERT_TRUE(t.reference);
   EXPECT_EQ(num_faces(*t.reference), 16 * 16);
   EXPECT_EQ(t.num_vertices(), 65u * 65u);
@@ -135,18 +139,19 @@ TEST(GeometryImageScheme, FitsAnImageToAMeshThatIsNotOne) {
   for (const Point3& p : t.positions) EXPECT_NEAR(std::hypot(p[0], p[1], p[2]), 1.0, 0.03);
 }
 
-TEST(GeometryImageScheme, FitSizeComesFromTheOptionsOrTheEnvironment) {
-  {
-    const Env unset("SUBDIVBENCH_GIM_SIZE", nullptr);
-    EXPECT_EQ(resolved_fit_size({}), kDefaultFitSize);
-    EXPECT_EQ(resolved_fit_size({.fit_size = 33}), 33);
-  }
-  {
-    const Env set("SUBDIVBENCH_GIM_SIZE", "129");
-    EXPECT_EQ(resolved_fit_size({}), 129);
-  }
-  for (const char* bad : {"64", "3", "x", "65x"}) {
-    const Env set("SUBDIVBENCH_GIM_SIZE", bad);
-    EXPECT_THROW(resolved_fit_size({}), InputError) << bad;
-  }
+// The fit size is a typed parameter on the request (`--scheme geometry-image:fit=129`), odd,
+// 5..1025, 65 by default; the estimate of the output follows it.
+TEST(GeometryImageScheme, FitSizeIsATypedParameter) {
+  const auto scheme = make_geometry_image_scheme();
+  const auto& declared = scheme->info().parameters;
+  ASSERT_EQ(declared.size(), 1u);
+  EXPECT_EQ(Parameters::defaults(declared).integer("fit"), kDefaultFitSize);
+  EXPECT_EQ(Parameters::resolve(declared, parse_scheme_spec("geometry-image:fit=129")).integer("fit"), 129);
+  for (const char* bad : {"geometry-image:fit=64", "geometry-image:fit=3", "geometry-image:fit=x", "geometry-image:fit=1027"})
+    EXPECT_THROW(Parameters::resolve(declared, parse_scheme_spec(bad)), InputError) << bad;
+  const ControlMesh ico = accept_mesh(load_mesh("icosphere"), scheme->info());
+  RunRequest request = default_request(scheme->info(), Backend::Cpu, 2);
+  EXPECT_EQ(scheme->estimated_triangles(ico, request), 2L * 256 * 256);
+  request.parameters = Parameters::resolve(declared, parse_scheme_spec("geometry-image:fit=17"));
+  EXPECT_EQ(scheme->estimated_triangles(ico, request), 2L * 64 * 64);
 }

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <cstdio>
 
-#include "closed_mesh.h"
-#include "creation/triangle_mesh.h"
-#include "deviation.h"
-#include "geometry_image.h"
-#include "limit_evaluator.h"
-#include "limit_comparison.h"
-#include "test_support.h"
-#include "watertight.h"
+#include "harness/reference/limit_evaluator.h"
+#include "harness/validate/deviation.h"
+#include "harness/validate/watertight.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/creation/triangle_mesh.h"
+#include "schemes/geometry-image/geometry_image.h"
+#include "schemes/geometry-image/tests/limit_comparison.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;
@@ -27,7 +27,7 @@ struct Subdivided {
 
 Subdivided subdivide(const GeometryImage& image, int level, Backend backend = Backend::Cpu) {
   static const auto scheme = make_geometry_image_scheme();
-  Subdivided s{scheme->prepare(closed_mesh(image, "g0", "test"), {backend, level, 0})};
+  Subdivided s{scheme->prepare(closed_mesh(image, "g0", "test"), default_request(scheme->info(), backend, level))};
   s.evaluation->execute();
   return s;
 }

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "analytic.h"
-#include "creation/create.h"
-#include "errors.h"
-#include "image.h"
-#include "manifest.h"
-#include "masks.h"
+#include "datasets/manifest.h"
+#include "harness/core/errors.h"
+#include "schemes/geometry-image/analytic.h"
+#include "schemes/geometry-image/creation/create.h"
+#include "schemes/geometry-image/image.h"
+#include "schemes/geometry-image/masks.h"
 
 namespace sdb::gim::testing {
 

@@ -6,13 +6,13 @@
 
 #include <cstdio>
 
-#include "analytic.h"
-#include "closed_mesh.h"
-#include "geometry_image.h"
-#include "limit_comparison.h"
-#include "test_support.h"
-#include "testing.h"
-#include "watertight.h"
+#include "harness/gpu/testing.h"
+#include "harness/validate/watertight.h"
+#include "schemes/geometry-image/analytic.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/geometry_image.h"
+#include "schemes/geometry-image/tests/limit_comparison.h"
+#include "schemes/geometry-image/tests/test_support.h"
 
 using namespace sdb;
 using namespace sdb::gim;
@@ -24,7 +24,7 @@ class GeometryImageVulkanSurface : public gpu::testing::VulkanTest {};
 
 std::unique_ptr<Evaluation> on_vulkan(const GeometryImage& image, int level) {
   static const auto scheme = make_geometry_image_scheme();
-  auto e = scheme->prepare(closed_mesh(image, "g0", "test"), {Backend::Vulkan, level, 0});
+  auto e = scheme->prepare(closed_mesh(image, "g0", "test"), default_request(scheme->info(), Backend::Vulkan, level));
   e->execute();
   return e;
 }

@@ -6,14 +6,15 @@
 #include <cmath>
 #include <cstdio>
 
-#include "analytic.h"
-#include "closed_mesh.h"
-#include "geometry_image.h"
-#include "limit_comparison.h"
-#include "subdivision.h"
-#include "test_support.h"
-#include "testing.h"
-#include "vulkan_subdivider.h"
+#include "harness/gpu/testing.h"
+#include "harness/mesh/acceptance.h"
+#include "schemes/geometry-image/analytic.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/geometry_image.h"
+#include "schemes/geometry-image/subdivision.h"
+#include "schemes/geometry-image/tests/limit_comparison.h"
+#include "schemes/geometry-image/tests/test_support.h"
+#include "schemes/geometry-image/vulkan_subdivider.h"
 
 using namespace sdb;
 using namespace sdb::gim;
@@ -197,11 +198,11 @@ TEST_F(GeometryImageVulkan, TimestampsArePresentAndOrdered) {
 TEST_F(GeometryImageVulkan, TheSchemeRunsOnVulkanWithBothPlans) {
   const ControlMesh mesh = load_mesh("gim-ellipsoid-31");
   for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
-    const auto scheme = make_geometry_image_scheme({.plan = plan});
+    const auto scheme = make_geometry_image_scheme(plan);
     EXPECT_EQ(scheme->info().name, plan == PassPlan::Fused ? "geometry-image" : "geometry-image-permask");
     EXPECT_FALSE(scheme->unsupported({Backend::Vulkan, 4, 0}));
-    auto cpu = scheme->prepare(accept_mesh(mesh, scheme->info()), {Backend::Cpu, 3, 0});
-    auto gpu = scheme->prepare(accept_mesh(mesh, scheme->info()), {Backend::Vulkan, 3, 0});
+    auto cpu = scheme->prepare(accept_mesh(mesh, scheme->info()), default_request(scheme->info(), Backend::Cpu, 3));
+    auto gpu = scheme->prepare(accept_mesh(mesh, scheme->info()), default_request(scheme->info(), Backend::Vulkan, 3));
     cpu->execute();
     gpu->execute();
     const Tessellation &a = cpu->result(), &b = gpu->result();

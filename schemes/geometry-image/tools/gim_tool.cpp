@@ -18,14 +18,15 @@
 #include <string>
 #include <vector>
 
-#include "closed_mesh.h"
-#include "creation/create.h"
-#include "creation/triangle_mesh.h"
-#include "deviation.h"
-#include "geometry_image.h"
-#include "manifest.h"
-#include "mesh_io.h"
-#include "osd_topology.h"
+#include "datasets/manifest.h"
+#include "harness/bench/statistics.h"
+#include "harness/mesh/mesh_io.h"
+#include "harness/mesh/osd_topology.h"
+#include "harness/validate/deviation.h"
+#include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/creation/create.h"
+#include "schemes/geometry-image/creation/triangle_mesh.h"
+#include "schemes/geometry-image/geometry_image.h"
 
 using namespace sdb;
 using namespace sdb::gim;
@@ -44,8 +45,7 @@ Timing time_ms(const std::function<void()>& work, int reps) {
     work();
     t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
-  std::sort(t.begin(), t.end());
-  return {t[t.size() / 2], t.front()};
+  return {median(t), *std::min_element(t.begin(), t.end())};
 }
 
 struct Vertex3 {
@@ -117,7 +117,7 @@ int hausdorff_table(const std::string& name, const std::vector<int>& sizes) {
     const CreatedImage made = creator.create(n);
     int level = 0;
     while (level_size(n, level) < 500) ++level;
-    auto eval = scheme->prepare(closed_mesh(made.image, "g0", ""), {Backend::Cpu, level, 0});
+    auto eval = scheme->prepare(closed_mesh(made.image, "g0", ""), default_request(scheme->info(), Backend::Cpu, level));
     eval->execute();
     const HausdorffReport h = hausdorff(eval->result(), input);
     std::printf("%s m=%d k=%d: Hausdorff %.4f (forward %.4f, backward %.4f; mean %.5f / %.5f) of the diagonal, fit %.0f ms\n",
@@ -147,11 +147,11 @@ int create(const std::string& name, const std::vector<int>& sizes) {
 
 // Median GPU time of every pass over `reps` frames (the vulkan evaluation's timestamps).
 void time_vulkan(const Scheme& scheme, const ControlMesh& mesh, int level, int reps, const char* plan) {
-  if (auto why = scheme.unsupported({Backend::Vulkan, level, 0})) {
+  if (auto why = scheme.unsupported(default_request(scheme.info(), Backend::Vulkan, level))) {
     std::printf("geometry-image %-8s vulkan: %s\n", plan, why->c_str());
     return;
   }
-  auto eval = scheme.prepare(mesh, {Backend::Vulkan, level, 0});
+  auto eval = scheme.prepare(mesh, default_request(scheme.info(), Backend::Vulkan, level));
   std::vector<std::vector<double>> per_pass;
   std::vector<std::string> labels;
   std::vector<double> kernel;
@@ -171,10 +171,6 @@ void time_vulkan(const Scheme& scheme, const ControlMesh& mesh, int level, int r
     kernel.push_back(t->kernel_ms);
     for (size_t i = 0; i < t->passes.size(); ++i) per_pass[i].push_back(t->passes[i].ms);
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   const double tris = static_cast<double>(eval->result().num_triangles());
   std::printf("geometry-image %-8s vulkan k=%d: kernel median %.3f ms, %.1f M tri/s; passes:", plan, level,
               median(kernel), tris / median(kernel) / 1e3);
@@ -185,9 +181,9 @@ void time_vulkan(const Scheme& scheme, const ControlMesh& mesh, int level, int r
 int time(const std::string& name, int level, int reps) {
   const ControlMesh mesh = load_mesh(name);
   for (PassPlan plan : {PassPlan::Fused, PassPlan::PerMask}) {
-    const auto scheme = make_geometry_image_scheme({.fit_size = 0, .plan = plan});
+    const auto scheme = make_geometry_image_scheme(plan);
     for (Backend b : {Backend::Cpu, Backend::CpuMt}) {
-      auto eval = scheme->prepare(mesh, {b, level, 0});
+      auto eval = scheme->prepare(mesh, default_request(scheme->info(), b, level));
       const Timing t = time_ms([&] { eval->execute(); }, reps);
       const double tris = static_cast<double>(eval->result().num_triangles());
       std::printf("geometry-image %-8s %-6s k=%d: median %.3f ms (min %.3f), %.0f triangles, %.1f M tri/s\n",

@@ -1,0 +1,44 @@
+// The deterministic gate: instructions executed by Evaluation::execute() under valgrind's
+// callgrind, for the fixed workloads of ci/gate.json, against recorded counts. valgrind is
+// spawned with an argument vector, never through a shell.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "harness/bench/run_spec.h"
+
+namespace sdb {
+
+struct CallgrindConfig {
+  std::vector<RunSpec> workloads;  // cpu rows only
+  double threshold = 0.02;
+};
+
+// The "callgrind" section of a gate configuration; InputError for a malformed file or workload.
+CallgrindConfig read_callgrind_config(const std::string& path);
+
+// What the child process runs (`subdivbench workload ...`): prepare untimed, then `iterations`
+// executions between callgrind's instrumentation start and stop. InputError for a bad spec.
+void run_callgrind_workload(const RunSpec& spec, int iterations);
+
+// Instructions of `iterations` executions of the workload, counted by a child
+// `valgrind --tool=callgrind <executable> workload ...`. InputError when valgrind fails.
+long callgrind_instructions(const RunSpec& spec, int iterations, const std::string& executable);
+
+struct CallgrindEntry {
+  std::string name;
+  double baseline = 0, current = 0, change = 0;
+  bool regression = false;
+};
+
+// Counts every workload; compares with `baseline` (name -> count) where it has the workload.
+std::vector<CallgrindEntry> callgrind_compare(const CallgrindConfig& config, const std::map<std::string, long>& counts,
+                                              const std::map<std::string, long>& baseline);
+
+// Reads / writes a callgrind baseline (a JSON object of name -> count). InputError on failure.
+std::map<std::string, long> read_callgrind_counts(const std::string& path);
+void write_callgrind_counts(const std::map<std::string, long>& counts, const std::string& path);
+
+}  // namespace sdb

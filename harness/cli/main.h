@@ -1,0 +1,9 @@
+// The subdivbench command line as a function, so that an executable with test-only schemes
+// (tests/CMakeLists.txt) runs the same verbs.
+#pragma once
+
+namespace sdb::cli {
+
+int main(int argc, char** argv);
+
+}  // namespace sdb::cli

@@ -1,0 +1,25 @@
+#include "harness/core/backend.h"
+
+namespace sdb {
+
+std::string_view to_string(Backend b) {
+  switch (b) {
+    case Backend::Cpu: return "cpu";
+    case Backend::CpuMt: return "cpu-mt";
+    case Backend::Vulkan: return "vulkan";
+  }
+  return "?";
+}
+
+const std::vector<Backend>& all_backends() {
+  static const std::vector<Backend> all = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
+  return all;
+}
+
+std::optional<Backend> parse_backend(std::string_view s) {
+  for (Backend b : all_backends())
+    if (s == to_string(b)) return b;
+  return std::nullopt;
+}
+
+}  // namespace sdb

@@ -1,0 +1,39 @@
+#include "harness/core/scheme.h"
+
+namespace sdb {
+
+std::string_view to_string(SchemeRole role) {
+  switch (role) {
+    case SchemeRole::Peer: return "peer";
+    case SchemeRole::Method: return "method";
+    case SchemeRole::Test: return "test";
+  }
+  return "?";
+}
+
+int segments_per_edge(LevelKind kind, int level) {
+  if (kind == LevelKind::Rate) return level - 1;
+  return level >= 0 && level < 31 ? 1 << level : -1;  // -1: no such depth
+}
+
+std::optional<int> level_for_segments(LevelKind kind, int segments) {
+  if (segments < 1) return std::nullopt;
+  if (kind == LevelKind::Rate) return segments + 1;
+  for (int k = 0; k < 31; ++k)
+    if ((1 << k) == segments) return k;
+  return std::nullopt;
+}
+
+RunRequest default_request(const SchemeInfo& info, Backend backend, int level, int threads) {
+  return {backend, level, threads, Parameters::defaults(info.parameters)};
+}
+
+long Scheme::estimated_triangles(const ControlMesh& accepted, const RunRequest& request) const {
+  const SchemeInfo& i = info();
+  const long seg = segments_per_edge(i.level_kind, request.level);
+  long doubled = 0;  // twice the count, to keep it integral
+  for (int n : accepted.face_sizes) doubled += n == 4 ? 4 : (n == 3 && i.reference == SubdivisionRule::Loop ? 2 : n);
+  return doubled * seg * seg / 2;
+}
+
+}  // namespace sdb

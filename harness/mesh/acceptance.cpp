@@ -1,0 +1,34 @@
+#include "harness/mesh/acceptance.h"
+
+#include "harness/core/errors.h"
+#include "harness/mesh/facts.h"
+#include "harness/mesh/quadrangulate.h"
+
+namespace sdb {
+
+ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
+  const MeshRequirements& req = info.accepts;
+  auto refuse = [&](const std::string& why) -> void {
+    throw InputError(mesh.source, info.name + " cannot take mesh '" + mesh.name + "': " + why);
+  };
+  if (req.manifold) require_manifold(mesh, info.name);
+  const MeshFacts facts = compute_facts(mesh);
+  if (req.closed && facts.boundary_edges > 0)
+    refuse("it has " + std::to_string(facts.boundary_edges) + " boundary edges and the scheme needs a closed mesh");
+  if (req.genus0 && facts.genus != 0) refuse("genus " + std::to_string(facts.genus) + ", the scheme needs genus 0");
+  if (req.genus0 && facts.components != 1) refuse(std::to_string(facts.components) + " components, the scheme needs one");
+  if (!req.creases && (facts.creased_edges > 0 || !mesh.corners.empty()))
+    refuse("it has crease or corner tags, which the scheme does not honour");
+  if (!req.holes && !mesh.holes.empty()) refuse("it has hole tags, which the scheme does not honour");
+  using F = MeshRequirements::Faces;
+  if (req.faces == F::TrianglesOnly && !facts.all_triangles) refuse("the scheme takes triangle meshes only");
+  if (req.faces == F::QuadsOnly && !facts.all_quads) {
+    if (!req.quadrangulate) refuse("the scheme takes quad meshes only");
+    ControlMesh quads = quadrangulate(mesh);
+    quads.warnings.push_back("quadrangulated by one Catmull-Clark step for " + info.name);
+    return quads;
+  }
+  return mesh;
+}
+
+}  // namespace sdb

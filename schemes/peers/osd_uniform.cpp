@@ -1,0 +1,112 @@
+#include <opensubdiv/far/primvarRefiner.h>
+
+#include <cmath>
+
+#include "harness/core/errors.h"
+#include "harness/reference/surface_normal.h"
+#include "harness/reference/uniform_coords.h"
+#include "schemes/peers/peers.h"
+
+namespace sdb {
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+
+class OsdUniformEvaluation final : public Evaluation {
+ public:
+  OsdUniformEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int level)
+      : control_(mesh), refiner_(make_refiner(mesh, rule)), level_(level) {
+    Far::TopologyRefiner::UniformOptions options(level);
+    options.fullTopologyInLastLevel = true;
+    refiner_->RefineUniform(options);
+    const Far::TopologyLevel& last = refiner_->GetLevel(level);
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+      if (last.IsFaceHole(f)) continue;
+      Far::ConstIndexArray fv = last.GetFaceVertices(f);
+      for (int k = 1; k + 1 < fv.size(); ++k)
+        out_.triangles.insert(out_.triangles.end(), {uint32_t(fv[0]), uint32_t(fv[k]), uint32_t(fv[k + 1])});
+    }
+    out_.coords = uniform_vertex_coords(*refiner_, rule, level);
+    levels_.resize(level + 1);
+    for (int l = 0; l <= level; ++l) levels_[l].resize(refiner_->GetLevel(l).GetNumVertices());
+    limit_.resize(last.GetNumVertices());
+    tan_u_.resize(last.GetNumVertices());
+    tan_v_.resize(last.GetNumVertices());
+    out_.positions.resize(last.GetNumVertices());
+    out_.normals.resize(last.GetNumVertices());
+  }
+
+  void execute() override {
+    for (size_t v = 0; v < control_.positions.size(); ++v)
+      for (int k = 0; k < 3; ++k) levels_[0][v].p[k] = control_.positions[v][k];
+    Far::PrimvarRefiner primvar(*refiner_);
+    for (int l = 1; l <= level_; ++l) {
+      PrimvarPoint* dst = levels_[l].data();  // Far takes destinations by non-const reference
+      primvar.Interpolate(l, levels_[l - 1].data(), dst);
+    }
+    const std::vector<PrimvarPoint>& limit = limit_;
+    PrimvarPoint *pos = limit_.data(), *du = tan_u_.data(), *dv = tan_v_.data();
+    primvar.Limit(levels_[level_].data(), pos, du, dv);
+    for (size_t v = 0; v < limit.size(); ++v) {
+      out_.positions[v] = {limit[v].p[0], limit[v].p[1], limit[v].p[2]};
+      out_.normals[v] = unit_cross(tan_u_[v].p, tan_v_[v].p);
+    }
+  }
+
+  const Tessellation& result() override { return out_; }
+  size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+
+ private:
+  const ControlMesh control_;
+  std::unique_ptr<Far::TopologyRefiner> refiner_;
+  int level_;
+  std::vector<std::vector<PrimvarPoint>> levels_;
+  std::vector<PrimvarPoint> limit_;
+  std::vector<PrimvarPoint> tan_u_, tan_v_;
+  Tessellation out_;
+};
+
+class OsdUniform final : public Scheme {
+ public:
+  explicit OsdUniform(SubdivisionRule rule) : rule_(rule) {
+    const bool loop = rule == SubdivisionRule::Loop;
+    info_.name = loop ? "osd-uniform-loop" : "osd-uniform";
+    info_.paper = "peer: OpenSubdiv 3.5 Far uniform refinement + PrimvarRefiner::Limit";
+    info_.description = loop ? "Loop uniform refinement to depth k, limit projection"
+                             : "Catmull-Clark uniform refinement to depth k, limit projection";
+    info_.reference = rule;
+    info_.role = SchemeRole::Peer;
+    // Catmull-Clark: exact (1e-7 of the diagonal) once the depth exceeds every semi-sharp crease,
+    // which Far's limit masks treat as infinitely sharp below it (6% of the diagonal on the
+    // creased cube at depth 1): no bound, the figures are reported. Loop: exact.
+    if (loop) info_.bound = {1e-5, 0.05};
+    // Loop has no rate peer yet (osd-bfr is Catmull-Clark); osd-uniform meets osd-bfr at 2^k segments.
+    info_.peer = loop ? "" : "osd-bfr";
+    info_.level_kind = LevelKind::Depth;
+    info_.backends = {Backend::Cpu};  // PrimvarRefiner is serial by design
+    info_.default_levels = {1, 2, 3, 4};
+    info_.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::Any;
+    info_.accepts.manifold = false;  // OpenSubdiv takes non-manifold topology
+    info_.accepts.creases = true;
+    info_.accepts.holes = true;
+  }
+  const SchemeInfo& info() const override { return info_; }
+  std::optional<std::string> unsupported(const RunRequest& r) const override {
+    if (r.level < 0 || r.level > 8) return "depth must be 0..8";
+    if (r.backend != Backend::Cpu) return "OpenSubdiv's PrimvarRefiner runs on one thread only";
+    return std::nullopt;
+  }
+  std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
+    return std::make_unique<OsdUniformEvaluation>(mesh, rule_, r.level);
+  }
+
+ private:
+  SubdivisionRule rule_;
+  SchemeInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scheme> make_osd_uniform(SubdivisionRule rule) { return std::make_unique<OsdUniform>(rule); }
+
+}  // namespace sdb

@@ -1,0 +1,165 @@
+// The peers against the reference and each other (what harness/reference/README.md reports).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <tuple>
+
+#include "datasets/generators.h"
+#include "datasets/manifest.h"
+#include "harness/core/errors.h"
+#include "harness/mesh/acceptance.h"
+#include "harness/mesh/facts.h"
+#include "harness/mesh/quadrangulate.h"
+#include "harness/reference/limit_evaluator.h"
+#include "harness/validate/deviation.h"
+#include "harness/validate/watertight.h"
+#include "schemes/peers/peers.h"
+
+using namespace sdb;
+
+namespace {
+
+const Scheme& peer(const std::string& name) {
+  static const auto peers = make_peer_schemes();
+  for (const auto& p : peers)
+    if (p->info().name == name) return *p;
+  throw std::logic_error("no peer " + name);
+}
+
+Tessellation run_peer(const std::string& name, const ControlMesh& mesh, int level, Backend b = Backend::Cpu) {
+  const Scheme& s = peer(name);
+  const ControlMesh accepted = accept_mesh(mesh, s.info());
+  auto e = s.prepare(accepted, {b, level, 0, Parameters::defaults(s.info().parameters)});
+  e->execute();
+  Tessellation t = e->result();
+  if (!t.reference) t.reference = std::make_shared<ControlMesh>(accepted);
+  return t;
+}
+
+bool corpus_present() { return corpus_dir().has_value(); }
+
+double diag(const ControlMesh& m) { return bounds_of(m.positions).diagonal(); }
+
+}  // namespace
+
+// On an all-regular mesh the limit is a bicubic B-spline: the three peers and the reference agree
+// to float precision at the same SurfaceCoord.
+TEST(Peers, AgreeWithTheReferenceOnTheRegularTorus) {
+  const ControlMesh torus = gen::torus(12, 20);
+  const LimitEvaluator ref(torus, SubdivisionRule::CatmullClark);
+  for (const auto& [name, level] : std::vector<std::pair<std::string, int>>{
+           {"osd-uniform", 3}, {"osd-bfr", 9}, {"embree-subdiv", 9}}) {
+    const DeviationReport d = measure_deviation(run_peer(name, torus, level), ref);
+    EXPECT_LE(d.pos_max_rel_diag, 1e-5) << name;
+    EXPECT_LE(d.normal_max_deg, 1e-2) << name;
+    EXPECT_GT(d.vertices, 0) << name;
+  }
+}
+
+// Uniform refinement tracks SurfaceCoords through n-gon sub-faces and triangles (Spot has both):
+// osd-uniform's limit points sit on the reference at their coords.
+TEST(Peers, UniformCoordsLandOnTheLimitOfSpot) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const ControlMesh spot = load_mesh("crane/spot_control");
+  const LimitEvaluator ref(spot, SubdivisionRule::CatmullClark);
+  for (int level : {1, 2, 3}) {
+    const DeviationReport d = measure_deviation(run_peer("osd-uniform", spot, level), ref);
+    EXPECT_LE(d.pos_max_rel_diag, 1e-5) << "level " << level;
+    EXPECT_LE(d.normal_max_deg, 0.05) << "level " << level;
+  }
+  // osd-bfr evaluates the n-gons through Bfr's sub-face parametrization: same surface.
+  const DeviationReport b = measure_deviation(run_peer("osd-bfr", spot, 5), ref);
+  EXPECT_LE(b.pos_max_rel_diag, 1e-4);
+}
+
+TEST(Peers, LoopUniformMatchesTheLoopLimit) {
+  const ControlMesh ico = gen::icosphere(1);
+  const LimitEvaluator ref(ico, SubdivisionRule::Loop);
+  const DeviationReport d = measure_deviation(run_peer("osd-uniform-loop", ico, 3), ref);
+  EXPECT_LE(d.pos_max_rel_diag, 1e-5);
+  EXPECT_LE(d.normal_max_deg, 0.05);
+}
+
+// Uniform refinement + PrimvarRefiner::Limit is exact only once the depth exceeds every
+// semi-sharp crease (Far's limit masks treat sharpness left at the last level as infinite); these
+// shapes have sharpness up to 5, so depth 6.
+TEST(Peers, OsdUniformHonoursCreasesAndHolesBeyondTheirSharpness) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  for (const char* name : {"opensubdiv/catmark_cube_creases1", "opensubdiv/catmark_hole_test1",
+                           "opensubdiv/catmark_edgecorner", "opensubdiv/catmark_cube_corner4"}) {
+    const ControlMesh m = load_mesh(name);
+    EXPECT_LE(measure_deviation(run_peer("osd-uniform", m, 6), LimitEvaluator(m, SubdivisionRule::CatmullClark))
+                  .pos_max_rel_diag,
+              1e-5)
+        << name;
+  }
+  // Below that depth the peer's error is real and large: the reason for the rule above.
+  const ControlMesh creased = load_mesh("opensubdiv/catmark_cube_creases1");
+  EXPECT_GT(measure_deviation(run_peer("osd-uniform", creased, 3), LimitEvaluator(creased, SubdivisionRule::CatmullClark))
+                .pos_max_rel_diag,
+            1e-3);
+  // Chaikin creases: Far's uniform path and Bfr disagree by a steady ~4.5e-4 of the diagonal at
+  // depths 5..7 (measured; Bfr matches the reference to 1e-7). Kept as a bound, reported in README.
+  const ControlMesh chaikin = load_mesh("opensubdiv/catmark_chaikin1");
+  const LimitEvaluator ref(chaikin, SubdivisionRule::CatmullClark);
+  EXPECT_LE(measure_deviation(run_peer("osd-uniform", chaikin, 6), ref).pos_max_rel_diag, 1e-3);
+  EXPECT_LE(measure_deviation(run_peer("osd-bfr", chaikin, 9), ref).pos_max_rel_diag, 1e-6);
+}
+
+// osd-bfr raises Bfr's approximation level to what its rate samples, so it lands on the limit
+// even next to high-valence vertices (Bfr's default level 2 misses by up to 1e-2 of the diagonal).
+// The bound is float evaluation (1.5e-6 measured at valence 64) under the 1e-5 used throughout.
+TEST(Peers, OsdBfrIsExactAtItsSamplesNearExtraordinaryVertices) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  for (const char* name : {"opensubdiv/catmark_hole_test1", "opensubdiv/catmark_pole64", "crane/blub_control"})
+    for (int rate : {5, 17, 33}) {
+      const ControlMesh m = load_mesh(name);
+      EXPECT_LE(measure_deviation(run_peer("osd-bfr", m, rate), LimitEvaluator(m, SubdivisionRule::CatmullClark))
+                    .pos_max_rel_diag,
+                1e-5)
+          << name << " N=" << rate;
+    }
+}
+
+// One thread against all, closed inputs giving closed surfaces: the conformance suite
+// (conformance_test.cpp) checks them for every peer.
+
+namespace {
+
+// The largest distance between two tessellations at the SurfaceCoords they share, over the
+// diagonal (depth 3 and rate 9 sample the same ptex points: multiples of 1/8).
+double mutual_distance(const Tessellation& a, const Tessellation& b, const ControlMesh& mesh, long* shared) {
+  std::map<std::tuple<uint32_t, float, float>, Point3> at;
+  for (size_t i = 0; i < a.coords.size(); ++i) at[{a.coords[i].face, a.coords[i].u, a.coords[i].v}] = a.positions[i];
+  double worst = 0;
+  *shared = 0;
+  for (size_t i = 0; i < b.coords.size(); ++i) {
+    auto it = at.find({b.coords[i].face, b.coords[i].u, b.coords[i].v});
+    if (it == at.end()) continue;
+    ++*shared;
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += std::pow(double(it->second[k]) - b.positions[i][k], 2);
+    worst = std::max(worst, std::sqrt(d2));
+  }
+  return worst / diag(mesh);
+}
+
+}  // namespace
+
+// Issue 3: osd-uniform and osd-bfr agree with each other at matching SurfaceCoords: to float
+// precision on the regular torus, and on Spot (quadrangulated) to the measured 1e-6 of the
+// diagonal (measured 1.4e-7 over 46,850 shared points; both exact there up to float).
+TEST(Peers, UniformAndBfrAgreeAtMatchingSurfaceCoords) {
+  long shared = 0;
+  const ControlMesh torus = gen::torus(12, 20);
+  EXPECT_LE(mutual_distance(run_peer("osd-uniform", torus, 3), run_peer("osd-bfr", torus, 9), torus, &shared), 1e-5);
+  EXPECT_EQ(shared, 12 * 20 * 81 - 12 * 20 * (81 - 64)) << "every uniform vertex has a Bfr twin";
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const ControlMesh spot = quadrangulate(load_mesh("crane/spot_control"));
+  const double d = mutual_distance(run_peer("osd-uniform", spot, 3), run_peer("osd-bfr", spot, 9), spot, &shared);
+  std::printf("osd-uniform depth 3 vs osd-bfr N=9 on quadrangulated Spot: %.3g of the diagonal over %ld points\n", d, shared);
+  EXPECT_GT(shared, 40000);
+  EXPECT_LE(d, 1e-6);
+}
