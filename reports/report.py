@@ -116,7 +116,7 @@ def rate_plots(rows, plot_dir):
 
 def deviation_plot(rows, plot_dir):
     pts = [(f"{r['scheme']}/{r['backend']}/{r['mesh']}/{r['level']}", r["deviation"]["pos_max_pct"],
-            r["deviation"]["pos_p95_pct"]) for r in rows if r.get("deviation")]
+            r["deviation"]["pos_p95_pct"]) for r in rows if r.get("deviation") and r["deviation"].get("pos_max_pct") is not None]
     if not pts:
         return None
     pts = pts[:60]

@@ -77,6 +77,25 @@ TEST(Cli, ListBackendsWithoutAVulkanDriverIsNotAnError) {
   EXPECT_NE(r.out.find("cpu      available"), std::string::npos) << r.out;
 }
 
+// The opengl backend (OpenSubdiv's GL compute peer): a headless EGL context where one can be made,
+// else reported unavailable with the reason, exit 0; its rows run where it is available.
+TEST(Cli, OpenGlBackendRunsOrIsReportedUnavailable) {
+  const auto none = run_cli("list backends", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_NE(none.out.find("opengl   unavailable"), std::string::npos) << none.out;
+  const auto r = run_cli("list backends");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  if (r.out.find("opengl   available") == std::string::npos) GTEST_SKIP() << "no OpenGL context here:\n" << r.out;
+  const auto row = run_cli("validate --scheme osd-glcompute --mesh pole8 --level 2 --backend opengl --rays 20000 --json");
+  ASSERT_EQ(row.exit_code, 0) << row.err;
+  for (const char* key : {"\"backend\": \"opengl\"", "\"ray_cracks\": 0", "\"open_edges\": 0", "\"status\": \"ok\"",
+                          "\"gpu_time_ms\"", "GLComputeEvaluator::EvalStencils", "\"peer\": \"osd-stencil\""})
+    EXPECT_NE(row.out.find(key), std::string::npos) << key << "\n" << row.out;
+  const auto cpu = run_cli("validate --scheme osd-glcompute --mesh pole8 --level 2 --backend cpu");
+  EXPECT_EQ(cpu.exit_code, 2) << "a backend the scheme does not declare is bad usage";
+  EXPECT_NE(cpu.err.find("osd-glcompute runs on opengl only"), std::string::npos) << cpu.err;
+}
+
 // A scheme that cannot take a mesh refuses it with the file and line, exit code 2.
 TEST(Cli, SchemeRefusesNonManifoldMeshWithFileAndLine) {
   const fs::path p = write_file("fan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");

@@ -78,7 +78,7 @@ void run_callgrind_workload(const RunSpec& spec, int iterations) {
   const ResolvedScheme r = resolve_scheme(spec.scheme);
   const auto mesh = ctx.accepted(spec.mesh, *r.scheme);
   const RunRequest request{Backend::Cpu, spec.level, 0, r.parameters};
-  if (auto why = r.scheme->unsupported(request)) throw InputError(spec.name(), *why);
+  if (auto why = declined(*r.scheme, request)) throw InputError(spec.name(), *why);
   auto eval = r.scheme->prepare(*mesh, request);
   CALLGRIND_START_INSTRUMENTATION;  // count execute() only, not loading or prepare()
   for (int i = 0; i < iterations; ++i) execute_on(*eval, Backend::Cpu);

@@ -62,7 +62,7 @@ std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file) 
     return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
   }
   const double bw = row.backend == Backend::CpuMt    ? file.machine.write_bandwidth_mt_gbs
-                    : row.backend == Backend::Vulkan ? file.machine.gpu_write_bandwidth_gbs
+                    : is_gpu(row.backend)            ? file.machine.gpu_write_bandwidth_gbs
                                                      : file.machine.write_bandwidth_gbs;
   if (bw <= 0) return std::nullopt;
   Normalised n{{}, "bandwidth probe"};

@@ -1,4 +1,5 @@
 #include "harness/bench/machine.h"
+#include "harness/gl/context.h"
 
 #include "harness/gpu/device_info.h"
 #include "harness/gpu/gpu.h"
@@ -48,14 +49,18 @@ double memory_gib() {
 
 }  // namespace
 
-MachineInfo describe_machine(bool probe_vulkan) {
+MachineInfo describe_machine(bool probe_devices) {
   MachineInfo m;
   m.cpu_model = cpu_model();
   m.cores = static_cast<int>(std::thread::hardware_concurrency());
   m.memory_gib = memory_gib();
   m.compiler = std::string("g++ ") + __VERSION__;
   m.build_type = SDB_BUILD_TYPE;
-  if (const gpu::DeviceInfo vk = probe_vulkan ? gpu::probe() : gpu::DeviceInfo{}; vk.available) {
+  if (const gl::DeviceInfo g = probe_devices ? gl::probe() : gl::DeviceInfo{}; g.available) {
+    m.opengl_renderer = g.renderer;
+    m.opengl_version = g.version;
+  }
+  if (const gpu::DeviceInfo vk = probe_devices ? gpu::probe() : gpu::DeviceInfo{}; vk.available) {
     m.vulkan_device = vk.name;
     m.vulkan_driver = vk.driver_name + " " + vk.driver_info + " (" + vk.driver_version + ")";
     m.vulkan_api = vk.api_version;

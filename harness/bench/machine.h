@@ -5,9 +5,9 @@
 
 namespace sdb {
 
-// CPU, memory, compiler, build type, git commit, and (probe_vulkan) the Vulkan device a run
-// would use; the probe loads the driver, which costs a lavapipe start-up its LLVM.
-MachineInfo describe_machine(bool probe_vulkan = true);
+// CPU, memory, compiler, build type, git commit, and (probe_devices) the Vulkan device and the
+// OpenGL context a run would use; the probes load the drivers, which costs llvmpipe its LLVM.
+MachineInfo describe_machine(bool probe_devices = true);
 
 // Achievable write bandwidth in GB/s: sequential stores over a buffer several times the last-level
 // cache, best of a few passes; `threads` > 1 splits the buffer across TBB workers.

@@ -27,6 +27,10 @@ struct ResolvedScheme {
 // InputError for an unknown scheme or a bad parameter.
 ResolvedScheme resolve_scheme(const std::string& spelled);
 
+// Why a request does not run: the scheme's own reason (Scheme::unsupported), else a backend it
+// does not declare; nullopt when it runs.
+std::optional<std::string> declined(const Scheme& scheme, const RunRequest& request);
+
 // The backend a row on `backend` reads its peer's row from: the same one where the peer has it,
 // else the peer's last (fastest) CPU backend; nullopt without a peer.
 std::optional<Backend> peer_backend_for(const SchemeInfo& info, Backend backend);

@@ -6,6 +6,7 @@
 #include "datasets/manifest.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/gl/context.h"
 #include "harness/gpu/device_info.h"
 
 namespace sdb {
@@ -38,6 +39,7 @@ std::vector<RunSpec> headline_runs() {
 std::vector<Backend> available_backends() {
   std::vector<Backend> b = {Backend::Cpu, Backend::CpuMt};
   if (gpu::probe().available) b.push_back(Backend::Vulkan);
+  if (gl::probe().available) b.push_back(Backend::OpenGl);
   return b;
 }
 
@@ -65,7 +67,7 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
   std::vector<Backend> backends;
   for (const auto& b : sel.backends) {
     auto parsed = parse_backend(b);
-    if (!parsed) throw InputError(b, "no such backend (cpu, cpu-mt, vulkan)");
+    if (!parsed) throw InputError(b, "no such backend (" + backend_names() + ")");
     backends.push_back(*parsed);
   }
   const std::vector<Backend> available = available_backends();

@@ -78,12 +78,17 @@ void to_json(json& j, const RunRow& r) {
     for (const auto& p : r.gpu_passes) passes.push_back({{"label", p.label}, {"ms", p.ms}});
     j["gpu_passes"] = passes;
   }
-  if (r.deviation.measured) {
-    const DeviationFigures& d = r.deviation;
+  const DeviationFigures& d = r.deviation;
+  if (d.measured) {
     j["deviation"] = {{"pos_max_pct", d.pos_max_pct},       {"pos_mean_pct", d.pos_mean_pct},
                       {"pos_rms_pct", d.pos_rms_pct},       {"pos_p95_pct", d.pos_p95_pct},
                       {"pos_max_rel_diag", d.pos_max_rel_diag}, {"normal_max_deg", d.normal_max_deg},
                       {"normal_mean_deg", d.normal_mean_deg},   {"hausdorff_rel", d.hausdorff_rel}};
+  } else if (d.hausdorff_rel >= 0) {
+    // No SurfaceCoords: the distance to the limit at the same point is not defined, Hausdorff is.
+    j["deviation"] = {{"pos_max_pct", nullptr},  {"pos_mean_pct", nullptr},   {"pos_rms_pct", nullptr},
+                      {"pos_p95_pct", nullptr},  {"pos_max_rel_diag", nullptr}, {"normal_max_deg", nullptr},
+                      {"normal_mean_deg", nullptr}, {"hausdorff_rel", d.hausdorff_rel}};
   } else {
     j["deviation"] = nullptr;
   }
@@ -118,12 +123,15 @@ void from_json(const json& j, RunRow& r) {
   }
   if (j.contains("deviation") && !j["deviation"].is_null()) {
     const json& d = j["deviation"];
-    r.deviation.measured = true;
-    r.deviation.pos_max_pct = d.value("pos_max_pct", 0.0), r.deviation.pos_mean_pct = d.value("pos_mean_pct", 0.0);
-    r.deviation.pos_rms_pct = d.value("pos_rms_pct", 0.0), r.deviation.pos_p95_pct = d.value("pos_p95_pct", 0.0);
-    r.deviation.pos_max_rel_diag = d.value("pos_max_rel_diag", 0.0);
-    r.deviation.normal_max_deg = d.value("normal_max_deg", 0.0), r.deviation.normal_mean_deg = d.value("normal_mean_deg", 0.0);
+    r.deviation.measured = d.contains("pos_max_pct") && !d["pos_max_pct"].is_null();
     r.deviation.hausdorff_rel = d.value("hausdorff_rel", -1.0);
+    if (r.deviation.measured) {
+      r.deviation.pos_max_pct = d.value("pos_max_pct", 0.0), r.deviation.pos_mean_pct = d.value("pos_mean_pct", 0.0);
+      r.deviation.pos_rms_pct = d.value("pos_rms_pct", 0.0), r.deviation.pos_p95_pct = d.value("pos_p95_pct", 0.0);
+      r.deviation.pos_max_rel_diag = d.value("pos_max_rel_diag", 0.0);
+      r.deviation.normal_max_deg = d.value("normal_max_deg", 0.0);
+      r.deviation.normal_mean_deg = d.value("normal_mean_deg", 0.0);
+    }
   }
   r.status = status_from(j), r.message = j.value("message", "");
 }
@@ -131,6 +139,7 @@ void from_json(const json& j, RunRow& r) {
 void to_json(json& j, const MachineInfo& m) {
   j = {{"cpu_model", m.cpu_model},       {"cores", m.cores},
        {"memory_gib", m.memory_gib},     {"vulkan_device", m.vulkan_device},
+       {"opengl_renderer", m.opengl_renderer}, {"opengl_version", m.opengl_version},
        {"vulkan_driver", m.vulkan_driver}, {"vulkan_api", m.vulkan_api},
        {"compiler", m.compiler},         {"build_type", m.build_type},
        {"git_commit", m.git_commit},     {"write_bandwidth_gbs", m.write_bandwidth_gbs},
@@ -140,6 +149,7 @@ void from_json(const json& j, MachineInfo& m) {
   m.cpu_model = j.value("cpu_model", ""), m.cores = j.value("cores", 0), m.memory_gib = j.value("memory_gib", 0.0);
   m.vulkan_device = j.value("vulkan_device", ""), m.vulkan_driver = j.value("vulkan_driver", "");
   m.vulkan_api = j.value("vulkan_api", "");
+  m.opengl_renderer = j.value("opengl_renderer", ""), m.opengl_version = j.value("opengl_version", "");
   m.compiler = j.value("compiler", ""), m.build_type = j.value("build_type", ""), m.git_commit = j.value("git_commit", "");
   m.write_bandwidth_gbs = j.value("write_bandwidth_gbs", 0.0);
   m.write_bandwidth_mt_gbs = j.value("write_bandwidth_mt_gbs", 0.0);

@@ -71,6 +71,7 @@ struct MachineInfo {
   int cores = 0;
   double memory_gib = 0;
   std::string vulkan_device, vulkan_driver, vulkan_api;
+  std::string opengl_renderer, opengl_version;  // the opengl backend's context (EGL)
   std::string compiler, build_type, git_commit;
   double write_bandwidth_gbs = 0;     // one thread, streaming store
   double write_bandwidth_mt_gbs = 0;  // all threads

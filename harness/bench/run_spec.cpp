@@ -26,7 +26,7 @@ RunSpec parse_run_name(const std::string& name) {
   RunSpec spec;
   spec.scheme = name.substr(0, first);
   const auto backend = parse_backend(std::string_view(name).substr(first + 1, second - first - 1));
-  if (!backend) throw InputError(name, "no such backend '" + name.substr(first + 1, second - first - 1) + "' (cpu, cpu-mt, vulkan)");
+  if (!backend) throw InputError(name, "no such backend '" + name.substr(first + 1, second - first - 1) + "' (" + backend_names() + ")");
   spec.backend = *backend;
   spec.mesh = name.substr(second + 1, last - second - 1);
   const char* begin = name.data() + last + 1;

@@ -11,6 +11,7 @@
 #include "datasets/manifest.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/gl/context.h"
 #include "harness/gpu/device_info.h"
 #include "harness/mesh/facts.h"
 
@@ -133,6 +134,8 @@ int list_backends_cmd() {
   const gpu::DeviceInfo vk = gpu::probe();
   std::printf("%-8s %-12s %s\n", "vulkan", vk.available ? "available" : "unavailable",
               vk.available ? gpu::summary(vk).c_str() : vk.reason.c_str());
+  const gl::DeviceInfo g = gl::probe();
+  std::printf("%-8s %-12s %s\n", "opengl", g.available ? "available" : "unavailable", gl::summary(g).c_str());
   return 0;
 }
 

@@ -62,8 +62,8 @@ MeasureOptions measure_options(const RunOptions& opts) {
 
 int validate(const RunOptions& opts) {
   auto backend = parse_backend(opts.backend);
-  if (!backend) throw InputError(opts.backend, "no such backend (cpu, cpu-mt, vulkan)");
-  MeasureContext ctx(describe_machine(*backend == Backend::Vulkan));
+  if (!backend) throw InputError(opts.backend, "no such backend (" + backend_names() + ")");
+  MeasureContext ctx(describe_machine(is_gpu(*backend)));
   MeasureOptions m = measure_options(opts);
   m.time = false;
   m.deviation_ply = opts.deviation_ply;
@@ -81,6 +81,7 @@ void print_machine(const ResultsFile& results, size_t runs) {
   std::printf("%zu runs; machine: %s, %d cores, write bandwidth %.1f GB/s (1 thread), %.1f GB/s (all)", runs,
               m.cpu_model.c_str(), m.cores, m.write_bandwidth_gbs, m.write_bandwidth_mt_gbs);
   if (!m.vulkan_device.empty()) std::printf(", %s %.2f GB/s", m.vulkan_device.c_str(), m.gpu_write_bandwidth_gbs);
+  if (!m.opengl_renderer.empty()) std::printf(", OpenGL: %s", m.opengl_renderer.c_str());
   std::printf("\n");
 }
 
@@ -120,7 +121,7 @@ void add_selection(CLI::App* cmd, RunOptions& opts) {
   cmd->add_option("--scheme", opts.schemes,
                   "scheme name, with parameters as name:key=value[,key=value] (repeatable; default: all)");
   cmd->add_option("--mesh", opts.meshes, "mesh name or path (repeatable; default: the curated set, see README)");
-  cmd->add_option("--backend", opts.backends, "cpu | cpu-mt | vulkan (repeatable; default: all available)");
+  cmd->add_option("--backend", opts.backends, "cpu | cpu-mt | vulkan | opengl (repeatable; default: all available)");
   cmd->add_option("--level", opts.levels, "depth k or rate N (repeatable; default: the scheme's levels)");
   cmd->add_flag("--all", opts.all_meshes, "every built-in and every real corpus mesh instead of the curated set");
   cmd->add_flag("--all-corpus", opts.all_corpus, "--all, and OpenSubdiv's regression shapes too");
@@ -134,7 +135,7 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   v->add_option("--scheme", opts->scheme, "scheme, with parameters as name:key=value[,key=value]")->required();
   v->add_option("--mesh", opts->mesh, "mesh name or path")->required();
   v->add_option("--level", opts->level, "depth k or rate N")->required();
-  v->add_option("--backend", opts->backend, "cpu | cpu-mt | vulkan");
+  v->add_option("--backend", opts->backend, "cpu | cpu-mt | vulkan | opengl");
   v->add_option("--rays", opts->rays, "random lines (as many again aimed at patch borders)");
   v->add_option("--seed", opts->seed, "seed of the ray generator");
   v->add_flag("--json", opts->json, "print the row as JSON (results.json row format)");

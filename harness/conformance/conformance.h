@@ -6,7 +6,8 @@
 // (built-ins, plus the shared corpus when present, plus any the scheme's test adds with
 // SDB_CONFORMANCE_SUITE_WITH_MESHES) x up to two of its default levels:
 //   - the output is well formed: one normal and one SurfaceCoord per vertex, indices in range,
-//     every SurfaceCoord inside its face (u, v in [0, 1]; u + v <= 1 on a Loop triangle);
+//     every SurfaceCoord inside its face (u, v in [0, 1]; u + v <= 1 on a Loop triangle), or no
+//     SurfaceCoords at all for a scheme that declares none (SchemeInfo::surface_coords);
 //   - 0 open edges by exact welding and 0 ray cracks (20,000 random and 20,000 border lines);
 //   - the deviation from the reference limit at the same SurfaceCoords is within the scheme's
 //     declared bound (SchemeInfo::bound);
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "harness/core/backend.h"
+#include "harness/core/control_mesh.h"
 
 namespace sdb::conformance {
 
@@ -44,6 +46,9 @@ std::vector<std::string> conformance_meshes(const std::vector<std::string>& extr
 
 std::vector<Case> cases_for(const std::vector<std::string>& schemes, const std::vector<std::string>& extra_meshes = {});
 std::vector<Refusal> refusals_for(const std::vector<std::string>& schemes);
+
+// The largest distance between a[i] and b[i] (b at least as long as a), in double.
+double max_distance(const std::vector<Point3>& a, const std::vector<Point3>& b);
 
 // How GoogleTest prints a case (and ctest lists it): scheme/backend/mesh/level.
 void PrintTo(const Case& c, std::ostream* out);

@@ -84,6 +84,9 @@ struct SchemeInfo {
   // Empty: none (the gate then uses the write-bandwidth probe of the same round).
   std::string peer;
   DeviationBound bound;
+  // False: the output has no SurfaceCoords (OpenMesh's subdividers do not say where a refined
+  // vertex lies on the base mesh); rows then carry watertightness and Hausdorff distance only.
+  bool surface_coords = true;
   // Meshes this scheme wants in the curated default set; the set is the union over all schemes,
   // and every scheme runs on every mesh of it that it accepts.
   std::vector<std::string> default_meshes;

@@ -79,6 +79,10 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const ControlMesh& m, Subdivi
 
 ControlMesh refined_level(const Far::TopologyRefiner& refiner, const ControlMesh& base, int level) {
   if (level > refiner.GetMaxLevel()) throw std::logic_error("refined_level: refiner not refined that far");
+  // Without it Far leaves the last level's edges unbuilt, and reading their sharpness reads garbage.
+  if (level == refiner.GetMaxLevel() && !refiner.IsUniform()) throw std::logic_error("refined_level: adaptive refiner");
+  if (level == refiner.GetMaxLevel() && !refiner.GetUniformOptions().fullTopologyInLastLevel)
+    throw std::logic_error("refined_level: refine with UniformOptions::fullTopologyInLastLevel");
   std::vector<PrimvarPoint> verts(refiner.GetNumVerticesTotal());
   for (int v = 0; v < num_vertices(base); ++v)
     for (int k = 0; k < 3; ++k) verts[v].p[k] = base.positions[v][k];

@@ -128,13 +128,16 @@ RTCDevice embree_device() {
 
 EmbreeTriangleScene::EmbreeTriangleScene(const std::vector<Point3>& positions, const std::vector<uint32_t>& triangles)
     : positions_(positions), triangles_(triangles) {
+  // Embree reads shared vertex buffers 16 bytes at a time: the last vertex needs padding after it
+  // (valgrind found the read past the end).
+  positions_.push_back({0, 0, 0});
   RTCDevice device = embree_device();
   scene_ = rtcNewScene(device);
   // Robust: watertight triangle tests, so a ray through a shared edge never slips between.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions_.data(), 0,
-                             sizeof(Point3), positions_.size());
+                             sizeof(Point3), positions_.size() - 1);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, triangles_.data(), 0,
                              3 * sizeof(uint32_t), triangles_.size() / 3);
   rtcSetGeometryIntersectFilterFunction(geom, record_hit);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "harness/core/errors.h"
+#include "harness/reference/bfr_defect.h"
 
 namespace sdb {
 
@@ -47,6 +48,7 @@ LimitEvaluator::LimitEvaluator(const ControlMesh& mesh, SubdivisionRule rule, Li
   d.mesh = mesh;
   d.rule = rule;
   d.refiner = make_refiner(mesh, rule);
+  if (auto defect = bfr_overlapping_patch_defect(mesh)) throw Unsupported(*defect);
   const Far::PtexIndices ptex(*d.refiner);
   const int nf = num_faces(mesh);
   const int regular = rule == SubdivisionRule::Loop ? 3 : 4;

@@ -1,11 +1,14 @@
 // The yardstick: LimitEvaluator's accuracy and the dense limit tessellation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "datasets/generators.h"
 #include "datasets/manifest.h"
+#include "harness/core/errors.h"
 #include "harness/mesh/facts.h"
+#include "harness/reference/bfr_defect.h"
 #include "harness/reference/dense_limit.h"
 #include "harness/reference/limit_evaluator.h"
 #include "harness/validate/deviation.h"
@@ -78,4 +81,42 @@ TEST(DenseLimit, IsClosedAndOnTheLimitForBothRules) {
     EXPECT_EQ(count_open_edges(dense.surface), 0);
     EXPECT_LE(measure_deviation(dense.surface, limit).pos_max_rel_diag, 1e-6);
   }
+}
+
+// OpenSubdiv 3.5.0's Bfr reads uninitialised memory building the patches of faces beside a
+// corner closed by two faces, a boundary and a sharp edge (bfr_defect.h): the yardstick refuses
+// such meshes with the face named, and builds every other corpus shape.
+TEST(BfrDefect, TheYardstickRefusesExactlyTheMeshesOpenSubdivWouldMisbuild) {
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  std::vector<std::string> refused;
+  int built = 0;
+  for (const auto& e : list_meshes()) {
+    if (e.kind != "corpus") continue;
+    const ControlMesh m = load_mesh(e.name);
+    const bool loop = e.name.find("/loop_") != std::string::npos;
+    const auto defect = bfr_overlapping_patch_defect(m);
+    try {
+      const LimitEvaluator ref(m, loop ? SubdivisionRule::Loop : SubdivisionRule::CatmullClark);
+      EXPECT_FALSE(defect) << e.name;
+      ++built;
+    } catch (const Unsupported& u) {
+      ASSERT_TRUE(defect) << e.name;
+      EXPECT_NE(std::string(u.what()).find(m.source), std::string::npos) << u.what();
+      refused.push_back(e.name);
+    } catch (const InputError&) {
+      // a shape OpenSubdiv refuses, or a polygon mesh for Loop
+    }
+  }
+  std::string names;
+  for (const auto& n : refused) names += " " + n;
+  std::printf("the yardstick refuses %zu corpus shapes:%s; builds %d\n", refused.size(), names.c_str(), built);
+  // The shape OpenSubdiv's fix (51eb6a04) was made for, and no more than the valence-2 shapes.
+  EXPECT_NE(std::find(refused.begin(), refused.end(), "opensubdiv/catmark_val2_interior"), refused.end());
+  EXPECT_LE(refused.size(), 3u);
+  EXPECT_GE(built, 100);
+}
+
+TEST(BfrDefect, ManifoldBuiltinsHaveNone) {
+  for (const char* name : {"torus", "quadsphere", "pole3", "creased-cube", "open-patch", "icosphere", "frog-standin"})
+    EXPECT_FALSE(bfr_overlapping_patch_defect(load_mesh(name))) << name;
 }

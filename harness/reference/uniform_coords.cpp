@@ -91,6 +91,18 @@ FaceCorners refine_corners(const Far::TopologyRefiner& r, int level, const FaceC
 
 }  // namespace
 
+std::vector<uint32_t> uniform_triangles(const Far::TopologyRefiner& r, int level) {
+  const Far::TopologyLevel& l = r.GetLevel(level);
+  std::vector<uint32_t> triangles;
+  for (int f = 0; f < l.GetNumFaces(); ++f) {
+    if (l.IsFaceHole(f)) continue;
+    Far::ConstIndexArray fv = l.GetFaceVertices(f);
+    for (int k = 1; k + 1 < fv.size(); ++k)
+      triangles.insert(triangles.end(), {uint32_t(fv[0]), uint32_t(fv[k]), uint32_t(fv[k + 1])});
+  }
+  return triangles;
+}
+
 std::vector<SurfaceCoord> uniform_vertex_coords(const Far::TopologyRefiner& r, SubdivisionRule rule, int level) {
   FaceCorners corners = base_corners(r, rule);
   const bool catmark = rule == SubdivisionRule::CatmullClark;

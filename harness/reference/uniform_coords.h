@@ -17,4 +17,7 @@ namespace sdb {
 std::vector<SurfaceCoord> uniform_vertex_coords(const OpenSubdiv::Far::TopologyRefiner& refiner,
                                                 SubdivisionRule rule, int level);
 
+// The triangles of level `level`: every face fanned from its first vertex, holes left out.
+std::vector<uint32_t> uniform_triangles(const OpenSubdiv::Far::TopologyRefiner& refiner, int level);
+
 }  // namespace sdb

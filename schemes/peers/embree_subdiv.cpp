@@ -157,7 +157,6 @@ class EmbreeSubdiv final : public Scheme {
   const SchemeInfo& info() const override { return info_; }
   std::optional<std::string> unsupported(const RunRequest& r) const override {
     if (r.level < 2 || r.level > 129) return "rate N must be 2..129";
-    if (r.backend == Backend::Vulkan) return "Embree runs on the CPU";
     return std::nullopt;
   }
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {

@@ -1,0 +1,116 @@
+#include "schemes/peers/limit_stencils.h"
+
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+#include <opensubdiv/far/topologyRefiner.h>
+#include <opensubdiv/osd/cpuEvaluator.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "harness/mesh/facts.h"
+#include "harness/mesh/osd_topology.h"
+#include "harness/reference/surface_normal.h"
+#include "harness/reference/uniform_coords.h"
+
+namespace sdb {
+
+namespace Far = OpenSubdiv::Far;
+namespace Osd = OpenSubdiv::Osd;
+
+namespace {
+
+// The patch table LimitStencilTableFactory would make itself (its options, Gregory end caps),
+// made here so that the vertices with no patch can be told apart before the table is made.
+std::unique_ptr<const Far::PatchTable> limit_patches(const Far::TopologyRefiner& adaptive) {
+  Far::PatchTableFactory::Options o;
+  o.SetPatchPrecision<float>();
+  o.includeBaseLevelIndices = true;
+  o.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+  o.useInfSharpPatch = adaptive.GetAdaptiveOptions().useInfSharpPatch;
+  return std::unique_ptr<const Far::PatchTable>(Far::PatchTableFactory::Create(adaptive, o));
+}
+
+}  // namespace
+
+bool has_sharp_features(const ControlMesh& mesh) {
+  return !mesh.creases.empty() || !mesh.corners.empty() || !mesh.holes.empty() || compute_facts(mesh).boundary_edges > 0;
+}
+
+LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
+  LimitStencils out;
+  out.control_points = num_vertices(mesh);
+  const auto uniform = make_refiner(mesh, rule);
+  Far::TopologyRefiner::UniformOptions uniform_options(depth);
+  uniform_options.fullTopologyInLastLevel = true;
+  uniform->RefineUniform(uniform_options);
+  out.topology.triangles = uniform_triangles(*uniform, depth);
+  out.topology.coords = uniform_vertex_coords(*uniform, rule, depth);
+
+  const auto adaptive = make_refiner(mesh, rule);
+  Far::TopologyRefiner::AdaptiveOptions adaptive_options(std::max(depth + 1, has_sharp_features(mesh) ? 8 : 0));
+  adaptive_options.useInfSharpPatch = true;
+  adaptive->RefineAdaptive(adaptive_options);
+  const auto patches = limit_patches(*adaptive);
+  const Far::PatchMap patch_map(*patches);
+
+  const std::vector<SurfaceCoord>& coords = out.topology.coords;
+  std::vector<float> s, t;
+  s.reserve(coords.size()), t.reserve(coords.size());
+  for (uint32_t i = 0; i < coords.size(); ++i) {
+    if (!patch_map.FindPatch(int(coords[i].face), coords[i].u, coords[i].v)) {
+      out.refined_only.push_back(i);
+      continue;
+    }
+    out.limit_vertices.push_back(i);
+    s.push_back(coords[i].u), t.push_back(coords[i].v);
+  }
+  // One location array per vertex keeps stencil j for vertex limit_vertices[j].
+  Far::LimitStencilTableFactory::LocationArrayVec locations(out.limit_vertices.size());
+  for (size_t j = 0; j < locations.size(); ++j) {
+    locations[j].ptexIdx = int(coords[out.limit_vertices[j]].face);
+    locations[j].numLocations = 1;
+    locations[j].s = &s[j];
+    locations[j].t = &t[j];
+  }
+  Far::LimitStencilTableFactory::Options options;
+  options.generate1stDerivatives = true;
+  out.table.reset(Far::LimitStencilTableFactory::Create(*adaptive, locations, nullptr, patches.get(), options));
+  const int made = out.table ? out.table->GetNumStencils() : 0;
+  if (made != int(locations.size()))
+    throw std::runtime_error("Far::LimitStencilTableFactory gave " + std::to_string(made) + " stencils for " +
+                             std::to_string(locations.size()) + " vertices with a patch");
+  if (!out.refined_only.empty()) {
+    Far::StencilTableFactory::Options refined;
+    refined.generateIntermediateLevels = false;
+    refined.factorizeIntermediateLevels = true;
+    refined.generateOffsets = true;
+    out.refined.reset(Far::StencilTableFactory::Create(*uniform, refined));
+  }
+  return out;
+}
+
+void evaluate_refined_only(const LimitStencils& s, const float* control, float* positions, float* du, float* dv) {
+  if (s.refined_only.empty()) return;
+  const Osd::BufferDescriptor desc(0, 3, 3);
+  const Far::StencilTable& r = *s.refined;
+  for (uint32_t v : s.refined_only) {
+    // The evaluator writes stencil `start` to dst[0]: dst is this vertex's slot.
+    Osd::CpuEvaluator::EvalStencils(control, desc, positions + 3 * size_t(v), desc, &r.GetSizes()[0], &r.GetOffsets()[0],
+                                    &r.GetControlIndices()[0], &r.GetWeights()[0], int(v), int(v) + 1);
+    std::fill(du + 3 * size_t(v), du + 3 * size_t(v) + 3, 0.0f);
+    std::fill(dv + 3 * size_t(v), dv + 3 * size_t(v) + 3, 0.0f);
+  }
+}
+
+void scatter_limit(const LimitStencils& s, const float* dense, float* out) {
+  for (size_t j = 0; j < s.limit_vertices.size(); ++j)
+    std::copy(dense + 3 * j, dense + 3 * j + 3, out + 3 * size_t(s.limit_vertices[j]));
+}
+
+void normals_from_tangents(const float* du, const float* dv, Point3* normals, size_t begin, size_t end) {
+  for (size_t i = begin; i < end; ++i) normals[i] = unit_cross(du + 3 * i, dv + 3 * i);
+}
+
+}  // namespace sdb

@@ -1,0 +1,57 @@
+// What osd-stencil and osd-glcompute evaluate, made once in prepare: the limit position and both
+// tangents at every vertex of uniform refinement to depth k, as one Far::LimitStencilTable over
+// the control points, beside the triangles and SurfaceCoords of that refinement (osd-uniform's
+// output layout, vertex for vertex).
+#pragma once
+
+#include <opensubdiv/far/stencilTable.h>
+
+#include <memory>
+#include <vector>
+
+#include "harness/core/control_mesh.h"
+#include "harness/core/tessellation.h"
+
+namespace sdb {
+
+struct LimitStencils {
+  Tessellation topology;  // triangles and coords; positions and normals left empty
+  int control_points = 0;
+  // Limit stencil j gives vertex limit_vertices[j]; every vertex that has a limit patch.
+  std::unique_ptr<const OpenSubdiv::Far::LimitStencilTable> table;
+  std::vector<uint32_t> limit_vertices;
+  bool all_vertices_have_limits() const { return limit_vertices.size() == topology.coords.size(); }
+  // Vertices with no limit patch (only on holes, or on the faces an EdgeNone boundary leaves
+  // without a limit): their refined position, from these stencils (row = vertex), tangents zero.
+  std::vector<uint32_t> refined_only;
+  std::unique_ptr<const OpenSubdiv::Far::StencilTable> refined;
+};
+
+// Far::LimitStencilTableFactory evaluates the patches of a refiner. A uniformly refined one has
+// bilinear patches only, so the table is made on a second, adaptively refined refiner, at the
+// SurfaceCoords of the uniform refinement's vertices. Isolated to depth + 1 on smooth meshes:
+// every depth-k vertex away from an extraordinary vertex then lies on regular B-spline patches,
+// and an extraordinary vertex itself at an end cap's corner, which is its limit point (exact to
+// 1.4e-7 of the diagonal on pole8). Next to creases, corners and boundaries the patches converge
+// only as the isolation level L grows (measured at depth 2: catmark_hole_test2 4.6e-4 of the
+// diagonal at L = 6, 6e-8 at 8; catmark_dart_edgeonly 7e-6 at 6, 4.6e-7 at 8; a semi-sharp crease
+// is exact once L exceeds its sharpness), so meshes with such features are isolated to 8. Level
+// 10, OpenSubdiv's maximum, took Far::LimitStencilTableFactory over ten minutes on one corpus shape
+// (appendLocalPointStencilTable); single-crease patches were worse (3e-3 on catmark_cube_creases1).
+// The factory factorises every level into stencils over the control points itself.
+LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth);
+
+// Creases, corners, holes or a boundary: what needs the full isolation level.
+bool has_sharp_features(const ControlMesh& mesh);
+
+// Positions, tangents (xyz float arrays, one entry per vertex) of the vertices without a limit
+// patch: refined positions, zero tangents. The limit ones are the evaluator's.
+void evaluate_refined_only(const LimitStencils& s, const float* control, float* positions, float* du, float* dv);
+
+// Scatters limit stencil results (dense, one entry per limit stencil) to their vertices.
+void scatter_limit(const LimitStencils& s, const float* dense, float* out);
+
+// The unit normal of every vertex from the tangents: du x dv, normalised in float.
+void normals_from_tangents(const float* du, const float* dv, Point3* normals, size_t begin, size_t end);
+
+}  // namespace sdb
