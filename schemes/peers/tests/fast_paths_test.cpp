@@ -101,7 +101,8 @@ double max_distance_referenced(const Tessellation& a, const Tessellation& b) {
 
 }  // namespace
 
-// The limit stencil tables are OpenSubdiv's limit at the refined vertices, and so are
+// The limit stencil tables are OpenSubdiv's limit at the refined vertices (on the CPU, and with an
+// OpenGL context on the GL compute evaluator too, to 1e-6 of the diagonal), and so are
 // osd-uniform's limit masks wherever those are exact. Where they are not (a valence-2 vertex,
 // semi-sharp creases deeper than the depth, infinitely sharp corners: Far's masks treat sharpness
 // left at the last level as infinite), the tables, isolated to level 8 next to such features,
@@ -109,7 +110,8 @@ double max_distance_referenced(const Tessellation& a, const Tessellation& b) {
 // (the reference) differ by a steady few 1e-5 of the diagonal, as Far's uniform path does.
 TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
   if (!corpus_dir()) GTEST_SKIP() << "shared corpus not found beside the checkout";
-  int same = 0, closer = 0, refused = 0, unjudged = 0;
+  int same = 0, closer = 0, refused = 0, unjudged = 0, gl_checked = 0;
+  const bool on_device = gl::probe().available;
   for (SubdivisionRule rule : {SubdivisionRule::CatmullClark, SubdivisionRule::Loop}) {
     const bool loop = rule == SubdivisionRule::Loop;
     for (const std::string& name : corpus_shapes(rule)) {
@@ -119,6 +121,12 @@ TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
         Tessellation s, u;
         try {
           s = run(loop ? "osd-stencil-loop" : "osd-stencil", mesh, Backend::Cpu, depth);
+          if (on_device) {  // the same tables on the GL compute evaluator
+            const Tessellation g = run(loop ? "osd-glcompute-loop" : "osd-glcompute", mesh, Backend::OpenGl, depth);
+            ASSERT_EQ(g.num_vertices(), s.num_vertices()) << name;
+            EXPECT_LE(max_distance_referenced(g, s), 1e-6 * d) << name << ": osd-glcompute against osd-stencil";
+            ++gl_checked;
+          }
           u = run(loop ? "osd-uniform-loop" : "osd-uniform", mesh, Backend::Cpu, depth);
         } catch (const InputError& e) {
           std::printf("  %s depth %d refused: %s\n", name.c_str(), depth, e.what());
@@ -161,6 +169,9 @@ TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
               "limit (or float rounding, <= 1e-5) and osd-stencil within its bound; %d without a reference; %d "
               "meshes refused\n",
               same, closer, unjudged, refused);
+  std::printf("osd-glcompute = osd-stencil to 1e-6 of the diagonal on %d shapes (%s)\n", gl_checked,
+              on_device ? gl::probe().renderer.c_str() : "no OpenGL context");
+  if (on_device) EXPECT_GE(gl_checked, 100);
   EXPECT_LE(unjudged, 3) << "the shapes OpenSubdiv 3.5.0's Bfr misbuilds (reference_test's BfrDefect)";
   EXPECT_LE(refused, 6) << "non-manifold shapes whose masks overrun OpenSubdiv's (catmark_fan, catmark_nonman_edge100, "
                            "catmark_val2_nonman, loop_nonman_edge100, loop_nonman_edges, loop_val2_interior)";
