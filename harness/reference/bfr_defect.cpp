@@ -14,11 +14,11 @@ Edge edge_key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 // Each edge's faces, as (edge, face) sorted by edge: a map per edge costs too much on big meshes.
 struct Adjacency {
   std::vector<int> offsets;
-  std::vector<std::pair<Edge, int>> edge_faces;
+  std::vector<std::pair<Edge, std::pair<int, int>>> edge_faces;  // (face, slot of the edge's first vertex)
   std::vector<std::pair<Edge, float>> sharpness;  // sorted by edge
 
   std::pair<size_t, size_t> faces_of(Edge e) const {
-    const auto lo = std::lower_bound(edge_faces.begin(), edge_faces.end(), std::make_pair(e, -1));
+    const auto lo = std::lower_bound(edge_faces.begin(), edge_faces.end(), std::make_pair(e, std::make_pair(-1, -1)));
     auto hi = lo;
     while (hi != edge_faces.end() && hi->first == e) ++hi;
     return {size_t(lo - edge_faces.begin()), size_t(hi - edge_faces.begin())};
@@ -36,7 +36,7 @@ Adjacency adjacency_of(const ControlMesh& m) {
   for (int f = 0; f < num_faces(m); ++f)
     for (int i = a.offsets[f]; i < a.offsets[f + 1]; ++i) {
       const int next = i + 1 < a.offsets[f + 1] ? i + 1 : a.offsets[f];
-      a.edge_faces.push_back({edge_key(m.face_vertices[i], m.face_vertices[next]), f});
+      a.edge_faces.push_back({edge_key(m.face_vertices[i], m.face_vertices[next]), {f, i}});
     }
   std::sort(a.edge_faces.begin(), a.edge_faces.end());
   for (const auto& c : m.creases) a.sharpness.push_back({edge_key(c.v0, c.v1), c.sharpness});
@@ -44,34 +44,33 @@ Adjacency adjacency_of(const ControlMesh& m) {
   return a;
 }
 
-// The vertex before and after `v` in face `f` (v's first occurrence).
-std::pair<int, int> neighbours_in_face(const ControlMesh& m, const Adjacency& a, int f, int v) {
-  const int b = a.offsets[f], n = a.offsets[f + 1] - b;
-  for (int i = 0; i < n; ++i)
-    if (m.face_vertices[b + i] == v) return {m.face_vertices[b + (i + n - 1) % n], m.face_vertices[b + (i + 1) % n]};
-  return {-1, -1};
-}
+// The slots before and after `slot` in its face.
+int prev_slot(const Adjacency& a, int f, int slot) { return slot > a.offsets[f] ? slot - 1 : a.offsets[f + 1] - 1; }
+int next_slot(const Adjacency& a, int f, int slot) { return slot + 1 < a.offsets[f + 1] ? slot + 1 : a.offsets[f]; }
 
 struct Fan {
   bool closed = false;
   int faces = 0;
 };
 
-// The faces around `v` reachable from `f` across edges with exactly two faces.
-Fan fan_of(const ControlMesh& m, const Adjacency& a, int f, int v) {
+// The faces around the vertex at `slot` of face `f` reachable from `f` across edges with exactly
+// two faces. Slots, not searches, so that a face of a million vertices costs what its size does.
+Fan fan_of(const ControlMesh& m, const Adjacency& a, int f, int slot) {
   Fan fan{false, 1};
-  int face = f, from = neighbours_in_face(m, a, f, v).first;  // leave through the edge after v
+  const int v = m.face_vertices[slot];
+  int face = f, at = slot, from = m.face_vertices[prev_slot(a, f, slot)];  // leave through the edge after v
   for (int guard = 0; guard < 1 << 20; ++guard) {
-    const auto [prev, next] = neighbours_in_face(m, a, face, v);
-    const int out = prev == from ? next : prev;
+    const int before = m.face_vertices[prev_slot(a, face, at)], after = m.face_vertices[next_slot(a, face, at)];
+    const int out = before == from ? after : before;
     const auto [lo, hi] = a.faces_of(edge_key(v, out));
-    if (hi - lo != 2) break;
-    const int other = a.edge_faces[lo].second == face ? a.edge_faces[lo + 1].second : a.edge_faces[lo].second;
-    if (other == f) {
+    if (hi - lo != 2 || a.edge_faces[lo].second.first == a.edge_faces[lo + 1].second.first) break;  // Bfr: non-manifold
+    const auto& other = a.edge_faces[lo].second.first == face ? a.edge_faces[lo + 1].second : a.edge_faces[lo].second;
+    if (other.first == f) {
       fan.closed = true;
       return fan;
     }
-    face = other, from = out, ++fan.faces;
+    face = other.first, from = out, ++fan.faces;
+    at = m.face_vertices[other.second] == v ? other.second : next_slot(a, face, other.second);
   }
   return fan;
 }
@@ -96,7 +95,7 @@ std::optional<std::string> bfr_overlapping_patch_defect(const ControlMesh& m) {
   for (int f = 0; f < num_faces(m); ++f) {
     bool two_face_closed = false, open = false, sharp_corner = false;
     for (int i = a.offsets[f]; i < a.offsets[f + 1]; ++i) {
-      const Fan fan = fan_of(m, a, f, m.face_vertices[i]);
+      const Fan fan = fan_of(m, a, f, i);
       two_face_closed |= fan.closed && fan.faces == 2;
       open |= !fan.closed;
       sharp_corner |= sharp[m.face_vertices[i]] != 0;
