@@ -85,7 +85,9 @@ TEST(Gate, CallgrindCountsAreDeterministicAndCatchThePlant) {
   ASSERT_EQ(run_cli("gate --callgrind --record --baseline " + counts.string() + config).exit_code, 0);
   const auto same = run_cli("gate --callgrind --baseline " + counts.string() + config);
   EXPECT_EQ(same.exit_code, 0) << same.out << same.err;
-  EXPECT_NE(line_of(same.out, "bilinear-limit/cpu/torus-8x8/5").find("+0.00%"), std::string::npos) << same.out;
+  // Deterministic to a few instructions in millions (a fresh clone's run measured 4 in 4 M): the
+  // change prints as +0.00% or -0.00%.
+  EXPECT_NE(line_of(same.out, "bilinear-limit/cpu/torus-8x8/5").find("0.00%"), std::string::npos) << same.out;
   const auto slow = run_cli("gate --callgrind --baseline " + counts.string() + config, kSlow);
   EXPECT_EQ(slow.exit_code, 1) << slow.out;
   EXPECT_NE(line_of(slow.out, "bilinear-limit/cpu/torus-8x8/5").find("REGRESSION"), std::string::npos) << slow.out;
