@@ -38,6 +38,25 @@ bool has_sharp_features(const ControlMesh& mesh) {
   return !mesh.creases.empty() || !mesh.corners.empty() || !mesh.holes.empty() || compute_facts(mesh).boundary_edges > 0;
 }
 
+SchemeInfo limit_stencil_info(SubdivisionRule rule) {
+  SchemeInfo info;
+  info.role = SchemeRole::Peer;
+  // Limit patches in float (README.md): 1e-7 of the diagonal on smooth meshes, 4.8e-6 at
+  // valence 360 (float sums), up to 6.6e-5 next to sharp features isolated to level 8. Normals
+  // are not bounded: at an infinitely sharp corner the surface has none (135 degrees from the
+  // reference's on catmark_cubes_infsharp).
+  info.bound = {1e-4, -1};
+  info.reference = rule;
+  info.level_kind = LevelKind::Depth;
+  info.default_levels = {1, 2, 3, 4};
+  info.accepts.faces =
+      rule == SubdivisionRule::Loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::Any;
+  info.accepts.manifold = false;  // OpenSubdiv takes non-manifold topology
+  info.accepts.creases = true;
+  info.accepts.holes = true;
+  return info;
+}
+
 LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
   LimitStencils out;
   out.control_points = num_vertices(mesh);

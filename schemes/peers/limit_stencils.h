@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "harness/core/control_mesh.h"
+#include "harness/core/scheme.h"
 #include "harness/core/tessellation.h"
 
 namespace sdb {
@@ -43,6 +44,13 @@ LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule,
 
 // Creases, corners, holes or a boundary: what needs the full isolation level.
 bool has_sharp_features(const ControlMesh& mesh);
+
+// What every scheme evaluating these tables shares (osd-stencil, osd-glcompute): the reference
+// rule, depth levels, the deviation bound of Far's patches in float, the meshes OpenSubdiv takes.
+// The caller adds name, paper, description, peer, backends and parameters.
+SchemeInfo limit_stencil_info(SubdivisionRule rule);
+// The depths the tables are made for.
+constexpr int kMaxStencilDepth = 8;
 
 // Positions, tangents (xyz float arrays, one entry per vertex) of the vertices without a limit
 // patch: refined positions, zero tangents. The limit ones are the evaluator's.

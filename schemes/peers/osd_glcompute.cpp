@@ -129,27 +129,18 @@ class OsdGlComputeEvaluation final : public Evaluation {
 
 class OsdGlCompute final : public Scheme {
  public:
-  explicit OsdGlCompute(SubdivisionRule rule) : rule_(rule) {
+  explicit OsdGlCompute(SubdivisionRule rule) : rule_(rule), info_(limit_stencil_info(rule)) {
     const bool loop = rule == SubdivisionRule::Loop;
     info_.name = loop ? "osd-glcompute-loop" : "osd-glcompute";
     info_.paper = "peer: OpenSubdiv 3.5 Far::LimitStencilTable + Osd::GLComputeEvaluator (EGL, OpenGL 4.3)";
     info_.description = std::string(loop ? "Loop" : "Catmull-Clark") +
                         " limit stencils at the vertices of depth-k refinement, evaluated by a GL compute shader";
-    info_.role = SchemeRole::Peer;
     info_.peer = loop ? "osd-stencil-loop" : "osd-stencil";  // the same tables on the CPU
-    info_.bound = {1e-4, -1};  // as osd-stencil
-    info_.reference = rule;
-    info_.level_kind = LevelKind::Depth;
     info_.backends = {Backend::OpenGl};
-    info_.default_levels = {1, 2, 3, 4};
-    info_.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::Any;
-    info_.accepts.manifold = false;
-    info_.accepts.creases = true;
-    info_.accepts.holes = true;
   }
   const SchemeInfo& info() const override { return info_; }
   std::optional<std::string> unsupported(const RunRequest& r) const override {
-    if (r.level < 1 || r.level > 8) return "depth must be 1..8";
+    if (r.level < 1 || r.level > kMaxStencilDepth) return "depth must be 1.." + std::to_string(kMaxStencilDepth);
     if (r.backend != Backend::OpenGl) return std::nullopt;  // the harness says which backends it has
     return opengl_unavailable();
   }

@@ -101,35 +101,22 @@ class OsdStencilEvaluation final : public Evaluation {
 
 class OsdStencil final : public Scheme {
  public:
-  explicit OsdStencil(SubdivisionRule rule) : rule_(rule) {
+  explicit OsdStencil(SubdivisionRule rule) : rule_(rule), info_(limit_stencil_info(rule)) {
     const bool loop = rule == SubdivisionRule::Loop;
     info_.name = loop ? "osd-stencil-loop" : "osd-stencil";
     info_.paper = "peer: OpenSubdiv 3.5 Far::LimitStencilTable + Osd::CpuEvaluator / OmpEvaluator";
     info_.description = std::string(loop ? "Loop" : "Catmull-Clark") +
                         " limit stencils at the vertices of depth-k refinement, evaluated per frame";
-    info_.role = SchemeRole::Peer;
     info_.peer = loop ? "osd-bfr-loop" : "osd-bfr";  // the same 2^k segments
-    // Limit patches in float (README.md): 1e-7 of the diagonal on smooth meshes, 4.8e-6 at
-    // valence 360 (float sums), up to 6.6e-5 next to sharp features isolated to level 8. Normals
-    // are not bounded: at an infinitely sharp corner the surface has none (135 degrees from the
-    // reference's on catmark_cubes_infsharp).
-    info_.bound = {1e-4, -1};
-    info_.reference = rule;
-    info_.level_kind = LevelKind::Depth;
     info_.backends = {Backend::Cpu, Backend::CpuMt};
-    info_.default_levels = {1, 2, 3, 4};
     info_.parameters = {{"omp",
                          "cpu-mt: 1 evaluates with Osd::OmpEvaluator, 0 with CpuEvaluator on TBB ranges (what "
                          "Osd::TbbEvaluator, absent from Debian's package, does)",
                          true, 0, 0, 1, 1}};
-    info_.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::Any;
-    info_.accepts.manifold = false;  // OpenSubdiv takes non-manifold topology
-    info_.accepts.creases = true;
-    info_.accepts.holes = true;
   }
   const SchemeInfo& info() const override { return info_; }
   std::optional<std::string> unsupported(const RunRequest& r) const override {
-    if (r.level < 1 || r.level > 8) return "depth must be 1..8";
+    if (r.level < 1 || r.level > kMaxStencilDepth) return "depth must be 1.." + std::to_string(kMaxStencilDepth);
     return std::nullopt;
   }
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
