@@ -1,0 +1,41 @@
+// cpu and cpu-mt: every fragment refined independently through its shape's tables (kernel.h);
+// cpu-mt runs fragments in parallel on TBB, one scratch pair of level buffers per thread.
+#pragma once
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
+
+#include <memory>
+#include <vector>
+
+#include "harness/core/scheme.h"
+#include "schemes/fragments/kernel.h"
+#include "schemes/fragments/surface.h"
+
+namespace sdb::fragments {
+
+class CpuFragmentEvaluation final : public Evaluation {
+ public:
+  CpuFragmentEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool multithreaded, int threads,
+                        bool project_to_limit);
+  void execute() override;
+  const Tessellation& result() override { return out_; }
+  size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+  const FragmentSurface& surface() const { return surface_; }
+
+ private:
+  struct Scratch {
+    std::vector<Vec3> a, b, position, normal;
+  };
+  void run_fragment(size_t f, Scratch& s);
+
+  std::vector<Point3> control_;
+  Vec3 origin_;  // the control box's centre: refined relative to it, float keeps its precision
+  FragmentSurface surface_;
+  bool multithreaded_, project_;
+  std::unique_ptr<tbb::task_arena> arena_;
+  tbb::enumerable_thread_specific<Scratch> scratch_;
+  Tessellation out_;
+};
+
+}  // namespace sdb::fragments

@@ -1,0 +1,65 @@
+#include "schemes/fragments/surface.h"
+
+#include <algorithm>
+
+namespace sdb::fragments {
+
+size_t output_vertices(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
+  return (mesh.face_sizes.size() - mesh.holes.size()) * static_cast<size_t>(block_size(rule, depth));
+}
+
+FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int d)
+    : rule(r), depth(d), partition(partition_mesh(mesh, r)) {
+  for (const LocalNet& net : partition.shapes) {
+    tables.push_back(build_tables(net, rule, depth));
+    max_slots = std::max(max_slots, tables.back().max_slots);
+    const LimitTable& lim = tables.back().limit;
+    max_limit_entries = std::max({max_limit_entries, static_cast<uint32_t>(lim.position.size()),
+                                  static_cast<uint32_t>(lim.tangent_begin.size() - 1)});
+  }
+  const size_t bs = block_size(rule, depth);
+  for (const Fragment& f : partition.fragments) {
+    first_vertex.push_back(num_output_vertices);
+    num_output_vertices += f.owned_faces.size() * bs;
+  }
+}
+
+void FragmentSurface::describe(Tessellation& out) const {
+  const int bs = block_size(rule, depth);
+  const std::vector<uint32_t> pattern = block_triangles(rule, depth);
+  const float inv = 1.0f / static_cast<float>(1 << depth);
+  out.triangles.clear();
+  out.triangles.reserve(num_output_vertices / bs * pattern.size());
+  out.coords.resize(num_output_vertices);
+  std::vector<SurfaceCoord> grid(bs);
+  for (int j = 0, s = 1 << depth; j <= s; ++j)
+    for (int i = 0; i <= s; ++i)
+      if (rule != SubdivisionRule::Loop || i + j <= s)
+        grid[block_index(rule, depth, i, j)] = {0, static_cast<float>(i) * inv, static_cast<float>(j) * inv};
+  for (size_t f = 0; f < partition.fragments.size(); ++f) {
+    const std::vector<int>& owned = partition.fragments[f].owned_faces;
+    for (size_t k = 0; k < owned.size(); ++k) {
+      const size_t base = first_vertex[f] + k * bs;
+      for (uint32_t t : pattern) out.triangles.push_back(static_cast<uint32_t>(base + t));
+      for (int b = 0; b < bs; ++b) out.coords[base + b] = {static_cast<uint32_t>(owned[k]), grid[b].u, grid[b].v};
+    }
+  }
+}
+
+FragmentStats FragmentSurface::stats() const {
+  FragmentStats s;
+  s.fragments = static_cast<int>(partition.fragments.size());
+  s.vertex_patches = partition.vertex_patches;
+  s.facet_patches = partition.facet_patches;
+  s.shapes = static_cast<int>(tables.size());
+  for (const ShapeTables& t : tables) {
+    for (const LevelTable& l : t.levels)
+      s.table_bytes += l.faces.size() * sizeof(FaceRule) + l.edges.size() * sizeof(EdgeRule) +
+                       l.vertices.size() * sizeof(VertexRule) + l.ring.size() * sizeof(uint32_t);
+    s.table_bytes += t.limit.position.size() * sizeof(VertexRule) + t.limit.ring.size() * 4 +
+                     t.limit.tangent_slot.size() * 12 + t.block.size() * 8;
+  }
+  return s;
+}
+
+}  // namespace sdb::fragments

@@ -1,0 +1,33 @@
+// A mesh prepared for fragment refinement: its partition, the pattern tables of every shape,
+// where each fragment's output block starts, and the output's triangles and SurfaceCoords.
+#pragma once
+
+#include <vector>
+
+#include "harness/core/tessellation.h"
+#include "schemes/fragments/fragments.h"
+#include "schemes/fragments/net.h"
+#include "schemes/fragments/tables.h"
+
+namespace sdb::fragments {
+
+struct FragmentSurface {
+  FragmentSurface(const ControlMesh& mesh, SubdivisionRule rule, int depth);
+
+  SubdivisionRule rule;
+  int depth;
+  Partition partition;
+  std::vector<ShapeTables> tables;  // per shape
+  std::vector<size_t> first_vertex;  // per fragment: its first output vertex
+  uint32_t max_slots = 0, max_limit_entries = 0;
+  size_t num_output_vertices = 0;
+
+  // Triangles and coords of the whole output (one block per owned face).
+  void describe(Tessellation& out) const;
+  FragmentStats stats() const;
+};
+
+// Output size before anything is built, for the size check in prepare.
+size_t output_vertices(const ControlMesh& mesh, SubdivisionRule rule, int depth);
+
+}  // namespace sdb::fragments

@@ -1,0 +1,86 @@
+// Pattern tables (the poster's Figure 9): for every slot of a fragment's net at level d + 1, the
+// slots of level d (and, for Catmull-Clark, the face points of level d + 1) it is made from, and
+// its rule with the rule's weights. One generic kernel (kernel.h) applies them and knows no
+// topology. Slots are laid out face points, edge points, vertex points, so a level is three
+// branch-free loops. Tables are made once per fragment shape and depth, in prepare.
+//
+// Every rule is written so that a point shared by fragments comes out bit-identical in each of
+// them (the poster's symmetric evaluation, Figures 10-12): equal weights are applied to sums of
+// pairs, sums over a vertex's ring do not depend on where the ring starts (kernel.h), so the
+// different orders in which two fragments meet a point's neighbours give the same float sums.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "harness/core/control_mesh.h"
+#include "schemes/fragments/net.h"
+
+namespace sdb::fragments {
+
+// Catmull-Clark face point of a quad: ((a + c) + (b + d)) / 4, from level d.
+struct FaceRule {
+  uint32_t a, b, c, d;
+};
+
+// wv (v0 + v1) + wf (f0 + f1): v from level d; f the child face points (Catmull-Clark, level
+// d + 1) or the opposite vertices (Loop, level d). Creases and boundaries: wf = 0; fractional
+// sharpness: Sdc's blend of the two.
+struct EdgeRule {
+  uint32_t v0, v1, f0, f1;
+  float wv, wf;
+};
+
+// wv c + wc (p0 + p1) + we sum(e) + wf sum(f): c the vertex, p0 p1 its crease neighbours, e the
+// ring's vertices (num_e of them from `ring`), f the face points or, for the limit, the vertices
+// opposite in each face (num_f after them). Smooth, crease, corner, dart and Sdc's blends
+// between rules all take this form.
+struct VertexRule {
+  uint32_t centre, p0, p1, ring;
+  uint16_t num_e, num_f;
+  float wv, wc, we, wf;
+};
+
+struct LevelTable {
+  uint32_t num_slots = 0;
+  std::vector<FaceRule> faces;       // slots [0, faces)
+  std::vector<EdgeRule> edges;       // then these
+  std::vector<VertexRule> vertices;  // then these
+  std::vector<uint32_t> ring;
+};
+
+// Limit projection of the last level's owned vertices: position by a VertexRule (symmetric too),
+// the two tangents as plain weighted sums (normals need not be bit-identical to be watertight),
+// one pair per vertex and side of a crease or corner.
+struct LimitTable {
+  std::vector<VertexRule> position;
+  std::vector<uint32_t> ring;
+  std::vector<uint32_t> tangent_begin;  // tangent entries + 1 offsets into the three below
+  std::vector<uint32_t> tangent_slot;
+  std::vector<float> tangent_w1, tangent_w2;
+};
+
+struct ShapeTables {
+  int depth = 0;
+  uint32_t num_slots0 = 0;
+  uint32_t max_slots = 0;          // largest level, for scratch buffers
+  std::vector<LevelTable> levels;  // levels[d - 1] makes level d from level d - 1
+  LimitTable limit;
+  // Per owned face, per vertex of its output block (block_size(), ptex grid order), the limit
+  // position entry and the tangent entry it takes.
+  std::vector<uint32_t> block, block_normal;
+};
+
+// Vertices per owned face at depth d: (2^d + 1)^2 for a quad, (2^d + 1)(2^d + 2) / 2 for a
+// triangle; and its triangles in ptex grid order, indices within the block.
+int block_size(SubdivisionRule rule, int depth);
+std::vector<uint32_t> block_triangles(SubdivisionRule rule, int depth);
+// Index of grid point (i, j) (u = i / 2^d, v = j / 2^d) in a block.
+int block_index(SubdivisionRule rule, int depth, int i, int j);
+
+// Refines the net with OpenSubdiv's topology refiner to `depth` (topology and sharpness only)
+// and asks Sdc for each needed point's mask. Throws Unsupported where a mask does not have the
+// symmetric form above.
+ShapeTables build_tables(const LocalNet& net, SubdivisionRule rule, int depth);
+
+}  // namespace sdb::fragments
