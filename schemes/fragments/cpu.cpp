@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <utility>
 
 namespace sdb::fragments {
@@ -11,51 +12,56 @@ CpuFragmentEvaluation::CpuFragmentEvaluation(const ControlMesh& mesh, Subdivisio
     : control_(mesh.positions), surface_(mesh, rule, depth), multithreaded_(multithreaded), project_(project_to_limit) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
   const Bounds box = bounds_of(control_);
-  origin_ = {static_cast<float>(box.centre(0)), static_cast<float>(box.centre(1)), static_cast<float>(box.centre(2))};
+  for (int k = 0; k < 3; ++k) origin_[k] = static_cast<float>(box.centre(k));
   surface_.describe(out_);
   out_.positions.resize(surface_.num_output_vertices);
   out_.normals.resize(surface_.num_output_vertices);
 }
 
-void CpuFragmentEvaluation::run_fragment(size_t f, Scratch& s) {
+void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Scratch& s) {
   if (s.a.size() < surface_.max_slots) {
     s.a.resize(surface_.max_slots), s.b.resize(surface_.max_slots);
     s.position.resize(surface_.max_limit_entries), s.normal.resize(surface_.max_limit_entries);
   }
-  const Fragment& frag = surface_.partition.fragments[f];
-  const ShapeTables& t = surface_.tables[frag.shape];
-  Vec3 *src = s.a.data(), *dst = s.b.data();
-  for (size_t i = 0; i < frag.control.size(); ++i) {
-    const Point3& p = control_[frag.control[i]];
-    src[i] = {p[0] - origin_.x, p[1] - origin_.y, p[2] - origin_.z};
+  const std::vector<Fragment>& fragments = surface_.partition.fragments;
+  const uint32_t* ids = surface_.order.data() + batch.begin;
+  const ShapeTables& t = surface_.tables[fragments[ids[0]].shape];
+  Lanes *src = s.a.data(), *dst = s.b.data();
+  for (int l = 0; l < kLanes; ++l) {  // lanes past the batch repeat its last fragment
+    const std::vector<int>& control = fragments[ids[std::min<uint32_t>(l, batch.count - 1)]].control;
+    for (size_t i = 0; i < control.size(); ++i) {
+      const Point3& p = control_[control[i]];
+      src[i].x[l] = p[0] - origin_[0], src[i].y[l] = p[1] - origin_[1], src[i].z[l] = p[2] - origin_[2];
+    }
   }
   const bool catmark = surface_.rule == SubdivisionRule::CatmullClark;
   for (const LevelTable& level : t.levels) {
     refine_level(level, catmark, src, dst);
     std::swap(src, dst);
   }
-  if (project_) project_to_limit(t.limit, src, s.position.data(), s.normal.data());
-  else refined_points(t.limit, src, s.position.data(), s.normal.data());
-  Point3* pos = out_.positions.data() + surface_.first_vertex[f];
-  Point3* nrm = out_.normals.data() + surface_.first_vertex[f];
-  for (size_t i = 0; i < t.block.size(); ++i) {
-    const Vec3 p = s.position[t.block[i]], n = s.normal[t.block_normal[i]];
-    pos[i] = {p.x + origin_.x, p.y + origin_.y, p.z + origin_.z};
-    nrm[i] = {n.x, n.y, n.z};
+  project_to_limit(t.limit, src, project_, s.position.data(), s.normal.data());
+  for (uint32_t l = 0; l < batch.count; ++l) {
+    Point3* pos = out_.positions.data() + surface_.first_vertex[ids[l]];
+    Point3* nrm = out_.normals.data() + surface_.first_vertex[ids[l]];
+    for (size_t i = 0; i < t.block.size(); ++i) {
+      const Lanes &p = s.position[t.block[i]], &n = s.normal[t.block_normal[i]];
+      pos[i] = {p.x[l] + origin_[0], p.y[l] + origin_[1], p.z[l] + origin_[2]};
+      nrm[i] = {n.x[l], n.y[l], n.z[l]};
+    }
   }
 }
 
 void CpuFragmentEvaluation::execute() {
-  const size_t count = surface_.partition.fragments.size();
+  const std::vector<FragmentSurface::Batch>& batches = surface_.batches;
   if (!multithreaded_) {
     Scratch& s = scratch_.local();
-    for (size_t f = 0; f < count; ++f) run_fragment(f, s);
+    for (const FragmentSurface::Batch& b : batches) run_batch(b, s);
     return;
   }
   auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const tbb::blocked_range<size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batches.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
       Scratch& s = scratch_.local();
-      for (size_t f = r.begin(); f < r.end(); ++f) run_fragment(f, s);
+      for (size_t i = r.begin(); i < r.end(); ++i) run_batch(batches[i], s);
     });
   };
   if (arena_) arena_->execute(run);

@@ -1,5 +1,6 @@
-// cpu and cpu-mt: every fragment refined independently through its shape's tables (kernel.h);
-// cpu-mt runs fragments in parallel on TBB, one scratch pair of level buffers per thread.
+// cpu and cpu-mt: fragments refined independently through their shape's tables, kLanes of one
+// shape at a time (kernel.h); cpu-mt runs the batches in parallel on TBB, one scratch set of
+// level buffers per thread.
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
@@ -25,12 +26,12 @@ class CpuFragmentEvaluation final : public Evaluation {
 
  private:
   struct Scratch {
-    std::vector<Vec3> a, b, position, normal;
+    std::vector<Lanes> a, b, position, normal;
   };
-  void run_fragment(size_t f, Scratch& s);
+  void run_batch(const FragmentSurface::Batch& batch, Scratch& s);
 
   std::vector<Point3> control_;
-  Vec3 origin_;  // the control box's centre: refined relative to it, float keeps its precision
+  float origin_[3];  // the control box's centre: refined relative to it, float keeps its precision
   FragmentSurface surface_;
   bool multithreaded_, project_;
   std::unique_ptr<tbb::task_arena> arena_;

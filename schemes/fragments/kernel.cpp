@@ -3,13 +3,29 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/reference/surface_normal.h"
-
 namespace sdb::fragments {
 namespace {
 
-inline Vec3 add(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Vec3 scale(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+#define SDB_LANES for (int l = 0; l < kLanes; ++l)
+
+inline void set(Lanes& d, const Lanes& s) { d = s; }
+
+// a + b, lane by lane.
+inline Lanes add(const Lanes& a, const Lanes& b) {
+  Lanes r;
+  SDB_LANES r.x[l] = a.x[l] + b.x[l], r.y[l] = a.y[l] + b.y[l], r.z[l] = a.z[l] + b.z[l];
+  return r;
+}
+inline Lanes sub(const Lanes& a, const Lanes& b) {
+  Lanes r;
+  SDB_LANES r.x[l] = a.x[l] - b.x[l], r.y[l] = a.y[l] - b.y[l], r.z[l] = a.z[l] - b.z[l];
+  return r;
+}
+inline Lanes scale(const Lanes& a, float s) {
+  Lanes r;
+  SDB_LANES r.x[l] = a.x[l] * s, r.y[l] = a.y[l] * s, r.z[l] = a.z[l] * s;
+  return r;
+}
 
 // Adding +0 first turns -0 into +0: min and max cannot order two zeros, so without it the sum
 // of {-0, +0, x} would depend on which came first.
@@ -31,7 +47,7 @@ float sorted_sum(float* v, int n) {
 // The sum of a vertex's ring that two fragments starting the ring at different places get
 // bit-identical: opposite pairs for valence 4, 6 and 8 (a rotation permutes the pair sums), a
 // sorted sum otherwise.
-Vec3 ring_sum(const Vec3* src, const uint32_t* ref, int n) {
+Lanes ring_sum(const Lanes* src, const uint32_t* ref, int n) {
   switch (n) {
     case 1:
       return src[ref[0]];
@@ -40,66 +56,135 @@ Vec3 ring_sum(const Vec3* src, const uint32_t* ref, int n) {
     case 4:
       return add(add(src[ref[0]], src[ref[2]]), add(src[ref[1]], src[ref[3]]));
     case 6: {
-      const Vec3 a = add(src[ref[0]], src[ref[3]]), b = add(src[ref[1]], src[ref[4]]), c = add(src[ref[2]], src[ref[5]]);
-      return {sum3_sorted(a.x, b.x, c.x), sum3_sorted(a.y, b.y, c.y), sum3_sorted(a.z, b.z, c.z)};
+      const Lanes a = add(src[ref[0]], src[ref[3]]), b = add(src[ref[1]], src[ref[4]]), c = add(src[ref[2]], src[ref[5]]);
+      Lanes r;
+      SDB_LANES r.x[l] = sum3_sorted(a.x[l], b.x[l], c.x[l]), r.y[l] = sum3_sorted(a.y[l], b.y[l], c.y[l]),
+          r.z[l] = sum3_sorted(a.z[l], b.z[l], c.z[l]);
+      return r;
     }
     case 8: {
-      Vec3 q[4];
+      Lanes q[4];
       for (int i = 0; i < 4; ++i) q[i] = add(src[ref[i]], src[ref[i + 4]]);
       return add(add(q[0], q[2]), add(q[1], q[3]));
     }
     default: {
-      float x[1024], y[1024], z[1024];  // tables.cpp refuses longer rings
-      for (int i = 0; i < n; ++i) x[i] = src[ref[i]].x, y[i] = src[ref[i]].y, z[i] = src[ref[i]].z;
-      return {sorted_sum(x, n), sorted_sum(y, n), sorted_sum(z, n)};
+      float v[1024];  // tables.cpp refuses longer rings
+      Lanes r;
+      for (int l = 0; l < kLanes; ++l) {
+        for (int i = 0; i < n; ++i) v[i] = src[ref[i]].x[l];
+        r.x[l] = sorted_sum(v, n);
+        for (int i = 0; i < n; ++i) v[i] = src[ref[i]].y[l];
+        r.y[l] = sorted_sum(v, n);
+        for (int i = 0; i < n; ++i) v[i] = src[ref[i]].z[l];
+        r.z[l] = sorted_sum(v, n);
+      }
+      return r;
     }
   }
 }
 
-inline Vec3 apply(const VertexRule& r, const uint32_t* ring, const Vec3* pv, const Vec3* pf) {
-  Vec3 s = scale(pv[r.centre], r.wv);
+inline Lanes apply(const VertexRule& r, const uint32_t* ring, const Lanes* pv, const Lanes* pf) {
+  const uint32_t* ref = ring + r.ring;
+  Lanes s = scale(pv[r.centre], r.wv);
   if (r.wc != 0) s = add(s, scale(add(pv[r.p0], pv[r.p1]), r.wc));
-  if (r.num_e) s = add(s, scale(ring_sum(pv, ring + r.ring, r.num_e), r.we));
-  if (r.num_f) s = add(s, scale(ring_sum(pf, ring + r.ring + r.num_e, r.num_f), r.wf));
+  if (r.num_e) s = add(s, scale(ring_sum(pv, ref, r.num_e), r.we));
+  if (r.num_f) s = add(s, scale(ring_sum(pf, ref + r.num_e, r.num_f), r.wf));
   return s;
 }
 
-// Tangents are differences of nearby points: summed in double, so that the normal keeps float
-// precision next to a pole of valence 360, where the points crowd together.
-Vec3 normal_at(const LimitTable& t, size_t i, const Vec3* last) {
-  double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
-  for (uint32_t k = t.tangent_begin[i]; k < t.tangent_begin[i + 1]; ++k) {
-    const Vec3 p = last[t.tangent_slot[k]];
-    const double a = t.tangent_w1[k], b = t.tangent_w2[k];
-    t1[0] += a * p.x, t1[1] += a * p.y, t1[2] += a * p.z;
-    t2[0] += b * p.x, t2[1] += b * p.y, t2[2] += b * p.z;
+inline void unit_normal(const Lanes& a, const Lanes& b, Lanes& n) {
+  SDB_LANES {
+    const float nx = a.y[l] * b.z[l] - a.z[l] * b.y[l], ny = a.z[l] * b.x[l] - a.x[l] * b.z[l],
+                nz = a.x[l] * b.y[l] - a.y[l] * b.x[l];
+    const float len2 = nx * nx + ny * ny + nz * nz;
+    const float inv = len2 > 0 ? 1.0f / std::sqrt(len2) : 0.0f;
+    n.x[l] = nx * inv, n.y[l] = ny * inv, n.z[l] = nz * inv;
   }
-  const float f1[3] = {float(t1[0]), float(t1[1]), float(t1[2])}, f2[3] = {float(t2[0]), float(t2[1]), float(t2[2])};
-  const Point3 n = unit_cross(f1, f2);
-  return {n[0], n[1], n[2]};
+}
+
+// Sdc's tangents of a regular vertex (tables.cpp checks the weights are these), grouped into
+// differences: Catmull-Clark 4 (e0 - e2) + (f0 - f1 - f2 + f3) and 4 (e1 - e3) + (f0 + f1 - f2 - f3);
+// Loop (e0 - e3) + (e1 - e2 - e4 + e5) / 2 and sqrt(3) / 2 (e1 + e2 - e4 - e5). Slots: centre, e, f.
+inline void regular_normal(const uint32_t* slot, int size, const Lanes* p, Lanes& n) {
+  if (size == 9) {
+    const Lanes d02 = sub(p[slot[5]], p[slot[7]]), d13 = sub(p[slot[6]], p[slot[8]]);
+    unit_normal(add(scale(sub(p[slot[1]], p[slot[3]]), 4.0f), sub(d02, d13)),
+                add(scale(sub(p[slot[2]], p[slot[4]]), 4.0f), add(d02, d13)), n);
+    return;
+  }
+  const Lanes d14 = sub(p[slot[2]], p[slot[5]]), d25 = sub(p[slot[3]], p[slot[6]]);
+  unit_normal(add(sub(p[slot[1]], p[slot[4]]), scale(sub(d14, d25), 0.5f)), scale(add(d14, d25), 0.866025404f), n);
+}
+
+// Tangents are differences of nearby points: long masks (a pole's ring, where the points crowd
+// together) are summed in double, so that the normal keeps float precision at valence 360.
+constexpr uint32_t kLongTangentMask = 32;
+
+void general_normal(const LimitTable& t, size_t i, const Lanes* last, Lanes& n) {
+  const uint32_t begin = t.tangent_begin[i], end = t.tangent_begin[i + 1];
+  const uint32_t* slot = t.tangent_slot.data();
+  const float *w1 = t.tangent_w1.data(), *w2 = t.tangent_w2.data();
+  Lanes a{}, b{};
+  if (end - begin > kLongTangentMask) {
+    for (int l = 0; l < kLanes; ++l) {
+      double da[3] = {0, 0, 0}, db[3] = {0, 0, 0};
+      for (uint32_t k = begin; k < end; ++k) {
+        const Lanes& p = last[slot[k]];
+        da[0] += double(w1[k]) * p.x[l], da[1] += double(w1[k]) * p.y[l], da[2] += double(w1[k]) * p.z[l];
+        db[0] += double(w2[k]) * p.x[l], db[1] += double(w2[k]) * p.y[l], db[2] += double(w2[k]) * p.z[l];
+      }
+      a.x[l] = float(da[0]), a.y[l] = float(da[1]), a.z[l] = float(da[2]);
+      b.x[l] = float(db[0]), b.y[l] = float(db[1]), b.z[l] = float(db[2]);
+    }
+  } else {
+    for (uint32_t k = begin; k < end; ++k) {
+      const Lanes& p = last[slot[k]];
+      SDB_LANES {
+        a.x[l] += w1[k] * p.x[l], a.y[l] += w1[k] * p.y[l], a.z[l] += w1[k] * p.z[l];
+        b.x[l] += w2[k] * p.x[l], b.y[l] += w2[k] * p.y[l], b.z[l] += w2[k] * p.z[l];
+      }
+    }
+  }
+  unit_normal(a, b, n);
 }
 
 }  // namespace
 
-void refine_level(const LevelTable& t, bool catmark, const Vec3* parent, Vec3* child) {
-  Vec3* out = child;
-  for (const FaceRule& f : t.faces)
-    *out++ = scale(add(add(parent[f.a], parent[f.c]), add(parent[f.b], parent[f.d])), 0.25f);
-  const Vec3* opposite = catmark ? child : parent;
-  for (const EdgeRule& e : t.edges)
-    *out++ = add(scale(add(parent[e.v0], parent[e.v1]), e.wv), scale(add(opposite[e.f0], opposite[e.f1]), e.wf));
+// AVX2 where the CPU has it, SSE2 otherwise; without fused multiply-adds (-ffp-contract=off)
+// both give the same bits, so outputs do not depend on the machine.
+#define SDB_KERNEL_CLONES __attribute__((target_clones("avx2", "default")))
+
+SDB_KERNEL_CLONES void refine_level(const LevelTable& t, bool catmark, const Lanes* parent, Lanes* child) {
+  Lanes* out = child;
+  for (const FaceRule& f : t.faces) {
+    const Lanes &a = parent[f.a], &b = parent[f.b], &c = parent[f.c], &d = parent[f.d];
+    Lanes& o = *out++;
+    SDB_LANES o.x[l] = ((a.x[l] + c.x[l]) + (b.x[l] + d.x[l])) * 0.25f, o.y[l] = ((a.y[l] + c.y[l]) + (b.y[l] + d.y[l])) * 0.25f,
+        o.z[l] = ((a.z[l] + c.z[l]) + (b.z[l] + d.z[l])) * 0.25f;
+  }
+  const Lanes* opposite = catmark ? child : parent;
+  for (const EdgeRule& e : t.edges) {
+    const Lanes &v0 = parent[e.v0], &v1 = parent[e.v1], &f0 = opposite[e.f0], &f1 = opposite[e.f1];
+    Lanes& o = *out++;
+    SDB_LANES o.x[l] = (v0.x[l] + v1.x[l]) * e.wv + (f0.x[l] + f1.x[l]) * e.wf,
+        o.y[l] = (v0.y[l] + v1.y[l]) * e.wv + (f0.y[l] + f1.y[l]) * e.wf,
+        o.z[l] = (v0.z[l] + v1.z[l]) * e.wv + (f0.z[l] + f1.z[l]) * e.wf;
+  }
   const uint32_t* ring = t.ring.data();
-  for (const VertexRule& v : t.vertices) *out++ = apply(v, ring, parent, opposite);
+  for (const VertexRule& v : t.vertices) set(*out++, apply(v, ring, parent, opposite));
 }
 
-void project_to_limit(const LimitTable& t, const Vec3* last, Vec3* position, Vec3* normal) {
-  for (size_t i = 0; i < t.position.size(); ++i) position[i] = apply(t.position[i], t.ring.data(), last, last);
-  for (size_t i = 0; i + 1 < t.tangent_begin.size(); ++i) normal[i] = normal_at(t, i, last);
-}
-
-void refined_points(const LimitTable& t, const Vec3* last, Vec3* position, Vec3* normal) {
-  for (size_t i = 0; i < t.position.size(); ++i) position[i] = last[t.position[i].centre];
-  for (size_t i = 0; i + 1 < t.tangent_begin.size(); ++i) normal[i] = normal_at(t, i, last);
+SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes* last, bool project, Lanes* position,
+                                        Lanes* normal) {
+  for (size_t i = 0; i < t.position.size(); ++i)
+    position[i] = project ? apply(t.position[i], t.ring.data(), last, last) : last[t.position[i].centre];
+  for (size_t i = 0; i < t.regular.size(); ++i) {
+    if (t.regular[i] >= 0)
+      regular_normal(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size, last,
+                     normal[i]);
+    else
+      general_normal(t, i, last, normal[i]);
+  }
 }
 
 }  // namespace sdb::fragments

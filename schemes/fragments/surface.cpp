@@ -1,5 +1,7 @@
 #include "schemes/fragments/surface.h"
 
+#include "schemes/fragments/kernel.h"
+
 #include <algorithm>
 
 namespace sdb::fragments {
@@ -15,12 +17,25 @@ FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int
     max_slots = std::max(max_slots, tables.back().max_slots);
     const LimitTable& lim = tables.back().limit;
     max_limit_entries = std::max({max_limit_entries, static_cast<uint32_t>(lim.position.size()),
-                                  static_cast<uint32_t>(lim.tangent_begin.size() - 1)});
+                                  static_cast<uint32_t>(lim.regular.size())});
   }
   const size_t bs = block_size(rule, depth);
   for (const Fragment& f : partition.fragments) {
     first_vertex.push_back(num_output_vertices);
     num_output_vertices += f.owned_faces.size() * bs;
+  }
+  order.resize(partition.fragments.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return partition.fragments[a].shape < partition.fragments[b].shape;
+  });
+  for (uint32_t i = 0; i < order.size();) {
+    uint32_t n = 1;
+    while (i + n < order.size() && n < kLanes &&
+           partition.fragments[order[i + n]].shape == partition.fragments[order[i]].shape)
+      ++n;
+    batches.push_back({i, n});
+    i += n;
   }
 }
 
@@ -57,7 +72,7 @@ FragmentStats FragmentSurface::stats() const {
       s.table_bytes += l.faces.size() * sizeof(FaceRule) + l.edges.size() * sizeof(EdgeRule) +
                        l.vertices.size() * sizeof(VertexRule) + l.ring.size() * sizeof(uint32_t);
     s.table_bytes += t.limit.position.size() * sizeof(VertexRule) + t.limit.ring.size() * 4 +
-                     t.limit.tangent_slot.size() * 12 + t.block.size() * 8;
+                     t.limit.tangent_slot.size() * 12 + t.limit.regular_slots.size() * 4 + t.block.size() * 8;
   }
   return s;
 }

@@ -19,6 +19,13 @@ struct FragmentSurface {
   Partition partition;
   std::vector<ShapeTables> tables;  // per shape
   std::vector<size_t> first_vertex;  // per fragment: its first output vertex
+  // Fragments grouped by shape, and cut into batches of at most kLanes of one shape: the unit
+  // the kernel runs (kernel.h), in this order, so a shape's tables stay in cache.
+  std::vector<uint32_t> order;
+  struct Batch {
+    uint32_t begin, count;  // into `order`
+  };
+  std::vector<Batch> batches;
   uint32_t max_slots = 0, max_limit_entries = 0;
   size_t num_output_vertices = 0;
 

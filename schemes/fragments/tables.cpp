@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -336,7 +337,7 @@ class TableBuilder {
           add_limit_position(last, v, lim);
         }
         const int side = side_of(last, v, r.face);
-        auto [it, fresh] = tangent_entry.try_emplace({v, side}, static_cast<int>(lim.tangent_begin.size()) - 1);
+        auto [it, fresh] = tangent_entry.try_emplace({v, side}, static_cast<int>(lim.regular.size()));
         if (fresh) add_limit_tangents(last, v, side, lim);
         const size_t at = static_cast<size_t>(r.owner) * bs + block_index(rule_, depth_, r.uv[j][0], r.uv[j][1]);
         t.block[at] = entry[v];
@@ -417,16 +418,50 @@ class TableBuilder {
       Mask pos(max), t1(max), t2(max);
       scheme_.ComputeVertexLimitMask(VertexHood(last, last, v, v, side), pos, t1, t2, last.GetVertexRule(v));
       const std::vector<uint32_t> eref = ring_vertices(last, v, side), fref = opposite_vertices(last, v, side);
+      if (add_regular_tangents(last, v, t1, t2, eref, fref, lim)) return;
       add(parent_slot(v), t1.VertexWeight(0), t2.VertexWeight(0));
       for (int i = 0; i < t1.GetNumEdgeWeights(); ++i) add(eref[i], t1.EdgeWeight(i), t2.EdgeWeight(i));
       for (int i = 0; i < t1.GetNumFaceWeights(); ++i) add(fref[i], t1.FaceWeight(i), t2.FaceWeight(i));
     }
+    lim.regular.push_back(-1);
     for (const auto& [slot, w] : tangent) {
       lim.tangent_slot.push_back(slot);
       lim.tangent_w1.push_back(w.first);
       lim.tangent_w2.push_back(w.second);
     }
     lim.tangent_begin.push_back(static_cast<uint32_t>(lim.tangent_slot.size()));
+  }
+
+  // The regular vertex's tangents, in Sdc's order (centre, ring, opposite vertices); false where
+  // the vertex is not regular or its weights differ from the first regular vertex's.
+  bool add_regular_tangents(const Far::TopologyLevel& last, int v, const Mask& t1, const Mask& t2,
+                            const std::vector<uint32_t>& eref, const std::vector<uint32_t>& fref, LimitTable& lim) const {
+    const int valence = kCatmark ? 4 : 6;
+    if (last.GetVertexRule(v) != Sdc::Crease::RULE_SMOOTH || last.IsVertexBoundary(v) ||
+        last.GetVertexEdges(v).size() != valence || t1.GetNumEdgeWeights() != valence ||
+        t1.GetNumFaceWeights() != (kCatmark ? 4 : 0))
+      return false;
+    std::vector<float> w1 = {t1.VertexWeight(0)}, w2 = {t2.VertexWeight(0)};
+    std::vector<uint32_t> slots = {parent_slot(v)};
+    for (int i = 0; i < valence; ++i) w1.push_back(t1.EdgeWeight(i)), w2.push_back(t2.EdgeWeight(i)), slots.push_back(eref[i]);
+    for (int i = 0; i < t1.GetNumFaceWeights(); ++i)
+      w1.push_back(t1.FaceWeight(i)), w2.push_back(t2.FaceWeight(i)), slots.push_back(fref[i]);
+    // The weights kernel.cpp's regular_normal() is written for.
+    const float h = 0.866025404f;
+    static const std::vector<float> cc1 = {0, 4, 0, -4, 0, 1, -1, -1, 1}, cc2 = {0, 0, 4, 0, -4, 1, 1, -1, -1};
+    static const std::vector<float> loop1 = {0, 1, 0.5f, -0.5f, -1, -0.5f, 0.5f}, loop2 = {0, 0, h, h, 0, -h, -h};
+    auto near = [](const std::vector<float>& a, const std::vector<float>& b) {
+      if (a.size() != b.size()) return false;
+      for (size_t i = 0; i < a.size(); ++i)
+        if (std::abs(a[i] - b[i]) > 1e-6f) return false;
+      return true;
+    };
+    if (!(kCatmark ? near(w1, cc1) && near(w2, cc2) : near(w1, loop1) && near(w2, loop2))) return false;
+    lim.regular_size = static_cast<int>(slots.size());
+    lim.regular.push_back(static_cast<int32_t>(lim.regular_slots.size() / lim.regular_size));
+    lim.regular_slots.insert(lim.regular_slots.end(), slots.begin(), slots.end());
+    lim.tangent_begin.push_back(lim.tangent_begin.back());
+    return true;
   }
 
   SubdivisionRule rule_;

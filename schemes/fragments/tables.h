@@ -55,7 +55,14 @@ struct LevelTable {
 struct LimitTable {
   std::vector<VertexRule> position;
   std::vector<uint32_t> ring;
-  std::vector<uint32_t> tangent_begin;  // tangent entries + 1 offsets into the three below
+  // Tangent entry i: a regular vertex (smooth, interior, valence 4 or Loop's 6) when regular[i] >= 0,
+  // whose centre, ring and opposite vertices are regular_slots[regular[i] * regular_size ...] and
+  // whose tangents have Sdc's regular weights (kernel.cpp); otherwise tangent_begin[i] .. [i + 1)
+  // of the three lists below.
+  std::vector<int32_t> regular;
+  int regular_size = 0;
+  std::vector<uint32_t> regular_slots;
+  std::vector<uint32_t> tangent_begin;
   std::vector<uint32_t> tangent_slot;
   std::vector<float> tangent_w1, tangent_w2;
 };
