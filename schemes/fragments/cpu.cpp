@@ -18,7 +18,8 @@ CpuFragmentEvaluation::CpuFragmentEvaluation(const ControlMesh& mesh, Subdivisio
   out_.normals.resize(surface_.num_output_vertices);
 }
 
-void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Scratch& s) {
+template <int W>
+void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Buffers<W>& s) {
   if (s.a.size() < surface_.max_slots) {
     s.a.resize(surface_.max_slots), s.b.resize(surface_.max_slots);
     s.position.resize(surface_.max_limit_entries), s.normal.resize(surface_.max_limit_entries);
@@ -26,8 +27,8 @@ void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Scrat
   const std::vector<Fragment>& fragments = surface_.partition.fragments;
   const uint32_t* ids = surface_.order.data() + batch.begin;
   const ShapeTables& t = surface_.tables[fragments[ids[0]].shape];
-  Lanes *src = s.a.data(), *dst = s.b.data();
-  for (int l = 0; l < kLanes; ++l) {  // lanes past the batch repeat its last fragment
+  Lanes<W>*src = s.a.data(), *dst = s.b.data();
+  for (int l = 0; l < W; ++l) {  // lanes past the batch repeat its last fragment
     const std::vector<int>& control = fragments[ids[std::min<uint32_t>(l, batch.count - 1)]].control;
     for (size_t i = 0; i < control.size(); ++i) {
       const Point3& p = control_[control[i]];
@@ -40,32 +41,38 @@ void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Scrat
     std::swap(src, dst);
   }
   project_to_limit(t.limit, src, project_, s.position.data(), s.normal.data());
-  for (uint32_t l = 0; l < batch.count; ++l) {
+  for (uint32_t l = 0; l < std::min<uint32_t>(batch.count, W); ++l) {
     Point3* pos = out_.positions.data() + surface_.first_vertex[ids[l]];
     Point3* nrm = out_.normals.data() + surface_.first_vertex[ids[l]];
     for (size_t i = 0; i < t.block.size(); ++i) {
-      const Lanes &p = s.position[t.block[i]], &n = s.normal[t.block_normal[i]];
+      const Lanes<W>&p = s.position[t.block[i]], &n = s.normal[t.block_normal[i]];
       pos[i] = {p.x[l] + origin_[0], p.y[l] + origin_[1], p.z[l] + origin_[2]};
       nrm[i] = {n.x[l], n.y[l], n.z[l]};
     }
   }
 }
 
+// A batch of one or two fragments runs them one at a time: eight lanes would be mostly idle.
+void CpuFragmentEvaluation::run(const FragmentSurface::Batch& b, Scratch& s) {
+  if (b.count > 2) return run_batch(b, s.wide);
+  for (uint32_t i = 0; i < b.count; ++i) run_batch({b.begin + i, 1}, s.narrow);
+}
+
 void CpuFragmentEvaluation::execute() {
   const std::vector<FragmentSurface::Batch>& batches = surface_.batches;
   if (!multithreaded_) {
     Scratch& s = scratch_.local();
-    for (const FragmentSurface::Batch& b : batches) run_batch(b, s);
+    for (const FragmentSurface::Batch& b : batches) run(b, s);
     return;
   }
-  auto run = [&] {
+  auto go = [&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batches.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
       Scratch& s = scratch_.local();
-      for (size_t i = r.begin(); i < r.end(); ++i) run_batch(batches[i], s);
+      for (size_t i = r.begin(); i < r.end(); ++i) run(batches[i], s);
     });
   };
-  if (arena_) arena_->execute(run);
-  else run();
+  if (arena_) arena_->execute(go);
+  else go();
 }
 
 }  // namespace sdb::fragments

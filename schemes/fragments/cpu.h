@@ -25,10 +25,17 @@ class CpuFragmentEvaluation final : public Evaluation {
   const FragmentSurface& surface() const { return surface_; }
 
  private:
-  struct Scratch {
-    std::vector<Lanes> a, b, position, normal;
+  template <int W>
+  struct Buffers {
+    std::vector<Lanes<W>> a, b, position, normal;
   };
-  void run_batch(const FragmentSurface::Batch& batch, Scratch& s);
+  struct Scratch {
+    Buffers<kLanes> wide;
+    Buffers<1> narrow;
+  };
+  template <int W>
+  void run_batch(const FragmentSurface::Batch& batch, Buffers<W>& s);
+  void run(const FragmentSurface::Batch& batch, Scratch& s);
 
   std::vector<Point3> control_;
   float origin_[3];  // the control box's centre: refined relative to it, float keeps its precision

@@ -3,26 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
+#ifdef __SSE__
+#include <immintrin.h>
+#endif
+
 namespace sdb::fragments {
 namespace {
 
-#define SDB_LANES for (int l = 0; l < kLanes; ++l)
+#define SDB_LANES _Pragma("omp simd") for (int l = 0; l < W; ++l)
 
-inline void set(Lanes& d, const Lanes& s) { d = s; }
 
 // a + b, lane by lane.
-inline Lanes add(const Lanes& a, const Lanes& b) {
-  Lanes r;
+template <int W>
+inline Lanes<W> add(const Lanes<W>& a, const Lanes<W>& b) {
+  Lanes<W> r;
   SDB_LANES r.x[l] = a.x[l] + b.x[l], r.y[l] = a.y[l] + b.y[l], r.z[l] = a.z[l] + b.z[l];
   return r;
 }
-inline Lanes sub(const Lanes& a, const Lanes& b) {
-  Lanes r;
+template <int W>
+inline Lanes<W> sub(const Lanes<W>& a, const Lanes<W>& b) {
+  Lanes<W> r;
   SDB_LANES r.x[l] = a.x[l] - b.x[l], r.y[l] = a.y[l] - b.y[l], r.z[l] = a.z[l] - b.z[l];
   return r;
 }
-inline Lanes scale(const Lanes& a, float s) {
-  Lanes r;
+template <int W>
+inline Lanes<W> scale(const Lanes<W>& a, float s) {
+  Lanes<W> r;
   SDB_LANES r.x[l] = a.x[l] * s, r.y[l] = a.y[l] * s, r.z[l] = a.z[l] * s;
   return r;
 }
@@ -38,16 +44,43 @@ inline float sum3_sorted(float a, float b, float c) {
 
 // Ascending, so the sum is the same whatever order the terms came in.
 float sorted_sum(float* v, int n) {
+  for (int i = 0; i < n; ++i) v[i] += 0.0f;
   std::sort(v, v + n);
   float s = v[0];
   for (int i = 1; i < n; ++i) s += v[i];
   return s;
 }
 
+// The same sum for short rings, all lanes at once: an odd-even transposition sort (n passes of
+// compare-exchanges, min and max on whole lane vectors), then the ascending sum.
+constexpr int kNetworkRing = 12;
+
+template <int W>
+void sorted_sum_lanes(const Lanes<W>* src, const uint32_t* ref, int n, Lanes<W>& out) {
+  float v[kNetworkRing][W];
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 0; i < n; ++i) {
+      const Lanes<W>& p = src[ref[i]];
+      const float* c = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+      SDB_LANES v[i][l] = c[l] + 0.0f;
+    }
+    for (int pass = 0; pass < n; ++pass)
+      for (int i = pass & 1; i + 1 < n; i += 2)
+        SDB_LANES {
+          const float a = v[i][l], b = v[i + 1][l];
+          v[i][l] = std::min(a, b), v[i + 1][l] = std::max(a, b);
+        }
+    float* o = axis == 0 ? out.x : axis == 1 ? out.y : out.z;
+    SDB_LANES o[l] = v[0][l];
+    for (int i = 1; i < n; ++i) SDB_LANES o[l] += v[i][l];
+  }
+}
+
 // The sum of a vertex's ring that two fragments starting the ring at different places get
 // bit-identical: opposite pairs for valence 4, 6 and 8 (a rotation permutes the pair sums), a
 // sorted sum otherwise.
-Lanes ring_sum(const Lanes* src, const uint32_t* ref, int n) {
+template <int W>
+Lanes<W> ring_sum(const Lanes<W>* src, const uint32_t* ref, int n) {
   switch (n) {
     case 1:
       return src[ref[0]];
@@ -56,21 +89,25 @@ Lanes ring_sum(const Lanes* src, const uint32_t* ref, int n) {
     case 4:
       return add(add(src[ref[0]], src[ref[2]]), add(src[ref[1]], src[ref[3]]));
     case 6: {
-      const Lanes a = add(src[ref[0]], src[ref[3]]), b = add(src[ref[1]], src[ref[4]]), c = add(src[ref[2]], src[ref[5]]);
-      Lanes r;
+      const Lanes<W> a = add(src[ref[0]], src[ref[3]]), b = add(src[ref[1]], src[ref[4]]), c = add(src[ref[2]], src[ref[5]]);
+      Lanes<W> r;
       SDB_LANES r.x[l] = sum3_sorted(a.x[l], b.x[l], c.x[l]), r.y[l] = sum3_sorted(a.y[l], b.y[l], c.y[l]),
           r.z[l] = sum3_sorted(a.z[l], b.z[l], c.z[l]);
       return r;
     }
     case 8: {
-      Lanes q[4];
+      Lanes<W> q[4];
       for (int i = 0; i < 4; ++i) q[i] = add(src[ref[i]], src[ref[i + 4]]);
       return add(add(q[0], q[2]), add(q[1], q[3]));
     }
     default: {
+      Lanes<W> r;
+      if (n <= kNetworkRing) {
+        sorted_sum_lanes(src, ref, n, r);
+        return r;
+      }
       float v[1024];  // tables.cpp refuses longer rings
-      Lanes r;
-      for (int l = 0; l < kLanes; ++l) {
+      for (int l = 0; l < W; ++l) {
         for (int i = 0; i < n; ++i) v[i] = src[ref[i]].x[l];
         r.x[l] = sorted_sum(v, n);
         for (int i = 0; i < n; ++i) v[i] = src[ref[i]].y[l];
@@ -83,36 +120,58 @@ Lanes ring_sum(const Lanes* src, const uint32_t* ref, int n) {
   }
 }
 
-inline Lanes apply(const VertexRule& r, const uint32_t* ring, const Lanes* pv, const Lanes* pf) {
+template <int W>
+inline Lanes<W> apply(const VertexRule& r, const uint32_t* ring, const Lanes<W>* pv, const Lanes<W>* pf) {
   const uint32_t* ref = ring + r.ring;
-  Lanes s = scale(pv[r.centre], r.wv);
+  Lanes<W> s = scale(pv[r.centre], r.wv);
   if (r.wc != 0) s = add(s, scale(add(pv[r.p0], pv[r.p1]), r.wc));
   if (r.num_e) s = add(s, scale(ring_sum(pv, ref, r.num_e), r.we));
   if (r.num_f) s = add(s, scale(ring_sum(pf, ref + r.num_e, r.num_f), r.wf));
   return s;
 }
 
-inline void unit_normal(const Lanes& a, const Lanes& b, Lanes& n) {
+// 1 / sqrt(v), IEEE-exact in every lane (GCC 12 leaves sqrtf scalar here; SSE's sqrtps and divps
+// round as sqrtf and / do, so the bits are the same either way).
+template <int W>
+inline void inverse_sqrt(float* v) {
+#ifdef __SSE__
+  if constexpr (W % 4 == 0) {
+    for (int l = 0; l < W; l += 4) _mm_storeu_ps(v + l, _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(_mm_loadu_ps(v + l))));
+    return;
+  }
+#endif
+  SDB_LANES v[l] = 1.0f / std::sqrt(v[l]);
+}
+
+template <int W>
+inline void unit_normal(const Lanes<W>& a, const Lanes<W>& b, Lanes<W>& n) {
+  Lanes<W> c;
+  float len2[W], inv[W];
   SDB_LANES {
-    const float nx = a.y[l] * b.z[l] - a.z[l] * b.y[l], ny = a.z[l] * b.x[l] - a.x[l] * b.z[l],
-                nz = a.x[l] * b.y[l] - a.y[l] * b.x[l];
-    const float len2 = nx * nx + ny * ny + nz * nz;
-    const float inv = len2 > 0 ? 1.0f / std::sqrt(len2) : 0.0f;
-    n.x[l] = nx * inv, n.y[l] = ny * inv, n.z[l] = nz * inv;
+    c.x[l] = a.y[l] * b.z[l] - a.z[l] * b.y[l], c.y[l] = a.z[l] * b.x[l] - a.x[l] * b.z[l],
+    c.z[l] = a.x[l] * b.y[l] - a.y[l] * b.x[l];
+    len2[l] = c.x[l] * c.x[l] + c.y[l] * c.y[l] + c.z[l] * c.z[l];
+  }
+  SDB_LANES inv[l] = len2[l] > 0 ? len2[l] : 1.0f;
+  inverse_sqrt<W>(inv);
+  SDB_LANES {
+    const float k = len2[l] > 0 ? inv[l] : 0.0f;
+    n.x[l] = c.x[l] * k, n.y[l] = c.y[l] * k, n.z[l] = c.z[l] * k;
   }
 }
 
 // Sdc's tangents of a regular vertex (tables.cpp checks the weights are these), grouped into
 // differences: Catmull-Clark 4 (e0 - e2) + (f0 - f1 - f2 + f3) and 4 (e1 - e3) + (f0 + f1 - f2 - f3);
 // Loop (e0 - e3) + (e1 - e2 - e4 + e5) / 2 and sqrt(3) / 2 (e1 + e2 - e4 - e5). Slots: centre, e, f.
-inline void regular_normal(const uint32_t* slot, int size, const Lanes* p, Lanes& n) {
+template <int W>
+inline void regular_normal(const uint32_t* slot, int size, const Lanes<W>* p, Lanes<W>& n) {
   if (size == 9) {
-    const Lanes d02 = sub(p[slot[5]], p[slot[7]]), d13 = sub(p[slot[6]], p[slot[8]]);
+    const Lanes<W> d02 = sub(p[slot[5]], p[slot[7]]), d13 = sub(p[slot[6]], p[slot[8]]);
     unit_normal(add(scale(sub(p[slot[1]], p[slot[3]]), 4.0f), sub(d02, d13)),
                 add(scale(sub(p[slot[2]], p[slot[4]]), 4.0f), add(d02, d13)), n);
     return;
   }
-  const Lanes d14 = sub(p[slot[2]], p[slot[5]]), d25 = sub(p[slot[3]], p[slot[6]]);
+  const Lanes<W> d14 = sub(p[slot[2]], p[slot[5]]), d25 = sub(p[slot[3]], p[slot[6]]);
   unit_normal(add(sub(p[slot[1]], p[slot[4]]), scale(sub(d14, d25), 0.5f)), scale(add(d14, d25), 0.866025404f), n);
 }
 
@@ -120,16 +179,17 @@ inline void regular_normal(const uint32_t* slot, int size, const Lanes* p, Lanes
 // together) are summed in double, so that the normal keeps float precision at valence 360.
 constexpr uint32_t kLongTangentMask = 32;
 
-void general_normal(const LimitTable& t, size_t i, const Lanes* last, Lanes& n) {
+template <int W>
+void general_normal(const LimitTable& t, size_t i, const Lanes<W>* last, Lanes<W>& n) {
   const uint32_t begin = t.tangent_begin[i], end = t.tangent_begin[i + 1];
   const uint32_t* slot = t.tangent_slot.data();
   const float *w1 = t.tangent_w1.data(), *w2 = t.tangent_w2.data();
-  Lanes a{}, b{};
+  Lanes<W> a{}, b{};
   if (end - begin > kLongTangentMask) {
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < W; ++l) {
       double da[3] = {0, 0, 0}, db[3] = {0, 0, 0};
       for (uint32_t k = begin; k < end; ++k) {
-        const Lanes& p = last[slot[k]];
+        const Lanes<W>& p = last[slot[k]];
         da[0] += double(w1[k]) * p.x[l], da[1] += double(w1[k]) * p.y[l], da[2] += double(w1[k]) * p.z[l];
         db[0] += double(w2[k]) * p.x[l], db[1] += double(w2[k]) * p.y[l], db[2] += double(w2[k]) * p.z[l];
       }
@@ -138,7 +198,7 @@ void general_normal(const LimitTable& t, size_t i, const Lanes* last, Lanes& n) 
     }
   } else {
     for (uint32_t k = begin; k < end; ++k) {
-      const Lanes& p = last[slot[k]];
+      const Lanes<W>& p = last[slot[k]];
       SDB_LANES {
         a.x[l] += w1[k] * p.x[l], a.y[l] += w1[k] * p.y[l], a.z[l] += w1[k] * p.z[l];
         b.x[l] += w2[k] * p.x[l], b.y[l] += w2[k] * p.y[l], b.z[l] += w2[k] * p.z[l];
@@ -150,32 +210,30 @@ void general_normal(const LimitTable& t, size_t i, const Lanes* last, Lanes& n) 
 
 }  // namespace
 
-// AVX2 where the CPU has it, SSE2 otherwise; without fused multiply-adds (-ffp-contract=off)
-// both give the same bits, so outputs do not depend on the machine.
-#define SDB_KERNEL_CLONES __attribute__((target_clones("avx2", "default")))
 
-SDB_KERNEL_CLONES void refine_level(const LevelTable& t, bool catmark, const Lanes* parent, Lanes* child) {
-  Lanes* out = child;
+template <int W>
+void refine_level(const LevelTable& t, bool catmark, const Lanes<W>* parent, Lanes<W>* child) {
+  Lanes<W>* out = child;
   for (const FaceRule& f : t.faces) {
-    const Lanes &a = parent[f.a], &b = parent[f.b], &c = parent[f.c], &d = parent[f.d];
-    Lanes& o = *out++;
+    const Lanes<W> &a = parent[f.a], &b = parent[f.b], &c = parent[f.c], &d = parent[f.d];
+    Lanes<W>& o = *out++;
     SDB_LANES o.x[l] = ((a.x[l] + c.x[l]) + (b.x[l] + d.x[l])) * 0.25f, o.y[l] = ((a.y[l] + c.y[l]) + (b.y[l] + d.y[l])) * 0.25f,
         o.z[l] = ((a.z[l] + c.z[l]) + (b.z[l] + d.z[l])) * 0.25f;
   }
-  const Lanes* opposite = catmark ? child : parent;
+  const Lanes<W>* opposite = catmark ? child : parent;
   for (const EdgeRule& e : t.edges) {
-    const Lanes &v0 = parent[e.v0], &v1 = parent[e.v1], &f0 = opposite[e.f0], &f1 = opposite[e.f1];
-    Lanes& o = *out++;
+    const Lanes<W> &v0 = parent[e.v0], &v1 = parent[e.v1], &f0 = opposite[e.f0], &f1 = opposite[e.f1];
+    Lanes<W>& o = *out++;
     SDB_LANES o.x[l] = (v0.x[l] + v1.x[l]) * e.wv + (f0.x[l] + f1.x[l]) * e.wf,
         o.y[l] = (v0.y[l] + v1.y[l]) * e.wv + (f0.y[l] + f1.y[l]) * e.wf,
         o.z[l] = (v0.z[l] + v1.z[l]) * e.wv + (f0.z[l] + f1.z[l]) * e.wf;
   }
   const uint32_t* ring = t.ring.data();
-  for (const VertexRule& v : t.vertices) set(*out++, apply(v, ring, parent, opposite));
+  for (const VertexRule& v : t.vertices) *out++ = apply(v, ring, parent, opposite);
 }
 
-SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes* last, bool project, Lanes* position,
-                                        Lanes* normal) {
+template <int W>
+void project_to_limit(const LimitTable& t, const Lanes<W>* last, bool project, Lanes<W>* position, Lanes<W>* normal) {
   for (size_t i = 0; i < t.position.size(); ++i)
     position[i] = project ? apply(t.position[i], t.ring.data(), last, last) : last[t.position[i].centre];
   for (size_t i = 0; i < t.regular.size(); ++i) {
@@ -186,5 +244,10 @@ SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes* last, 
       general_normal(t, i, last, normal[i]);
   }
 }
+
+template void refine_level<1>(const LevelTable&, bool, const Lanes<1>*, Lanes<1>*);
+template void refine_level<kLanes>(const LevelTable&, bool, const Lanes<kLanes>*, Lanes<kLanes>*);
+template void project_to_limit<1>(const LimitTable&, const Lanes<1>*, bool, Lanes<1>*, Lanes<1>*);
+template void project_to_limit<kLanes>(const LimitTable&, const Lanes<kLanes>*, bool, Lanes<kLanes>*, Lanes<kLanes>*);
 
 }  // namespace sdb::fragments

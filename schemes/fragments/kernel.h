@@ -12,18 +12,23 @@ namespace sdb::fragments {
 
 constexpr int kLanes = 8;
 
-// One slot of kLanes fragments, structure of arrays.
+// One slot of W fragments, structure of arrays. W = kLanes for shapes many fragments share, 1
+// for the rest (a vertex patch's shape is often its own).
+template <int W>
 struct Lanes {
-  float x[kLanes], y[kLanes], z[kLanes];
+  float x[W], y[W], z[W];
 };
 
 // parent: level d - 1's slots; child: level d's (table.num_slots). Catmull-Clark edge and vertex
 // rules read the face points just written to `child`.
-void refine_level(const LevelTable& table, bool catmark, const Lanes* parent, Lanes* child);
+template <int W>
+void refine_level(const LevelTable& table, bool catmark, const Lanes<W>* parent, Lanes<W>* child);
 
 // Limit position of every position entry and unit normal of every tangent entry, from the last
 // level's slots; with project = false the positions are the last level's points themselves (the
 // exactness oracle's side), the normals still the limit's.
-void project_to_limit(const LimitTable& table, const Lanes* last, bool project, Lanes* position, Lanes* normal);
+template <int W>
+void project_to_limit(const LimitTable& table, const Lanes<W>* last, bool project, Lanes<W>* position,
+                      Lanes<W>* normal);
 
 }  // namespace sdb::fragments
