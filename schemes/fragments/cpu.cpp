@@ -9,7 +9,12 @@ namespace sdb::fragments {
 
 CpuFragmentEvaluation::CpuFragmentEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,
                                              bool multithreaded, int threads, bool project_to_limit)
-    : control_(mesh.positions), surface_(mesh, rule, depth), multithreaded_(multithreaded), project_(project_to_limit) {
+    : control_(mesh.positions),
+      // The refined points are level `depth`'s own; the limit is projected from a level deep
+      // enough that no semi-sharp crease is left (surface.h).
+      surface_(mesh, rule, depth, project_to_limit ? inner_depth_for(mesh, depth) : depth),
+      multithreaded_(multithreaded),
+      project_(project_to_limit) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
   const Bounds box = bounds_of(control_);
   for (int k = 0; k < 3; ++k) origin_[k] = static_cast<float>(box.centre(k));

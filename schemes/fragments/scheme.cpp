@@ -29,6 +29,7 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.accepts.manifold = true;
   info.accepts.creases = true;
   info.accepts.holes = true;
+  info.bound = {1e-5, 0.01};
   // Depth schemes are read against OpenSubdiv's uniform refinement at the same depth.
   info.peer = loop ? "osd-uniform-loop" : "osd-uniform";
   info.default_meshes = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",

@@ -3,6 +3,7 @@
 #include "schemes/fragments/kernel.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sdb::fragments {
 
@@ -10,10 +11,22 @@ size_t output_vertices(const ControlMesh& mesh, SubdivisionRule rule, int depth)
   return (mesh.face_sizes.size() - mesh.holes.size()) * static_cast<size_t>(block_size(rule, depth));
 }
 
-FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int d)
-    : rule(r), depth(d), partition(partition_mesh(mesh, r)) {
+// Sharpness s decays by at least one a level (Uniform: exactly; Chaikin averages it with its
+// neighbours' first), so ceil(s) levels exhaust it. The same for every fragment: a point shared by
+// two fragments must come from the same level in both to be bit-identical.
+int inner_depth_for(const ControlMesh& mesh, int depth) {
+  float s = 0;
+  for (const EdgeCrease& c : mesh.creases)
+    if (c.sharpness < 10) s = std::max(s, c.sharpness);  // Far's infinitely sharp is 10
+  for (const VertexCorner& c : mesh.corners)
+    if (c.sharpness < 10) s = std::max(s, c.sharpness);
+  return std::clamp(static_cast<int>(std::ceil(s)), depth, depth + kExtraDepth);
+}
+
+FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int d, int inner)
+    : rule(r), depth(d), inner_depth(inner), partition(partition_mesh(mesh, r)) {
   for (const LocalNet& net : partition.shapes) {
-    tables.push_back(build_tables(net, rule, depth));
+    tables.push_back(build_tables(net, rule, inner_depth, depth));
     max_slots = std::max(max_slots, tables.back().max_slots);
     const LimitTable& lim = tables.back().limit;
     max_limit_entries = std::max({max_limit_entries, static_cast<uint32_t>(lim.position.size()),

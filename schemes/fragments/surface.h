@@ -12,10 +12,13 @@
 namespace sdb::fragments {
 
 struct FragmentSurface {
-  FragmentSurface(const ControlMesh& mesh, SubdivisionRule rule, int depth);
+  FragmentSurface(const ControlMesh& mesh, SubdivisionRule rule, int depth, int inner_depth);
 
   SubdivisionRule rule;
   int depth;
+  // Refined this far, then sampled at `depth`'s grid: far enough that no semi-sharp crease is
+  // left, which Far's limit masks would take as infinitely sharp (at most kExtraDepth more).
+  int inner_depth;
   Partition partition;
   std::vector<ShapeTables> tables;  // per shape
   std::vector<size_t> first_vertex;  // per fragment: its first output vertex
@@ -33,6 +36,9 @@ struct FragmentSurface {
   void describe(Tessellation& out) const;
   FragmentStats stats() const;
 };
+
+constexpr int kExtraDepth = 3;
+int inner_depth_for(const ControlMesh& mesh, int depth);
 
 // Output size before anything is built, for the size check in prepare.
 size_t output_vertices(const ControlMesh& mesh, SubdivisionRule rule, int depth);

@@ -152,8 +152,9 @@ struct RegionFace {
 template <Sdc::SchemeType S>
 class TableBuilder {
  public:
-  TableBuilder(const LocalNet& net, SubdivisionRule rule, int depth)
-      : rule_(rule), depth_(depth), refiner_(make_refiner(net.mesh, rule)), num_owned_(net.num_owned) {
+  TableBuilder(const LocalNet& net, SubdivisionRule rule, int depth, int out_depth)
+      : rule_(rule), depth_(depth), out_depth_(out_depth), refiner_(make_refiner(net.mesh, rule)),
+        num_owned_(net.num_owned) {
     Far::TopologyRefiner::UniformOptions options(depth);
     options.fullTopologyInLastLevel = true;
     refiner_->RefineUniform(options);
@@ -323,7 +324,7 @@ class TableBuilder {
     const Far::TopologyLevel& last = refiner_->GetLevel(depth_);
     std::vector<int> entry(last.GetNumVertices(), -1);
     std::map<std::pair<int, int>, int> tangent_entry;
-    const int bs = block_size(rule_, depth_);
+    const int bs = block_size(rule_, out_depth_), shift = depth_ - out_depth_, mask = (1 << shift) - 1;
     t.block.assign(static_cast<size_t>(num_owned_) * bs, 0);
     t.block_normal.assign(t.block.size(), 0);
     LimitTable& lim = t.limit;
@@ -332,6 +333,7 @@ class TableBuilder {
       Far::ConstIndexArray fv = last.GetFaceVertices(r.face);
       for (int j = 0; j < fv.size(); ++j) {
         const int v = fv[j];
+        if ((r.uv[j][0] & mask) || (r.uv[j][1] & mask)) continue;  // between the output's grid points
         if (entry[v] < 0) {
           entry[v] = static_cast<int>(lim.position.size());
           add_limit_position(last, v, lim);
@@ -339,7 +341,8 @@ class TableBuilder {
         const int side = side_of(last, v, r.face);
         auto [it, fresh] = tangent_entry.try_emplace({v, side}, static_cast<int>(lim.regular.size()));
         if (fresh) add_limit_tangents(last, v, side, lim);
-        const size_t at = static_cast<size_t>(r.owner) * bs + block_index(rule_, depth_, r.uv[j][0], r.uv[j][1]);
+        const size_t at = static_cast<size_t>(r.owner) * bs +
+                          block_index(rule_, out_depth_, r.uv[j][0] >> shift, r.uv[j][1] >> shift);
         t.block[at] = entry[v];
         t.block_normal[at] = it->second;
       }
@@ -465,7 +468,7 @@ class TableBuilder {
   }
 
   SubdivisionRule rule_;
-  int depth_;
+  int depth_, out_depth_;
   std::unique_ptr<Far::TopologyRefiner> refiner_;
   int num_owned_;
   Sdc::Scheme<S> scheme_;
@@ -502,9 +505,10 @@ std::vector<uint32_t> block_triangles(SubdivisionRule rule, int depth) {
   return t;
 }
 
-ShapeTables build_tables(const LocalNet& net, SubdivisionRule rule, int depth) {
-  if (rule == SubdivisionRule::Loop) return TableBuilder<Sdc::SCHEME_LOOP>(net, rule, depth).build();
-  return TableBuilder<Sdc::SCHEME_CATMARK>(net, rule, depth).build();
+ShapeTables build_tables(const LocalNet& net, SubdivisionRule rule, int depth, int out_depth) {
+  if (out_depth < 0) out_depth = depth;
+  if (rule == SubdivisionRule::Loop) return TableBuilder<Sdc::SCHEME_LOOP>(net, rule, depth, out_depth).build();
+  return TableBuilder<Sdc::SCHEME_CATMARK>(net, rule, depth, out_depth).build();
 }
 
 }  // namespace sdb::fragments

@@ -68,7 +68,7 @@ struct LimitTable {
 };
 
 struct ShapeTables {
-  int depth = 0;
+  int depth = 0;  // refined to; the output's depth may be lower (surface.h)
   uint32_t num_slots0 = 0;
   uint32_t max_slots = 0;          // largest level, for scratch buffers
   std::vector<LevelTable> levels;  // levels[d - 1] makes level d from level d - 1
@@ -86,8 +86,9 @@ std::vector<uint32_t> block_triangles(SubdivisionRule rule, int depth);
 int block_index(SubdivisionRule rule, int depth, int i, int j);
 
 // Refines the net with OpenSubdiv's topology refiner to `depth` (topology and sharpness only)
-// and asks Sdc for each needed point's mask. Throws Unsupported where a mask does not have the
-// symmetric form above.
-ShapeTables build_tables(const LocalNet& net, SubdivisionRule rule, int depth);
+// and asks Sdc for each needed point's mask; the output blocks take the points of that level
+// that lie on the grid of `out_depth` (<= depth; -1: the same). Throws Unsupported where a mask
+// does not have the symmetric form above.
+ShapeTables build_tables(const LocalNet& net, SubdivisionRule rule, int depth, int out_depth = -1);
 
 }  // namespace sdb::fragments
