@@ -2,7 +2,8 @@
 //   - before limit projection, every refined point at depths 1..5 equals Far's uniform refinement
 //     of the same mesh (matched through the ptex grid point it stands for), on the corpus sweep;
 //   - after it, every output vertex equals osd-uniform's limit projection (PrimvarRefiner::Limit);
-//   - exact welding closes every closed input and leaves exactly the input's boundary open.
+//   - exact welding closes every closed input and leaves exactly the input's boundary open, and
+//     100,000 rays (half aimed at face borders) find no crack in any closed one.
 #include <gtest/gtest.h>
 
 #include <opensubdiv/far/primvarRefiner.h>
@@ -323,7 +324,8 @@ void sweep(SubdivisionRule rule) {
       // OpenSubdiv 3.5.0's Bfr defect (harness/reference/bfr_defect.h): no yardstick
     }
     int judged = 0;
-    long special = 0;
+    long special = 0, rays = 0, crack_count = 0;
+    const bool closed = compute_facts(accepted).closed && accepted.holes.empty();
     Match worst;
     int depth = 1;
     for (; depth <= 5; ++depth) {
@@ -356,9 +358,15 @@ void sweep(SubdivisionRule rule) {
         ++judged;
       }
       EXPECT_EQ(count_open_edges(t), boundary_edges(accepted) << depth) << name << " depth " << depth;
+      if (closed) {
+        const RayCrackReport cracks = ray_crack_check(lt, {50000, 50000, 1});
+        EXPECT_EQ(cracks.cracks, 0) << name << " depth " << depth << " (" << cracks.rays << " rays)";
+        rays += cracks.rays, crack_count += cracks.cracks;
+      }
     }
-    std::printf("  %-44s depths 1..%d  refined %.2g  normal %.2g deg from the reference at %d depths (%ld special)\n",
-                name.c_str(), depth - 1, worst.max_rel, worst.max_deg, judged, special);
+    std::printf("  %-44s depths 1..%d  refined %.2g  normal %.2g deg from the reference at %d depths (%ld special)"
+                "  %ld rays, %ld cracks\n", name.c_str(), depth - 1, worst.max_rel, worst.max_deg, judged, special, rays,
+                crack_count);
     exact += worst.max_rel <= 1e-6;
   }
   std::printf("%s: %d shapes exact, %d refused\n", info.name.c_str(), exact, refused);
