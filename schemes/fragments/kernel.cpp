@@ -12,7 +12,6 @@ namespace {
 
 #define SDB_LANES _Pragma("omp simd") for (int l = 0; l < W; ++l)
 
-
 // a + b, lane by lane.
 template <int W>
 inline Lanes<W> add(const Lanes<W>& a, const Lanes<W>& b) {

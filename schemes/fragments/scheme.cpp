@@ -1,3 +1,4 @@
+#include <cstdio>
 #include <string>
 
 #include "harness/core/errors.h"
@@ -81,9 +82,12 @@ SDB_REGISTER_SCHEMES(fragments, make_fragment_schemes);
 std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& r,
                                             bool project_to_limit) {
   const double bytes = static_cast<double>(output_vertices(mesh, rule, r.level)) * 2 * sizeof(Point3);
-  if (bytes > kMaxOutputBytes || bytes / (2 * sizeof(Point3)) >= 4294967295.0)
-    throw Unsupported("depth " + std::to_string(r.level) + " would write " + std::to_string(bytes / 1e9) +
-                      " GB of positions and normals, past the " + std::to_string(kMaxOutputBytes / 1e9) + " GB limit");
+  if (bytes > kMaxOutputBytes || bytes / (2 * sizeof(Point3)) >= 4294967295.0) {
+    char why[160];
+    std::snprintf(why, sizeof why, "depth %d would write %.1f GB of positions and normals, past the %.0f GB limit",
+                  r.level, bytes / 1e9, kMaxOutputBytes / 1e9);
+    throw Unsupported(why);
+  }
   return std::make_unique<CpuFragmentEvaluation>(mesh, rule, r.level, r.backend == Backend::CpuMt, r.threads,
                                                  project_to_limit);
 }
