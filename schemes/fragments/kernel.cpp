@@ -233,8 +233,18 @@ void refine_level(const LevelTable& t, bool catmark, const Lanes<W>* parent, Lan
 
 template <int W>
 void project_to_limit(const LimitTable& t, const Lanes<W>* last, bool project, Lanes<W>* position, Lanes<W>* normal) {
-  for (size_t i = 0; i < t.position.size(); ++i)
-    position[i] = project ? apply(t.position[i], t.ring.data(), last, last) : last[t.position[i].centre];
+  for (size_t i = 0; i < t.position.size(); ++i) {
+    if (!project) {
+      position[i] = last[t.position[i].centre];
+    } else if (t.stencil[i] < 0) {
+      position[i] = apply(t.position[i], t.ring.data(), last, last);
+    } else {  // in the stencil's order, which every fragment shares
+      Lanes<W> p{};
+      for (uint32_t k = t.stencil_begin[t.stencil[i]]; k < t.stencil_begin[t.stencil[i] + 1]; ++k)
+        p = add(p, scale(last[t.stencil_slot[k]], t.stencil_w[k]));
+      position[i] = p;
+    }
+  }
   for (size_t i = 0; i < t.regular.size(); ++i) {
     if (t.regular[i] >= 0)
       regular_normal(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size, last,

@@ -14,82 +14,14 @@
 
 #include "harness/core/errors.h"
 #include "harness/mesh/osd_topology.h"
+#include "schemes/fragments/ring_limit.h"
+#include "schemes/fragments/sdc_masks.h"
 
 namespace sdb::fragments {
 namespace {
 
 namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
-
-// The neighbourhoods Sdc's mask queries read, on Far's public TopologyLevel (what Far's own
-// Vtr::internal::EdgeInterface and VertexInterface give PrimvarRefiner, so the masks are its).
-class EdgeHood {
- public:
-  EdgeHood(const Far::TopologyLevel& level, int edge) : level_(level), edge_(edge) {}
-  int GetNumFaces() const { return level_.GetEdgeFaces(edge_).size(); }
-  float GetSharpness() const { return level_.GetEdgeSharpness(edge_); }
-  void GetChildSharpnesses(const Sdc::Crease&, float s[2]) const { s[0] = s[1] = GetSharpness() - 1.0f; }
-  void GetNumVerticesPerFace(int counts[]) const {
-    Far::ConstIndexArray faces = level_.GetEdgeFaces(edge_);
-    for (int i = 0; i < faces.size(); ++i) counts[i] = level_.GetFaceVertices(faces[i]).size();
-  }
-
- private:
-  const Far::TopologyLevel& level_;
-  int edge_;
-};
-
-class VertexHood {
- public:
-  // `start` rotates the ring (interior vertices only): Sdc reads edge and face i as Far's i + start.
-  VertexHood(const Far::TopologyLevel& parent, const Far::TopologyLevel& child, int vertex, int child_vertex,
-             int start = 0)
-      : parent_(parent), child_(child), vertex_(vertex), child_vertex_(child_vertex), start_(start) {}
-  int GetNumEdges() const { return parent_.GetVertexEdges(vertex_).size(); }
-  int GetNumFaces() const { return parent_.GetVertexFaces(vertex_).size(); }
-  float GetSharpness() const { return parent_.GetVertexSharpness(vertex_); }
-  float* GetSharpnessPerEdge(float s[]) const {
-    Far::ConstIndexArray edges = parent_.GetVertexEdges(vertex_);
-    for (int i = 0; i < edges.size(); ++i) s[i] = parent_.GetEdgeSharpness(edges[(i + start_) % edges.size()]);
-    return s;
-  }
-  float GetChildSharpness(const Sdc::Crease&) const { return child_.GetVertexSharpness(child_vertex_); }
-  float* GetChildSharpnessPerEdge(const Sdc::Crease& crease, float s[]) const {
-    std::vector<float> p(GetNumEdges());
-    GetSharpnessPerEdge(p.data());
-    crease.SubdivideEdgeSharpnessesAroundVertex(GetNumEdges(), p.data(), s);
-    return s;
-  }
-
- private:
-  const Far::TopologyLevel &parent_, &child_;
-  int vertex_, child_vertex_, start_;
-};
-
-class Mask {
- public:
-  using Weight = float;
-  explicit Mask(int max_weights) : v_(2), e_(max_weights), f_(max_weights) {}  // an edge mask has two vertex weights
-  int GetNumVertexWeights() const { return nv_; }
-  int GetNumEdgeWeights() const { return ne_; }
-  int GetNumFaceWeights() const { return nf_; }
-  void SetNumVertexWeights(int n) { nv_ = n; }
-  void SetNumEdgeWeights(int n) { ne_ = n; }
-  void SetNumFaceWeights(int n) { nf_ = n; }
-  Weight const& VertexWeight(int i) const { return v_[i]; }
-  Weight const& EdgeWeight(int i) const { return e_[i]; }
-  Weight const& FaceWeight(int i) const { return f_[i]; }
-  Weight& VertexWeight(int i) { return v_[i]; }
-  Weight& EdgeWeight(int i) { return e_[i]; }
-  Weight& FaceWeight(int i) { return f_[i]; }
-  bool AreFaceWeightsForFaceCenters() const { return centres_; }
-  void SetFaceWeightsForFaceCenters(bool on) { centres_ = on; }
-
- private:
-  std::vector<Weight> v_, e_, f_;
-  int nv_ = 0, ne_ = 0, nf_ = 0;
-  bool centres_ = false;
-};
 
 // The kernel's ring sums take at most this many terms.
 constexpr int kMaxValence = 1024;
@@ -393,7 +325,45 @@ class TableBuilder {
     return w;
   }
 
+  // A dart's limit, or a smooth valence-2 vertex's, from the eigenvector of its ring's matrix
+  // (ring_limit.h): a dart's ring starts at its sharp edge, the same in every fragment.
+  bool add_exact_limit_position(const Far::TopologyLevel& last, int v, LimitTable& lim) const {
+    const Sdc::Crease::Rule rule = last.GetVertexRule(v);
+    Far::ConstIndexArray ve = last.GetVertexEdges(v);
+    if (last.IsVertexBoundary(v) || last.IsVertexSemiSharp(v)) return false;
+    int sharp = -1;
+    for (int i = 0; i < ve.size(); ++i) {
+      if (last.IsEdgeSemiSharp(ve[i])) return false;
+      if (last.GetEdgeSharpness(ve[i]) > 0) sharp = i;
+    }
+    const bool dart = rule == Sdc::Crease::RULE_DART && sharp >= 0 && last.IsEdgeInfSharp(ve[sharp]);
+    const bool valence2 = rule == Sdc::Crease::RULE_SMOOTH && ve.size() == 2;
+    if (!dart && !valence2) return false;
+    const std::vector<double> w = ring_limit_weights(last, refiner_->GetSchemeOptions(), kCatmark, v, dart ? sharp : 0);
+    const int n = ve.size();
+    const std::vector<uint32_t> eref = ring_vertices(last, v, dart ? sharp : 0), fref = opposite_vertices(last, v, dart ? sharp : 0);
+    if (valence2) {  // symmetric under the ring's rotation: the uniform form
+      std::vector<float> ew(n, float((w[1] + w[2]) / 2)), fw;
+      if (kCatmark) fw.assign(n, float((w[3] + w[4]) / 2));
+      lim.position.push_back(vertex_rule(parent_slot(v), float(w[0]), ew, eref, fw, kCatmark ? fref : std::vector<uint32_t>{},
+                                         lim.ring, "limit"));
+      lim.stencil.push_back(-1);
+      return true;
+    }
+    lim.position.push_back({parent_slot(v), parent_slot(v), parent_slot(v), 0, 0, 0, 1, 0, 0, 0});  // centre for refined_points
+    lim.stencil.push_back(static_cast<int32_t>(lim.stencil_begin.size()) - 1);
+    lim.stencil_slot.push_back(parent_slot(v));
+    for (int k = 0; k < n; ++k) lim.stencil_slot.push_back(eref[k]);
+    if (kCatmark)
+      for (int k = 0; k < n; ++k) lim.stencil_slot.push_back(fref[k]);
+    for (double x : w) lim.stencil_w.push_back(static_cast<float>(x));
+    lim.stencil_begin.push_back(static_cast<uint32_t>(lim.stencil_slot.size()));
+    return true;
+  }
+
   void add_limit_position(const Far::TopologyLevel& last, int v, LimitTable& lim) const {
+    if (add_exact_limit_position(last, v, lim)) return;
+    lim.stencil.push_back(-1);
     const int max = std::max(last.GetVertexEdges(v).size(), last.GetVertexFaces(v).size()) + 1;
     Mask pos(max);
     scheme_.ComputeVertexLimitMask(VertexHood(last, last, v, v), pos, last.GetVertexRule(v));

@@ -55,6 +55,12 @@ struct LevelTable {
 struct LimitTable {
   std::vector<VertexRule> position;
   std::vector<uint32_t> ring;
+  // Position entry i, where Far's masks are not exact (a dart), when stencil[i] >= 0: the weighted
+  // sum, in this order, of stencil_slot[stencil_begin[stencil[i]] .. stencil_begin[stencil[i] + 1]).
+  std::vector<int32_t> stencil;
+  std::vector<uint32_t> stencil_begin = {0};
+  std::vector<uint32_t> stencil_slot;
+  std::vector<float> stencil_w;
   // Tangent entry i: a regular vertex (smooth, interior, valence 4 or Loop's 6) when regular[i] >= 0,
   // whose centre, ring and opposite vertices are regular_slots[regular[i] * regular_size ...] and
   // whose tangents have Sdc's regular weights (kernel.cpp); otherwise tangent_begin[i] .. [i + 1)
