@@ -30,12 +30,11 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.accepts.manifold = true;
   info.accepts.creases = true;
   info.accepts.holes = true;
-  // Far's limit masks, which the projection uses, are exact but at darts, valence-2 vertices and
-  // creases or corners of extraordinary valence (README.md): in the default set the worst is
-  // 8.1e-5 of the diagonal (gim-sphere-31's valence-2 vertices, depth 1), and normals at
-  // extraordinary corners lie up to 0.021 degrees from the reference's while equal to Far's
-  // eigen-analysis masks to 1e-6 degrees (Spot's triangle mesh, depth 4).
-  info.bound = {1e-4, 0.05};
+  // Positions: 1e-5 of the diagonal (the default set's worst: 7.9e-7, gim-sphere-31's valence-2
+  // vertices). Normals come from Far's tangent masks: at extraordinary corners they lie up to 0.021
+  // degrees from the reference's while equal to Far's eigen-analysis to 1e-6 (Spot's triangle
+  // mesh, depth 4); which of the two is exact there is not settled (README.md).
+  info.bound = {1e-5, 0.05};
   // Depth schemes are read against OpenSubdiv's uniform refinement at the same depth.
   info.peer = loop ? "osd-uniform-loop" : "osd-uniform";
   info.default_meshes = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",
