@@ -60,7 +60,7 @@ struct OsdLevel {
   std::vector<char> on_hole;  // the vertex's coord lies in a hole (no fragment output there)
   std::vector<char> faceless;
   std::vector<char> special;  // where Far's limit masks are not the exact limit (far_limit_is_exact)
-  std::vector<char> ours_special;  // of those, where the fragments' limit is not exact either
+  std::vector<char> ours_special;  // where the fragments' limit position is not exact either
   bool has_coord(size_t v) const { return !faceless[v]; }
 };
 
@@ -92,14 +92,15 @@ bool far_limit_is_exact(const Far::TopologyLevel& l, int v, SubdivisionRule rule
   }
 }
 
-// The fragments take darts (infinitely sharp edge) and smooth valence-2 vertices from their
-// ring's eigenvector instead (ring_limit.h).
-bool fragments_limit_is_exact(const Far::TopologyLevel& l, int v) {
-  using Rule = OpenSubdiv::Sdc::Crease::Rule;
-  if (l.IsVertexBoundary(v) || l.IsVertexSemiSharp(v)) return false;
+// The fragments' limit positions are exact at every vertex where Far's masks are, and at darts
+// and smooth valence-2 vertices too (ring_limit.h); Far's crease and corner position masks are
+// exact at any valence (the crease curve and the corner do not depend on it). Left: vertices
+// next to sharpness that outlasted the extra levels.
+bool fragments_position_is_exact(const Far::TopologyLevel& l, int v) {
+  if (l.IsVertexSemiSharp(v)) return false;
   for (int e : l.GetVertexEdges(v))
     if (l.IsEdgeSemiSharp(e)) return false;
-  return l.GetVertexRule(v) == Rule::RULE_DART || (l.GetVertexRule(v) == Rule::RULE_SMOOTH && l.GetVertexEdges(v).size() == 2);
+  return true;
 }
 
 // Far's rules, accumulated in double: the oracle's own rounding stays far below the 1e-6 the
@@ -149,7 +150,7 @@ OsdLevel osd_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool l
     out.on_hole.push_back(coords[v].face < hole.size() && hole[coords[v].face]);
     out.faceless.push_back(last.GetVertexFaces(static_cast<int>(v)).size() == 0);
     out.special.push_back(!far_limit_is_exact(last, static_cast<int>(v), rule));
-    out.ours_special.push_back(out.special.back() && !fragments_limit_is_exact(last, static_cast<int>(v)));
+    out.ours_special.push_back(!fragments_position_is_exact(last, static_cast<int>(v)));
   }
   return out;
 }
@@ -199,7 +200,7 @@ std::pair<double, double> against_reference(const Tessellation& t, const LimitEv
     const double c[3] = {s.du[1] * s.dv[2] - s.du[2] * s.dv[1], s.du[2] * s.dv[0] - s.du[0] * s.dv[2],
                          s.du[0] * s.dv[1] - s.du[1] * s.dv[0]};
     if (std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) < 1e-6 * du * dv) continue;
-    if (!osd.special[it->second]) deg = std::max(deg, angle_deg(t.normals[i], s.normal));  // darts: positions only
+    if (!osd.special[it->second]) deg = std::max(deg, angle_deg(t.normals[i], s.normal));  // else positions only
     const Point3& p = t.positions[i];
     rel = std::max(rel, std::sqrt((p[0] - s.position[0]) * (p[0] - s.position[0]) +
                                   (p[1] - s.position[1]) * (p[1] - s.position[1]) +
