@@ -7,6 +7,7 @@
 #include "harness/gpu/context.h"       // Context, shared_context
 #include "harness/gpu/device_info.h"   // probe, DeviceInfo, DeviceLimits
 #include "harness/gpu/errors.h"        // Unavailable, Unsupported, VulkanError
+#include "harness/gpu/heaps.h"         // MemoryNeed, check_memory
 #include "harness/gpu/image.h"         // Image, write_png
 #include "harness/gpu/mesh_renderer.h" // MeshRenderer, Camera, render_image
 #include "harness/gpu/pipeline.h"      // ComputePipeline, GraphicsPipeline, DescriptorSet

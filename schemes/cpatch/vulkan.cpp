@@ -232,14 +232,14 @@ CpatchVulkan::CpatchVulkan(const ControlMesh& quads, int rate, const GpuOptions&
   if (!options.heat_values.empty() &&
       (options.variant != GpuVariant::TwoPass || options.mode != GpuMode::Render || options.heat_values.size() != vertices))
     throw std::invalid_argument("c-patch heat map: 2-pass render mode, one value per output vertex");
-  MemoryNeed need{DeviceMesh::bytes_needed(topology_, grid_, options.variant == GpuVariant::TwoPass), 0};
+  gpu::MemoryNeed need{DeviceMesh::bytes_needed(topology_, grid_, options.variant == GpuVariant::TwoPass), 0};
   if (options.mode == GpuMode::Evaluate) {
     need.device_bytes += 2 * DeviceOutput::array_bytes(topology_.num_quads, rate);
     need.readback_bytes += 2 * DeviceOutput::array_bytes(topology_.num_quads, rate);
   } else {
     need.device_bytes += uint64_t(options.width) * options.height * 8 + options.heat_values.size() * sizeof(float);
   }
-  check_memory(*ctx_, need, what);
+  gpu::check_memory(*ctx_, need, what);
   positions_.reserve(quads.positions.size());
   for (const Point3& p : quads.positions) positions_.push_back(to_vec3(p));
   device_ = std::make_unique<Device>(*ctx_, quads, topology_, grid_, options_);

@@ -1,24 +1,10 @@
 #include "schemes/cpatch/vulkan_resources.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <stdexcept>
 
 namespace sdb::cpatch {
 namespace {
-
-std::string gib(uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f GiB", double(bytes) / double(1ull << 30));
-  return text;
-}
-
-// Heap of the first memory type with all of `flags`, or -1.
-int heap_with(const VkPhysicalDeviceMemoryProperties& p, VkMemoryPropertyFlags flags) {
-  for (uint32_t t = 0; t < p.memoryTypeCount; ++t)
-    if ((p.memoryTypes[t].propertyFlags & flags) == flags) return static_cast<int>(p.memoryTypes[t].heapIndex);
-  return -1;
-}
 
 // A buffer holding `values`; one element of zeros when there are none (Vulkan has no empty
 // buffers; the shaders never read it then, e.g. c-patch weights on an all-ordinary mesh).
@@ -27,15 +13,15 @@ gpu::Buffer table_buffer(gpu::Context& ctx, std::vector<T> values, const char* n
   if (values.empty()) values.resize(1);
   const uint64_t bytes = values.size() * sizeof(T);
   if (bytes > ctx.limits().max_storage_buffer_range)
-    throw gpu::Unsupported(std::string("c-patch table '") + name + "' of " + gib(bytes) + " exceeds one storage binding on " +
-                           ctx.info().name + " (" + gib(ctx.limits().max_storage_buffer_range) + ")");
+    throw gpu::Unsupported(std::string("c-patch table '") + name + "' of " + gpu::gib_text(bytes) + " exceeds one storage binding on " +
+                           ctx.info().name + " (" + gpu::gib_text(ctx.limits().max_storage_buffer_range) + ")");
   return gpu::device_buffer_with(ctx, values, gpu::BufferUsage::Storage, name);
 }
 
 gpu::Buffer storage(gpu::Context& ctx, uint64_t bytes, const char* name) {
   if (bytes > ctx.limits().max_storage_buffer_range)
-    throw gpu::Unsupported(std::string("c-patch buffer '") + name + "' of " + gib(bytes) + " exceeds one storage binding on " +
-                           ctx.info().name + " (" + gib(ctx.limits().max_storage_buffer_range) + ")");
+    throw gpu::Unsupported(std::string("c-patch buffer '") + name + "' of " + gpu::gib_text(bytes) + " exceeds one storage binding on " +
+                           ctx.info().name + " (" + gpu::gib_text(ctx.limits().max_storage_buffer_range) + ")");
   return gpu::Buffer::device(ctx, std::max<uint64_t>(bytes, 16), gpu::BufferUsage::Storage, name);
 }
 
@@ -66,26 +52,6 @@ std::vector<uint32_t> quad_info_table(const CpatchTopology& t) {
   for (int q = 0; q < t.num_quads; ++q)
     info[q] = uint32_t(t.forward_sides[q]) | (uint32_t(t.extraordinary_index[q] + 1) << 4);
   return info;
-}
-
-void check_memory(const gpu::Context& ctx, const MemoryNeed& need, const std::string& what) {
-  const VkPhysicalDeviceMemoryProperties& p = ctx.memory_properties();
-  const int device_heap = heap_with(p, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  int readback_heap = heap_with(p, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-  if (readback_heap < 0) readback_heap = heap_with(p, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
-  auto refuse = [&](uint64_t needed, int heap, const char* kind) {
-    throw gpu::Unsupported(what + " needs " + gib(needed) + " of " + kind + " memory; " + ctx.info().name +
-                           " has a heap of " + gib(p.memoryHeaps[heap].size));
-  };
-  if (device_heap >= 0 && device_heap == readback_heap) {
-    const uint64_t total = need.device_bytes + need.readback_bytes;
-    if (total > p.memoryHeaps[device_heap].size) refuse(total, device_heap, "device and readback");
-    return;
-  }
-  if (device_heap >= 0 && need.device_bytes > p.memoryHeaps[device_heap].size)
-    refuse(need.device_bytes, device_heap, "device");
-  if (readback_heap >= 0 && need.readback_bytes > p.memoryHeaps[readback_heap].size)
-    refuse(need.readback_bytes, readback_heap, "readback");
 }
 
 uint64_t DeviceMesh::bytes_needed(const CpatchTopology& t, const SampleGrid& grid, bool intermediates) {

@@ -25,15 +25,6 @@ std::vector<float> grid_table(const SampleGrid& grid);
 // Per quad: bits 0-3 forward_sides, bits 4.. the c-patch index + 1 (0: ordinary); record.glsl.
 std::vector<uint32_t> quad_info_table(const CpatchTopology& t);
 
-// Bytes of a heap that holds device buffers and of one that holds readback buffers; the same heap
-// counted once where they share one (lavapipe, integrated GPUs).
-struct MemoryNeed {
-  uint64_t device_bytes = 0;
-  uint64_t readback_bytes = 0;
-};
-// Throws gpu::Unsupported naming `what` when the need exceeds the device's heaps.
-void check_memory(const gpu::Context& ctx, const MemoryNeed& need, const std::string& what);
-
 class DeviceMesh {
  public:
   // `intermediates`: the 2-pass scheme's VertexPoints and PatchRecord buffers as well.

@@ -15,6 +15,7 @@ namespace sdb::fragments {
 struct FragmentStats {
   int fragments = 0, vertex_patches = 0, facet_patches = 0, shapes = 0;
   size_t table_bytes = 0;  // pattern tables of every shape, all levels and the limit
+  int waves = 0;           // vulkan: the passes ran this many times, each on a part of the fragments
 };
 
 // project_to_limit = false returns the last level's refined points (the exactness oracle's

@@ -221,8 +221,16 @@ void refine_level(const LevelTable& t, bool catmark, const Lanes<W>* parent, Lan
   }
   const Lanes<W>* opposite = catmark ? child : parent;
   for (const EdgeRule& e : t.edges) {
-    const Lanes<W> &v0 = parent[e.v0], &v1 = parent[e.v1], &f0 = opposite[e.f0], &f1 = opposite[e.f1];
+    const Lanes<W> &v0 = parent[e.v0], &v1 = parent[e.v1];
     Lanes<W>& o = *out++;
+    // A crease or boundary edge has no face term, and its f slots name no point of this level
+    // (tables.h): never read them (0 times a stale NaN is NaN on the GPU).
+    if (e.wf == 0) {
+      SDB_LANES o.x[l] = (v0.x[l] + v1.x[l]) * e.wv, o.y[l] = (v0.y[l] + v1.y[l]) * e.wv,
+          o.z[l] = (v0.z[l] + v1.z[l]) * e.wv;
+      continue;
+    }
+    const Lanes<W> &f0 = opposite[e.f0], &f1 = opposite[e.f1];
     SDB_LANES o.x[l] = (v0.x[l] + v1.x[l]) * e.wv + (f0.x[l] + f1.x[l]) * e.wf,
         o.y[l] = (v0.y[l] + v1.y[l]) * e.wv + (f0.y[l] + f1.y[l]) * e.wf,
         o.z[l] = (v0.z[l] + v1.z[l]) * e.wv + (f0.z[l] + f1.z[l]) * e.wf;

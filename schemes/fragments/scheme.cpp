@@ -5,6 +5,7 @@
 #include "harness/core/registry.h"
 #include "schemes/fragments/cpu.h"
 #include "schemes/fragments/fragments.h"
+#include "schemes/fragments/vulkan.h"
 
 namespace sdb::fragments {
 namespace {
@@ -23,7 +24,7 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.role = SchemeRole::Method;
   info.reference = rule;
   info.level_kind = LevelKind::Depth;
-  info.backends = {Backend::Cpu, Backend::CpuMt};
+  info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
   info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::QuadsOnly;
   info.accepts.quadrangulate = !loop;
@@ -53,8 +54,9 @@ class FragmentScheme final : public Scheme {
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
     if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
+    if (r.backend == Backend::Vulkan) return vulkan_unavailable();
     if (r.backend != Backend::Cpu && r.backend != Backend::CpuMt)
-      return info_.name + " runs on cpu and cpu-mt (its Vulkan kernel is not built yet)";
+      return info_.name + " runs on cpu, cpu-mt and vulkan";
     return std::nullopt;
   }
 
@@ -87,12 +89,14 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, Subdivision
                   r.level, bytes / 1e9, kMaxOutputBytes / 1e9);
     throw Unsupported(why);
   }
+  if (r.backend == Backend::Vulkan) return make_vulkan_evaluation(mesh, rule, r.level, project_to_limit);
   return std::make_unique<CpuFragmentEvaluation>(mesh, rule, r.level, r.backend == Backend::CpuMt, r.threads,
                                                  project_to_limit);
 }
 
 FragmentStats stats_of(const Evaluation& e) {
   if (auto* cpu = dynamic_cast<const CpuFragmentEvaluation*>(&e)) return cpu->surface().stats();
+  if (auto s = vulkan_stats(e)) return *s;
   return {};
 }
 

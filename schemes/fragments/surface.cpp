@@ -32,24 +32,33 @@ FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int
     max_limit_entries = std::max({max_limit_entries, static_cast<uint32_t>(lim.position.size()),
                                   static_cast<uint32_t>(lim.regular.size())});
   }
-  const size_t bs = block_size(rule, depth);
-  for (const Fragment& f : partition.fragments) {
-    first_vertex.push_back(num_output_vertices);
-    num_output_vertices += f.owned_faces.size() * bs;
-  }
   order.resize(partition.fragments.size());
   for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return partition.fragments[a].shape < partition.fragments[b].shape;
   });
+  // Blocks follow `order`, so that any run of batches writes one contiguous range (the Vulkan
+  // backend's waves, vulkan.h).
+  const size_t bs = block_size(rule, depth);
+  first_vertex.resize(partition.fragments.size());
+  for (uint32_t f : order) {
+    first_vertex[f] = num_output_vertices;
+    num_output_vertices += partition.fragments[f].owned_faces.size() * bs;
+  }
+  batches = batches_of(kLanes);
+}
+
+std::vector<FragmentSurface::Batch> FragmentSurface::batches_of(uint32_t max_count) const {
+  std::vector<Batch> out;
   for (uint32_t i = 0; i < order.size();) {
     uint32_t n = 1;
-    while (i + n < order.size() && n < kLanes &&
+    while (i + n < order.size() && n < max_count &&
            partition.fragments[order[i + n]].shape == partition.fragments[order[i]].shape)
       ++n;
-    batches.push_back({i, n});
+    out.push_back({i, n});
     i += n;
   }
+  return out;
 }
 
 void FragmentSurface::describe(Tessellation& out) const {

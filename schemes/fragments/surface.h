@@ -28,7 +28,8 @@ struct FragmentSurface {
   struct Batch {
     uint32_t begin, count;  // into `order`
   };
-  std::vector<Batch> batches;
+  std::vector<Batch> batches;  // batches_of(kLanes), the CPU kernel's
+  std::vector<Batch> batches_of(uint32_t max_count) const;
   uint32_t max_slots = 0, max_limit_entries = 0;
   size_t num_output_vertices = 0;
 

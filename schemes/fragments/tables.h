@@ -24,8 +24,8 @@ struct FaceRule {
 };
 
 // wv (v0 + v1) + wf (f0 + f1): v from level d; f the child face points (Catmull-Clark, level
-// d + 1) or the opposite vertices (Loop, level d). Creases and boundaries: wf = 0; fractional
-// sharpness: Sdc's blend of the two.
+// d + 1) or the opposite vertices (Loop, level d). Creases and boundaries: wf = 0, and f0 f1 are
+// not read; fractional sharpness: Sdc's blend of the two.
 struct EdgeRule {
   uint32_t v0, v1, f0, f1;
   float wv, wf;

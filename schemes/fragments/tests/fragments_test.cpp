@@ -27,12 +27,15 @@
 #include "harness/validate/watertight.h"
 #include "schemes/fragments/fragments.h"
 #include "schemes/fragments/surface.h"
+#include "schemes/fragments/tests/test_corpus.h"
 
 using namespace sdb;
 
 namespace {
 
 namespace Far = OpenSubdiv::Far;
+using fragments::testing::boundary_edges;
+using fragments::testing::sweep_shapes;
 
 const char* scheme_name(SubdivisionRule rule) {
   return rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc";
@@ -238,23 +241,6 @@ Match compare(const Tessellation& t, const OsdLevel& osd, int depth, double diag
   return m;
 }
 
-// Edges of exactly one face with a surface: the borders of holes count.
-long boundary_edges(const ControlMesh& m) {
-  std::map<std::pair<int, int>, int> edges;
-  const std::vector<int> offsets = face_offsets(m);
-  std::vector<char> hole(m.face_sizes.size(), 0);
-  for (int f : m.holes) hole[f] = 1;
-  for (int f = 0; f < num_faces(m); ++f)
-    if (!hole[f])
-    for (int i = offsets[f]; i < offsets[f + 1]; ++i) {
-      const int a = m.face_vertices[i], b = m.face_vertices[i + 1 < offsets[f + 1] ? i + 1 : offsets[f]];
-      ++edges[{std::min(a, b), std::max(a, b)}];
-    }
-  long n = 0;
-  for (const auto& e : edges) n += e.second == 1;
-  return n;
-}
-
 TEST(Fragments, RegularTorusEqualsFarRefinementAndLimit) {
   const ControlMesh torus_mesh = gen::torus(8, 6);
   const double d = bounds_of(torus_mesh.positions).diagonal();
@@ -285,24 +271,6 @@ TEST(Fragments, CubeAndIcosphere) {
       EXPECT_LE(limit.max_deg, 0.01) << depth;
     }
   }
-}
-
-// The corpus shapes of a rule OpenSubdiv accepts, and the real meshes the issue names.
-std::vector<std::string> sweep_shapes(SubdivisionRule rule) {
-  std::vector<std::string> names;
-  const bool loop = rule == SubdivisionRule::Loop;
-  for (const auto& e : list_meshes()) {
-    if (e.kind != "corpus" || e.name.rfind("opensubdiv/", 0) != 0) continue;
-    if (e.name.find(loop ? "/loop_" : "/catmark_") == std::string::npos) continue;
-    names.push_back(e.name);
-  }
-  const std::vector<std::string> real = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",
-                                                                         "pmp/icosahedron_subdiv"}
-                                             : std::vector<std::string>{"crane/spot_control", "crane/blub_control",
-                                                                         "pmp/fandisk_quads", "stein/sword_quad_dominant"};
-  for (const std::string& n : real)
-    if (corpus_has(n)) names.push_back(n);
-  return names;
 }
 
 // Chaikin creases and interior valence-2 vertices: Bfr is off there (the test below), so the

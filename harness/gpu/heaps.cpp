@@ -1,0 +1,46 @@
+#include "harness/gpu/heaps.h"
+
+#include <cstdio>
+
+#include "harness/gpu/errors.h"
+
+namespace sdb::gpu {
+namespace {
+
+// Heap of the first memory type with all of `flags`, or -1.
+int heap_with(const VkPhysicalDeviceMemoryProperties& p, VkMemoryPropertyFlags flags) {
+  for (uint32_t t = 0; t < p.memoryTypeCount; ++t)
+    if ((p.memoryTypes[t].propertyFlags & flags) == flags) return static_cast<int>(p.memoryTypes[t].heapIndex);
+  return -1;
+}
+
+}  // namespace
+
+std::string gib_text(uint64_t bytes) {
+  char text[32];
+  if (bytes < (1ull << 30)) std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1ull << 20));
+  else std::snprintf(text, sizeof text, "%.2f GiB", double(bytes) / double(1ull << 30));
+  return text;
+}
+
+void check_memory(const Context& ctx, const MemoryNeed& need, const std::string& what) {
+  const VkPhysicalDeviceMemoryProperties& p = ctx.memory_properties();
+  const int device_heap = heap_with(p, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  int readback_heap = heap_with(p, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+  if (readback_heap < 0) readback_heap = heap_with(p, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+  auto refuse = [&](uint64_t needed, int heap, const char* kind) {
+    throw Unsupported(what + " needs " + gib_text(needed) + " of " + kind + " memory; " + ctx.info().name +
+                      " has a heap of " + gib_text(p.memoryHeaps[heap].size));
+  };
+  if (device_heap >= 0 && device_heap == readback_heap) {
+    const uint64_t total = need.device_bytes + need.readback_bytes;
+    if (total > p.memoryHeaps[device_heap].size) refuse(total, device_heap, "device and readback");
+    return;
+  }
+  if (device_heap >= 0 && need.device_bytes > p.memoryHeaps[device_heap].size)
+    refuse(need.device_bytes, device_heap, "device");
+  if (readback_heap >= 0 && need.readback_bytes > p.memoryHeaps[readback_heap].size)
+    refuse(need.readback_bytes, readback_heap, "readback");
+}
+
+}  // namespace sdb::gpu

@@ -1,0 +1,25 @@
+// Whether a request's buffers fit the device's memory heaps, checked before anything is allocated
+// (an allocation past a heap fails late, or on some drivers not at all until the device is lost).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "harness/gpu/context.h"
+
+namespace sdb::gpu {
+
+// Bytes of a heap that holds device buffers and of one that holds readback buffers; the same heap
+// counted once where they share one (lavapipe, integrated GPUs).
+struct MemoryNeed {
+  uint64_t device_bytes = 0;
+  uint64_t readback_bytes = 0;
+};
+
+// Throws Unsupported naming `what` when the need exceeds the device's heaps.
+void check_memory(const Context& ctx, const MemoryNeed& need, const std::string& what);
+
+// "1.25 GiB" (or "12.5 MiB" below 1 GiB), for such messages.
+std::string gib_text(uint64_t bytes);
+
+}  // namespace sdb::gpu

@@ -1,0 +1,108 @@
+#include "schemes/fragments/device_tables.h"
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+
+#include "harness/core/errors.h"
+
+namespace sdb::fragments {
+namespace {
+
+class Packer {
+ public:
+  explicit Packer(std::vector<uint32_t>& words) : w_(words) {}
+
+  uint32_t at() const { return static_cast<uint32_t>(w_.size()); }
+  void word(uint32_t v) { w_.push_back(v); }
+  void number(float v) { w_.push_back(std::bit_cast<uint32_t>(v)); }
+  template <class T>
+  uint32_t list(const std::vector<T>& values) {
+    const uint32_t begin = at();
+    for (const T& v : values) {
+      if constexpr (std::is_same_v<T, float>) number(v);
+      else word(static_cast<uint32_t>(v));
+    }
+    return begin;
+  }
+
+  uint32_t faces(const std::vector<FaceRule>& rules) {
+    const uint32_t begin = at();
+    for (const FaceRule& r : rules) word(r.a), word(r.b), word(r.c), word(r.d);
+    return begin;
+  }
+  uint32_t edges(const std::vector<EdgeRule>& rules) {
+    const uint32_t begin = at();
+    for (const EdgeRule& r : rules) word(r.v0), word(r.v1), word(r.f0), word(r.f1), number(r.wv), number(r.wf);
+    return begin;
+  }
+  uint32_t vertices(const std::vector<VertexRule>& rules) {
+    const uint32_t begin = at();
+    for (const VertexRule& r : rules) {
+      word(r.centre), word(r.p0), word(r.p1), word(r.ring), word(uint32_t(r.num_e) | uint32_t(r.num_f) << 16);
+      number(r.wv), number(r.wc), number(r.we), number(r.wf);
+    }
+    return begin;
+  }
+
+ private:
+  std::vector<uint32_t>& w_;
+};
+
+// Rules first, then the header (the words may move while the rules go in).
+void pack_shape(const ShapeTables& t, uint32_t header, std::vector<uint32_t>& words) {
+  Packer p(words);
+  for (size_t d = 0; d < t.levels.size(); ++d) {
+    const LevelTable& l = t.levels[d];
+    const uint32_t faces = p.faces(l.faces), edges = p.edges(l.edges), vertices = p.vertices(l.vertices);
+    const uint32_t ring = p.list(l.ring);
+    uint32_t* h = words.data() + header + kHeaderPerLevel * d;
+    h[0] = l.num_slots, h[1] = uint32_t(l.faces.size()), h[2] = faces, h[3] = uint32_t(l.edges.size()), h[4] = edges;
+    h[5] = uint32_t(l.vertices.size()), h[6] = vertices, h[7] = ring;
+  }
+  const LimitTable& lim = t.limit;
+  uint32_t f[kHeaderLimit] = {};
+  f[kNumPositions] = uint32_t(lim.position.size());
+  f[kPositions] = p.vertices(lim.position);
+  f[kLimitRing] = p.list(lim.ring);
+  f[kStencil] = p.list(lim.stencil);
+  f[kStencilBegin] = p.list(lim.stencil_begin);
+  f[kStencilSlot] = p.list(lim.stencil_slot);
+  f[kStencilW] = p.list(lim.stencil_w);
+  f[kRegular] = p.list(lim.regular);
+  f[kRegularSize] = uint32_t(lim.regular_size);
+  f[kRegularSlots] = p.list(lim.regular_slots);
+  f[kTangentBegin] = p.list(lim.tangent_begin);
+  f[kTangentSlot] = p.list(lim.tangent_slot);
+  f[kTangentW1] = p.list(lim.tangent_w1);
+  f[kTangentW2] = p.list(lim.tangent_w2);
+  f[kBlockVertices] = uint32_t(t.block.size());
+  f[kBlock] = p.list(t.block);
+  f[kBlockNormal] = p.list(t.block_normal);
+  f[kNumSlots0] = t.num_slots0;
+  std::copy(f, f + kHeaderLimit, words.data() + header + kHeaderPerLevel * t.levels.size());
+}
+
+}  // namespace
+
+DeviceTables pack_tables(const FragmentSurface& s) {
+  DeviceTables out;
+  out.levels = static_cast<uint32_t>(s.inner_depth);
+  out.header_words = kHeaderPerLevel * out.levels + kHeaderLimit;
+  out.words.assign(size_t(out.header_words) * s.tables.size(), 0);
+  for (size_t shape = 0; shape < s.tables.size(); ++shape)
+    pack_shape(s.tables[shape], static_cast<uint32_t>(shape * out.header_words), out.words);
+  if (s.num_output_vertices > std::numeric_limits<uint32_t>::max())
+    throw Unsupported("the output has 2^32 vertices or more");
+  for (uint32_t f : s.order) {
+    const std::vector<int>& control = s.partition.fragments[f].control;
+    out.fragments.push_back(static_cast<uint32_t>(out.words.size()));
+    out.fragments.push_back(static_cast<uint32_t>(s.first_vertex[f]));
+    out.words.insert(out.words.end(), control.begin(), control.end());
+    if (out.words.size() > std::numeric_limits<uint32_t>::max())
+      throw Unsupported("the pattern tables pass 2^32 words");
+  }
+  return out;
+}
+
+}  // namespace sdb::fragments

@@ -1,0 +1,163 @@
+// What the fragment passes share: the bindings, the push constants, the scratch layout and the
+// rule arithmetic. The arithmetic is kernel.cpp's, operation for operation (`precise`: no fused
+// multiply-adds, no reassociation), so that a point shared by fragments comes out bit-identical
+// in each, and the same as on the CPU.
+//
+// A work group is a chunk of a pass's entries (x) for one batch (y): up to gl_WorkGroupSize.x
+// fragments of one shape, one per invocation. The tables are the same for the whole group
+// (uniform loads); each invocation's slots sit in scratch with the lanes innermost, as the CPU
+// kernel's Lanes<W>, one region per batch of the wave.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x_id = 0) in;
+
+layout(std430, binding = 0) readonly buffer Tables { uint T[]; };     // device_tables.h
+// Per batch: shape, first fragment, count, first float of its scratch in the wave's.
+layout(std430, binding = 1) readonly buffer Batches { uvec4 batch[]; };
+layout(std430, binding = 2) readonly buffer Fragments { uint F[]; };  // control list, first vertex
+layout(std430, binding = 3) readonly buffer Control { float control[]; };  // x y z per vertex
+layout(std430, binding = 4) buffer Src { float src[]; };  // level d - 1's slots (this wave's)
+layout(std430, binding = 5) buffer Dst { float dst[]; };  // level d's
+layout(std430, binding = 6) writeonly buffer Positions { float out_position[]; };
+layout(std430, binding = 7) writeonly buffer Normals { float out_normal[]; };
+
+layout(push_constant) uniform Push {
+  uint level;          // the level a level pass makes, 1 .. levels
+  uint levels;
+  uint first_batch;    // the wave's
+  uint unused;
+  uint header_words;
+  uint wave_first_vertex;
+  uint out_shift;      // floats from the output bindings' start to the wave's first vertex
+  uint flags;          // kCatmark | kProject
+  uint chunk;          // entries of the pass per invocation (vulkan.cpp: llvmpipe's loop limit)
+  uint part;           // kGather, kFaces, kEdgesVertices, kLimit
+  uint pad0, pad1;
+  vec4 origin;         // the control box's centre: slots are relative to it
+} pc;
+
+const uint kCatmark = 1u, kProject = 2u;
+const uint kGather = 0u, kFaces = 1u, kEdgesVertices = 2u, kLimit = 3u;
+const uint kHeaderPerLevel = 8u;
+// Limit header fields (device_tables.h).
+const uint kNumPositions = 0u, kPositions = 1u, kLimitRing = 2u, kStencil = 3u, kStencilBegin = 4u, kStencilSlot = 5u,
+           kStencilW = 6u, kRegular = 7u, kRegularSize = 8u, kRegularSlots = 9u, kTangentBegin = 10u,
+           kTangentSlot = 11u, kTangentW1 = 12u, kTangentW2 = 13u, kBlockVertices = 14u, kBlock = 15u,
+           kBlockNormal = 16u, kNumSlots0 = 17u;
+
+uint g_lane, g_group, g_shape, g_fragment, g_count, g_scratch;
+
+// False for invocations past the batch's fragments.
+bool begin_invocation() {
+  g_lane = gl_LocalInvocationID.x;
+  g_group = gl_WorkGroupID.y;
+  const uvec4 b = batch[pc.first_batch + g_group];
+  g_shape = b.x;
+  g_fragment = b.y + g_lane;
+  g_count = b.z;
+  g_scratch = b.w;
+  return g_lane < b.z;
+}
+
+uint header() { return g_shape * pc.header_words; }
+
+// This invocation's entries of a pass of `count`: [begin, end).
+uvec2 chunk_of(uint count) {
+  const uint begin = gl_WorkGroupID.x * pc.chunk;
+  return uvec2(min(begin, count), min(begin + pc.chunk, count));
+}
+uint limit_header() { return header() + kHeaderPerLevel * pc.levels; }
+float number(uint at) { return uintBitsToFloat(T[at]); }
+
+// The batch's slots: x, y, z planes of its `count` lanes each.
+uint scratch_index(uint slot) { return g_scratch + (slot * 3u) * g_count + g_lane; }
+
+vec3 load(bool from_dst, uint slot) {
+  const uint i = scratch_index(slot), w = g_count;
+  return from_dst ? vec3(dst[i], dst[i + w], dst[i + 2u * w]) : vec3(src[i], src[i + w], src[i + 2u * w]);
+}
+float load_axis(bool from_dst, uint slot, uint axis) {
+  const uint i = scratch_index(slot) + axis * g_count;
+  return from_dst ? dst[i] : src[i];
+}
+void store(uint slot, vec3 p) {
+  const uint i = scratch_index(slot), w = g_count;
+  dst[i] = p.x, dst[i + w] = p.y, dst[i + 2u * w] = p.z;
+}
+
+// -0 as +0, by its bits (what kernel.cpp's "+ 0.0f" does, and no compiler can fold away): min and
+// max cannot order two zeros.
+float canonical(float x) { return floatBitsToUint(x) == 0x80000000u ? 0.0 : x; }
+
+precise float sum3_sorted(float a, float b, float c) {
+  a = canonical(a), b = canonical(b), c = canonical(c);
+  const float lo = min(min(a, b), c), hi = max(max(a, b), c);
+  const float mid = max(min(a, b), min(max(a, b), c));
+  precise float s = (lo + mid) + hi;
+  return s;
+}
+
+// The ring's terms in ascending order, summed from the smallest (kernel.cpp's sorting network and
+// std::sort give this same sequence): each pass finds the next larger value and adds it as often
+// as it occurs. No array, so any valence; O(n * distinct values).
+precise float sorted_sum(bool from_dst, uint ref, uint n, uint axis) {
+  precise float s = 0.0;
+  float prev = 0.0;
+  uint done = 0u;
+  while (done < n) {
+    float m = 0.0;
+    bool found = false;
+    for (uint i = 0u; i < n; ++i) {
+      const float v = canonical(load_axis(from_dst, T[ref + i], axis));
+      if ((done == 0u || v > prev) && (!found || v < m)) m = v, found = true;
+    }
+    uint count = 0u;
+    for (uint i = 0u; i < n; ++i)
+      if (canonical(load_axis(from_dst, T[ref + i], axis)) == m) ++count;
+    if (!found || count == 0u) break;  // NaN: nothing orders it (inputs are checked; never loop forever)
+    for (uint k = 0u; k < count; ++k) s = done + k == 0u ? m : s + m;
+    done += count;
+    prev = m;
+  }
+  return s;
+}
+
+// kernel.cpp's ring_sum: pairs for valence 4 and 8, pairs and a sorted three for 6, sorted otherwise.
+precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
+  precise vec3 r;
+  if (n == 1u) {
+    r = load(from_dst, T[ref]);
+  } else if (n == 2u) {
+    r = load(from_dst, T[ref]) + load(from_dst, T[ref + 1u]);
+  } else if (n == 4u) {
+    r = (load(from_dst, T[ref]) + load(from_dst, T[ref + 2u])) + (load(from_dst, T[ref + 1u]) + load(from_dst, T[ref + 3u]));
+  } else if (n == 6u) {
+    precise vec3 a = load(from_dst, T[ref]) + load(from_dst, T[ref + 3u]);
+    precise vec3 b = load(from_dst, T[ref + 1u]) + load(from_dst, T[ref + 4u]);
+    precise vec3 c = load(from_dst, T[ref + 2u]) + load(from_dst, T[ref + 5u]);
+    r = vec3(sum3_sorted(a.x, b.x, c.x), sum3_sorted(a.y, b.y, c.y), sum3_sorted(a.z, b.z, c.z));
+  } else if (n == 8u) {
+    precise vec3 q0 = load(from_dst, T[ref]) + load(from_dst, T[ref + 4u]);
+    precise vec3 q1 = load(from_dst, T[ref + 1u]) + load(from_dst, T[ref + 5u]);
+    precise vec3 q2 = load(from_dst, T[ref + 2u]) + load(from_dst, T[ref + 6u]);
+    precise vec3 q3 = load(from_dst, T[ref + 3u]) + load(from_dst, T[ref + 7u]);
+    r = (q0 + q2) + (q1 + q3);
+  } else {
+    r = vec3(sorted_sum(from_dst, ref, n, 0u), sorted_sum(from_dst, ref, n, 1u), sorted_sum(from_dst, ref, n, 2u));
+  }
+  return r;
+}
+
+// kernel.cpp's apply(): wv c + wc (p0 + p1) + we sum(e) + wf sum(f). The centre, pair and ring are
+// read from src; the f terms from dst when faces_in_dst (Catmull-Clark's new face points).
+precise vec3 apply_vertex_rule(uint at, uint ring, bool faces_in_dst) {
+  const uint counts = T[at + 4u];
+  const uint num_e = counts & 0xffffu, num_f = counts >> 16;
+  const float wv = number(at + 5u), wc = number(at + 6u), we = number(at + 7u), wf = number(at + 8u);
+  const uint ref = ring + T[at + 3u];
+  precise vec3 s = load(false, T[at]) * wv;
+  if (wc != 0.0) s = s + (load(false, T[at + 1u]) + load(false, T[at + 2u])) * wc;
+  if (num_e != 0u) s = s + ring_sum(false, ref, num_e) * we;
+  if (num_f != 0u) s = s + ring_sum(faces_in_dst, ref + num_e, num_f) * wf;
+  return s;
+}

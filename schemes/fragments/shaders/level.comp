@@ -1,0 +1,40 @@
+#version 450
+// One refinement level through the shape's pattern table, in slot order (tables.h): its face
+// points (part kFaces), then its edge and vertex points (kEdgesVertices), which for
+// Catmull-Clark read the face points just made.
+#include "fragments.glsl"
+
+void main() {
+  if (!begin_invocation()) return;
+  const uint h = header() + kHeaderPerLevel * (pc.level - 1u);
+  const uint num_faces = T[h + 1u], faces = T[h + 2u], num_edges = T[h + 3u], edges = T[h + 4u];
+  const uint num_vertices = T[h + 5u], vertices = T[h + 6u], ring = T[h + 7u];
+  const bool catmark = (pc.flags & kCatmark) != 0u;
+  if (pc.part == kFaces) {
+    const uvec2 range = chunk_of(num_faces);
+    for (uint i = range.x; i < range.y; ++i) {
+      const uint at = faces + 4u * i;
+      precise vec3 p = ((load(false, T[at]) + load(false, T[at + 2u])) + (load(false, T[at + 1u]) + load(false, T[at + 3u]))) * 0.25;
+      store(i, p);
+    }
+    return;
+  }
+  const uvec2 range = chunk_of(num_edges + num_vertices);
+  for (uint j = range.x; j < range.y; ++j) {
+    precise vec3 p;
+    if (j < num_edges) {
+      const uint at = edges + 6u * j;
+      precise vec3 v = load(false, T[at]) + load(false, T[at + 1u]);
+      const float wf = number(at + 5u);
+      if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
+        p = v * number(at + 4u);
+      } else {
+        precise vec3 f = load(catmark, T[at + 2u]) + load(catmark, T[at + 3u]);
+        p = v * number(at + 4u) + f * wf;
+      }
+    } else {
+      p = apply_vertex_rule(vertices + 9u * (j - num_edges), ring, catmark);
+    }
+    store(num_faces + j, p);
+  }
+}

@@ -1,0 +1,95 @@
+#version 450
+// Limit projection of the last level and the output: for every vertex of the fragment's blocks,
+// its limit position (symmetric, kernel.cpp's) and unit normal.
+#include "fragments.glsl"
+
+// Long tangent masks (a pole's ring) in compensated sums: the CPU sums them in double
+// (kernel.cpp), float alone would lose the normal's precision at valence 360.
+const uint kLongTangentMask = 32u;
+
+precise vec3 limit_position(uint lh, uint entry) {
+  const uint at = T[lh + kPositions] + 9u * entry;
+  precise vec3 p;
+  if ((pc.flags & kProject) == 0u) {
+    p = load(false, T[at]);
+    return p;
+  }
+  const int stencil = int(T[T[lh + kStencil] + entry]);
+  if (stencil < 0) {
+    p = apply_vertex_rule(at, T[lh + kLimitRing], false);
+    return p;
+  }
+  p = vec3(0.0);  // in the stencil's order, which every fragment shares
+  const uint begin = T[T[lh + kStencilBegin] + uint(stencil)], end = T[T[lh + kStencilBegin] + uint(stencil) + 1u];
+  for (uint k = begin; k < end; ++k) p = p + load(false, T[T[lh + kStencilSlot] + k]) * number(T[lh + kStencilW] + k);
+  return p;
+}
+
+precise vec3 unit_normal(vec3 a, vec3 b) {
+  precise vec3 c = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+  precise float len2 = c.x * c.x + c.y * c.y + c.z * c.z;
+  precise float k = len2 > 0.0 ? 1.0 / sqrt(len2) : 0.0;
+  precise vec3 n = c * k;
+  return n;
+}
+
+// kernel.cpp's regular_normal: Sdc's regular tangents as differences. Slots: centre, e, f.
+precise vec3 regular_normal(uint slots, uint size) {
+  if (size == 9u) {
+    precise vec3 d02 = load(false, T[slots + 5u]) - load(false, T[slots + 7u]);
+    precise vec3 d13 = load(false, T[slots + 6u]) - load(false, T[slots + 8u]);
+    precise vec3 a = (load(false, T[slots + 1u]) - load(false, T[slots + 3u])) * 4.0 + (d02 - d13);
+    precise vec3 b = (load(false, T[slots + 2u]) - load(false, T[slots + 4u])) * 4.0 + (d02 + d13);
+    return unit_normal(a, b);
+  }
+  precise vec3 d14 = load(false, T[slots + 2u]) - load(false, T[slots + 5u]);
+  precise vec3 d25 = load(false, T[slots + 3u]) - load(false, T[slots + 6u]);
+  precise vec3 a = (load(false, T[slots + 1u]) - load(false, T[slots + 4u])) + (d14 - d25) * 0.5;
+  precise vec3 b = (d14 + d25) * 0.866025404;
+  return unit_normal(a, b);
+}
+
+precise vec3 general_normal(uint lh, uint entry) {
+  const uint begin = T[T[lh + kTangentBegin] + entry], end = T[T[lh + kTangentBegin] + entry + 1u];
+  const uint slot = T[lh + kTangentSlot], w1 = T[lh + kTangentW1], w2 = T[lh + kTangentW2];
+  precise vec3 a = vec3(0.0), b = vec3(0.0), ca = vec3(0.0), cb = vec3(0.0);
+  const bool compensated = end - begin > kLongTangentMask;
+  for (uint k = begin; k < end; ++k) {
+    const vec3 p = load(false, T[slot + k]);
+    precise vec3 ta = p * number(w1 + k), tb = p * number(w2 + k);
+    if (!compensated) {
+      a = a + ta, b = b + tb;
+      continue;
+    }
+    // Neumaier's sum: the rounding error of each addition kept apart, added at the end.
+    precise vec3 sa = a + ta, sb = b + tb;
+    ca = ca + mix((ta - sa) + a, (a - sa) + ta, greaterThanEqual(abs(a), abs(ta)));
+    cb = cb + mix((tb - sb) + b, (b - sb) + tb, greaterThanEqual(abs(b), abs(tb)));
+    a = sa, b = sb;
+  }
+  return unit_normal(a + ca, b + cb);
+}
+
+precise vec3 limit_normal(uint lh, uint entry) {
+  const int regular = int(T[T[lh + kRegular] + entry]);
+  if (regular >= 0) {
+    const uint size = T[lh + kRegularSize];
+    return regular_normal(T[lh + kRegularSlots] + uint(regular) * size, size);
+  }
+  return general_normal(lh, entry);
+}
+
+void main() {
+  if (!begin_invocation()) return;
+  const uint lh = limit_header();
+  const uint block = T[lh + kBlock], block_normal = T[lh + kBlockNormal];
+  const uint first = 3u * (F[2u * g_fragment + 1u] - pc.wave_first_vertex) + pc.out_shift;
+  const uvec2 range = chunk_of(T[lh + kBlockVertices]);
+  for (uint i = range.x; i < range.y; ++i) {
+    precise vec3 p = limit_position(lh, T[block + i]) + pc.origin.xyz;
+    const vec3 nrm = limit_normal(lh, T[block_normal + i]);
+    const uint o = first + 3u * i;
+    out_position[o] = p.x, out_position[o + 1u] = p.y, out_position[o + 2u] = p.z;
+    out_normal[o] = nrm.x, out_normal[o + 1u] = nrm.y, out_normal[o + 2u] = nrm.z;
+  }
+}

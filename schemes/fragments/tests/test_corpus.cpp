@@ -1,0 +1,44 @@
+#include "schemes/fragments/tests/test_corpus.h"
+
+#include <algorithm>
+#include <map>
+
+#include "datasets/manifest.h"
+#include "harness/mesh/facts.h"
+
+namespace sdb::fragments::testing {
+
+std::vector<std::string> sweep_shapes(SubdivisionRule rule) {
+  std::vector<std::string> names;
+  const bool loop = rule == SubdivisionRule::Loop;
+  for (const auto& e : list_meshes()) {
+    if (e.kind != "corpus" || e.name.rfind("opensubdiv/", 0) != 0) continue;
+    if (e.name.find(loop ? "/loop_" : "/catmark_") == std::string::npos) continue;
+    names.push_back(e.name);
+  }
+  const std::vector<std::string> real = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",
+                                                                         "pmp/icosahedron_subdiv"}
+                                             : std::vector<std::string>{"crane/spot_control", "crane/blub_control",
+                                                                         "pmp/fandisk_quads", "stein/sword_quad_dominant"};
+  for (const std::string& n : real)
+    if (corpus_has(n)) names.push_back(n);
+  return names;
+}
+
+long boundary_edges(const ControlMesh& m) {
+  std::map<std::pair<int, int>, int> edges;
+  const std::vector<int> offsets = face_offsets(m);
+  std::vector<char> hole(m.face_sizes.size(), 0);
+  for (int f : m.holes) hole[f] = 1;
+  for (int f = 0; f < num_faces(m); ++f)
+    if (!hole[f])
+    for (int i = offsets[f]; i < offsets[f + 1]; ++i) {
+      const int a = m.face_vertices[i], b = m.face_vertices[i + 1 < offsets[f + 1] ? i + 1 : offsets[f]];
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  long n = 0;
+  for (const auto& e : edges) n += e.second == 1;
+  return n;
+}
+
+}  // namespace sdb::fragments::testing

@@ -1,0 +1,176 @@
+// The Vulkan backend against the CPU's (the same tables and arithmetic: positions are meant to be
+// bit-identical), watertight on its own output, on built-in meshes and the corpus sweep; its
+// passes timed; many waves giving the output one wave gives. Skipped without a Vulkan device.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "datasets/generators.h"
+#include "datasets/manifest.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "harness/gpu/testing.h"
+#include "harness/mesh/acceptance.h"
+#include "harness/mesh/facts.h"
+#include "harness/mesh/osd_topology.h"
+#include "harness/validate/watertight.h"
+#include "schemes/fragments/fragments.h"
+#include "schemes/fragments/tests/test_corpus.h"
+#include "schemes/fragments/vulkan.h"
+
+using namespace sdb;
+
+namespace {
+
+using fragments::testing::boundary_edges;
+
+class FragmentsVulkan : public gpu::testing::VulkanTest {};
+
+const char* scheme_name(SubdivisionRule rule) { return rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc"; }
+
+struct Output {
+  Tessellation t;
+  std::optional<GpuTimes> times;
+  fragments::FragmentStats stats;
+};
+
+Output run(const ControlMesh& accepted, SubdivisionRule rule, int depth, Backend backend,
+        fragments::VulkanOptions options = {}) {
+  std::unique_ptr<Evaluation> e;
+  if (backend == Backend::Vulkan) {
+    e = fragments::make_vulkan_evaluation(accepted, rule, depth, true, options);
+  } else {
+    const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
+    e = fragments::make_evaluation(accepted, rule, default_request(info, backend, depth));
+  }
+  e->execute();
+  Output r{e->result(), std::nullopt, fragments::stats_of(*e)};
+  r.times = e->gpu_times();
+  return r;
+}
+
+struct Agreement {
+  double max_rel = 0, max_deg = 0;
+  size_t identical = 0, vertices = 0;
+};
+
+Agreement agreement(const Tessellation& cpu, const Tessellation& gpu, double diagonal) {
+  Agreement a;
+  a.vertices = cpu.positions.size();
+  for (size_t i = 0; i < cpu.positions.size(); ++i) {
+    const Point3 &p = cpu.positions[i], &q = gpu.positions[i];
+    a.identical += p == q;
+    a.max_rel = std::max(a.max_rel, std::sqrt(double(p[0] - q[0]) * (p[0] - q[0]) + double(p[1] - q[1]) * (p[1] - q[1]) +
+                                              double(p[2] - q[2]) * (p[2] - q[2])) /
+                                        diagonal);
+    const Point3 &m = cpu.normals[i], &n = gpu.normals[i];
+    const double c[3] = {double(m[1]) * n[2] - double(m[2]) * n[1], double(m[2]) * n[0] - double(m[0]) * n[2],
+                         double(m[0]) * n[1] - double(m[1]) * n[0]};
+    const double dot = double(m[0]) * n[0] + double(m[1]) * n[1] + double(m[2]) * n[2];
+    a.max_deg = std::max(a.max_deg, std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot) * 180 / M_PI);
+  }
+  return a;
+}
+
+// cpu and vulkan agree (<= 1e-6 of the diagonal, normals 1e-3 degrees), lay the output out the
+// same, and the vulkan output is watertight: the input's boundary times 2^depth open, no crack.
+Agreement check(const std::string& name, const ControlMesh& accepted, SubdivisionRule rule, int depth, long rays) {
+  const double d = bounds_of(accepted.positions).diagonal();
+  const Output cpu = run(accepted, rule, depth, Backend::Cpu);
+  Output gpu;
+  try {
+    gpu = run(accepted, rule, depth, Backend::Vulkan);
+  } catch (const Unsupported& e) {
+    std::printf("  %s depth %d refused on this device: %s\n", name.c_str(), depth, e.what());
+    return {};
+  }
+  EXPECT_EQ(cpu.t.triangles, gpu.t.triangles) << name;
+  if (cpu.t.positions.size() != gpu.t.positions.size()) {
+    ADD_FAILURE() << name << ": the backends lay the output out differently";
+    return {};
+  }
+  const Agreement a = agreement(cpu.t, gpu.t, d);
+  EXPECT_LE(a.max_rel, 1e-6) << name << " depth " << depth;
+  EXPECT_LE(a.max_deg, 1e-3) << name << " depth " << depth;
+  EXPECT_EQ(count_open_edges(gpu.t), boundary_edges(accepted) << depth) << name << " depth " << depth;
+  if (rays > 0 && compute_facts(accepted).closed && accepted.holes.empty()) {
+    const RayCrackReport r = ray_crack_check(gpu.t, {rays / 2, rays / 2, 3});
+    EXPECT_EQ(r.cracks, 0) << name << " depth " << depth << " (" << r.rays << " rays)";
+  }
+  return a;
+}
+
+TEST_F(FragmentsVulkan, MatchesTheCpuAndIsWatertightOnBuiltins) {
+  for (const char* mesh : {"torus-8x8", "icosphere", "creased-cube", "pole3", "pole8", "quadsphere"})
+    for (SubdivisionRule rule : {SubdivisionRule::CatmullClark, SubdivisionRule::Loop}) {
+      const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
+      ControlMesh accepted;
+      try {
+        accepted = accept_mesh(load_mesh(mesh), info);
+      } catch (const InputError&) {
+        continue;  // Loop takes triangle meshes only
+      }
+      for (int depth = 1; depth <= 4; ++depth) {
+        const Agreement a = check(std::string(mesh) + " " + info.name, accepted, rule, depth, 100000);
+        std::printf("  %-12s %-15s depth %d: %zu of %zu positions bit-identical, %.2g of the diagonal, normals %.2g deg\n",
+                    mesh, info.name.c_str(), depth, a.identical, a.vertices, a.max_rel, a.max_deg);
+      }
+    }
+}
+
+TEST_F(FragmentsVulkan, TimesUploadEveryLevelTheLimitAndReadback) {
+  const ControlMesh accepted = accept_mesh(load_mesh("icosphere"), find_scheme("fragments-loop")->info());
+  const Output r = run(accepted, SubdivisionRule::Loop, 3, Backend::Vulkan);
+  ASSERT_TRUE(r.times.has_value());
+  std::vector<std::string> labels;
+  for (const GpuPassTime& p : r.times->passes) labels.push_back(p.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"upload", "gather", "level 1", "level 2", "level 3", "limit", "readback"}));
+  EXPECT_GT(r.times->kernel_ms, 0.0);
+}
+
+TEST_F(FragmentsVulkan, ManyWavesGiveTheOutputOfOne) {
+  const ControlMesh accepted = accept_mesh(load_mesh("icosphere"), find_scheme("fragments-cc")->info());
+  const Output one = run(accepted, SubdivisionRule::CatmullClark, 3, Backend::Vulkan);
+  const Output many = run(accepted, SubdivisionRule::CatmullClark, 3, Backend::Vulkan, {uint64_t(512) << 10});
+  EXPECT_EQ(one.stats.waves, 1);
+  EXPECT_GT(many.stats.waves, 2);
+  EXPECT_TRUE(one.t.positions == many.t.positions);
+  EXPECT_TRUE(one.t.normals == many.t.normals);
+}
+
+// Depths 1..5 while the output stays small for lavapipe (depth 1 always); 100,000 rays a run.
+void sweep(SubdivisionRule rule) {
+  const std::vector<std::string> shapes = fragments::testing::sweep_shapes(rule);
+  if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
+  const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
+  size_t identical = 0, vertices = 0;
+  double worst = 0, worst_deg = 0;
+  int runs = 0;
+  for (const std::string& name : shapes) {
+    ControlMesh accepted;
+    try {
+      const ControlMesh m = load_mesh(name);
+      make_refiner(m, rule);
+      accepted = accept_mesh(m, info);
+      fragments::make_evaluation(accepted, rule, default_request(info, Backend::Cpu, 0));
+    } catch (const InputError&) {
+      continue;  // refused on the cpu too (fragments_test lists them)
+    }
+    const long blocks = num_faces(accepted) - static_cast<long>(accepted.holes.size());
+    for (int depth = 1; depth <= 5; ++depth) {
+      if (depth > 1 && blocks * (rule == SubdivisionRule::Loop ? 1L : 2L) << (2 * depth) > 50000) break;
+      const Agreement a = check(name, accepted, rule, depth, 100000);
+      identical += a.identical, vertices += a.vertices, ++runs;
+      worst = std::max(worst, a.max_rel), worst_deg = std::max(worst_deg, a.max_deg);
+    }
+  }
+  std::printf("%s: %d runs, %zu of %zu positions bit-identical to the cpu's, worst %.2g of the diagonal, normals %.2g deg\n",
+              info.name.c_str(), runs, identical, vertices, worst, worst_deg);
+}
+
+class FragmentsVulkanSweep : public gpu::testing::VulkanTest {};
+TEST_F(FragmentsVulkanSweep, CatmullClarkCorpusMatchesTheCpuAndIsWatertight) { sweep(SubdivisionRule::CatmullClark); }
+TEST_F(FragmentsVulkanSweep, LoopCorpusMatchesTheCpuAndIsWatertight) { sweep(SubdivisionRule::Loop); }
+
+}  // namespace

@@ -1,0 +1,421 @@
+#include "schemes/fragments/vulkan.h"
+
+#include <algorithm>
+#include <map>
+
+#include "harness/gpu/gpu.h"
+#include "schemes/fragments/device_tables.h"
+#include "schemes/fragments/surface.h"
+#include "sdb_scheme_fragments_shaders.h"
+
+namespace sdb::fragments {
+namespace {
+
+namespace shaders = sdb_scheme_fragments_shaders;
+using gpu::BufferUsage;
+
+// Invocations per work group, one fragment each (the shaders' local_size_x_id = 0).
+constexpr uint32_t kLocalSize = 64;
+constexpr uint32_t kBindings = 8;  // fragments.glsl
+// Scratch per ping-pong buffer: past this, fragments run in more waves. Small enough for
+// lavapipe's 2 GiB heap beside a large output, large enough that a real GPU runs one wave.
+constexpr uint64_t kMaxScratchBytes = uint64_t(512) << 20;
+constexpr uint32_t kCatmark = 1, kProject = 2;
+
+struct Push {
+  uint32_t level = 0, levels = 0, first_batch = 0, unused = 0, header_words = 0, wave_first_vertex = 0,
+           out_shift = 0, flags = 0, chunk = 0, part = 0, pad[2] = {0, 0};
+  float origin[4] = {0, 0, 0, 0};
+};
+
+// llvmpipe ends every loop of an invocation after 65,535 iterations in all (its
+// LP_MAX_TGSI_LOOP_ITERATIONS, shared by every loop of a shader), silently: an invocation that
+// would loop longer leaves its output unwritten. So each invocation takes a chunk of a pass's
+// entries, small enough that a bound on its loop iterations stays below that; a pass whose single
+// entries exceed it (a ring of valence ~100) is refused on llvmpipe, never run short.
+constexpr uint64_t kLoopBudget = 60000;
+constexpr uint32_t kMaxChunk = 64;
+
+// A pass over every fragment: level 0 (gather), a level's face points or its edge and vertex
+// points (Catmull-Clark's read the face points, so they come after), or the limit.
+enum class Part : uint32_t { Gather = 0, Faces = 1, EdgesVertices = 2, Limit = 3 };
+struct PassSpec {
+  Part part;
+  uint32_t level = 0;
+  uint32_t chunk = kMaxChunk;       // entries per invocation
+  std::vector<uint32_t> entries;    // per shape
+};
+
+// Loop iterations (shaders/fragments.glsl) of a ring sum and of a rule, bounded from above.
+uint64_t ring_cost(uint32_t n) {
+  if (n == 1 || n == 2 || n == 4 || n == 6 || n == 8) return 0;
+  return 3 * (uint64_t(n) * (2 * n + 2) + 1);
+}
+uint64_t vertex_rule_cost(const VertexRule& r) { return 1 + ring_cost(r.num_e) + ring_cost(r.num_f); }
+
+// Cost of each entry of a pass, for one shape.
+std::vector<uint64_t> entry_costs(const ShapeTables& t, Part part, uint32_t level) {
+  std::vector<uint64_t> c;
+  if (part == Part::Gather) return std::vector<uint64_t>(t.num_slots0, 1);
+  if (part == Part::Faces) return std::vector<uint64_t>(t.levels[level - 1].faces.size(), 1);
+  if (part == Part::EdgesVertices) {
+    const LevelTable& l = t.levels[level - 1];
+    c.assign(l.edges.size(), 1);
+    for (const VertexRule& r : l.vertices) c.push_back(vertex_rule_cost(r));
+    return c;
+  }
+  const LimitTable& lim = t.limit;
+  for (size_t i = 0; i < t.block.size(); ++i) {
+    const uint32_t p = t.block[i], n = t.block_normal[i];
+    uint64_t cost = 1 + (lim.stencil[p] < 0 ? vertex_rule_cost(lim.position[p])
+                                            : lim.stencil_begin[lim.stencil[p] + 1] - lim.stencil_begin[lim.stencil[p]]);
+    if (lim.regular[n] < 0) cost += lim.tangent_begin[n + 1] - lim.tangent_begin[n];
+    c.push_back(cost);
+  }
+  return c;
+}
+
+uint64_t worst_chunk(const std::vector<uint64_t>& costs, uint32_t chunk) {
+  uint64_t worst = 0;
+  for (size_t i = 0; i < costs.size(); i += chunk) {
+    uint64_t sum = 0;
+    for (size_t k = i; k < std::min(costs.size(), i + chunk); ++k) sum += costs[k];
+    worst = std::max(worst, sum);
+  }
+  return worst;
+}
+
+// The passes in order, each with the largest chunk (a power of two up to kMaxChunk) that keeps
+// every invocation within kLoopBudget; where even one entry does not fit, llvmpipe is refused.
+std::vector<PassSpec> plan_passes(const FragmentSurface& s, bool loop_limited, const std::string& device) {
+  std::vector<PassSpec> passes;
+  auto add = [&](Part part, uint32_t level) {
+    PassSpec p{part, level, kMaxChunk, {}};
+    std::vector<std::vector<uint64_t>> costs;
+    for (const ShapeTables& t : s.tables) {
+      costs.push_back(entry_costs(t, part, level));
+      p.entries.push_back(static_cast<uint32_t>(costs.back().size()));
+    }
+    auto fits = [&](uint32_t chunk) {
+      return std::all_of(costs.begin(), costs.end(), [&](const auto& c) { return worst_chunk(c, chunk) <= kLoopBudget; });
+    };
+    while (p.chunk > 1 && !fits(p.chunk)) p.chunk /= 2;
+    if (loop_limited && !fits(p.chunk))
+      throw gpu::Unsupported(device + " stops every shader invocation after 65,535 loop iterations; a fragment's " +
+                             (part == Part::Limit ? std::string("limit") : "level " + std::to_string(level)) +
+                             " entry here needs more (a vertex of high valence)");
+    passes.push_back(std::move(p));
+  };
+  add(Part::Gather, 0);
+  for (uint32_t d = 1; d <= static_cast<uint32_t>(s.inner_depth); ++d) {
+    if (s.rule == SubdivisionRule::CatmullClark) add(Part::Faces, d);
+    add(Part::EdgesVertices, d);
+  }
+  add(Part::Limit, 0);
+  return passes;
+}
+
+// Consecutive batches, with their contiguous output.
+struct Wave {
+  uint32_t first_batch = 0, num_batches = 0;
+  uint64_t first_vertex = 0, num_vertices = 0;
+  uint64_t bind_offset = 0, bind_bytes = 0;  // the output bindings' range (aligned start)
+  uint32_t shift = 0;                        // floats from bind_offset to the wave's first vertex
+};
+
+struct WavePlan {
+  std::vector<Wave> waves;
+  std::vector<uint32_t> scratch_offset;  // per batch: its first float in its wave's scratch
+  uint64_t scratch_bytes = 0;            // of the largest wave, for the scratch buffers
+};
+
+uint64_t batch_vertices(const FragmentSurface& s, const FragmentSurface::Batch& b) {
+  uint64_t n = 0;
+  const uint64_t bs = uint64_t(block_size(s.rule, s.depth));
+  for (uint32_t i = b.begin; i < b.begin + b.count; ++i) n += s.partition.fragments[s.order[i]].owned_faces.size() * bs;
+  return n;
+}
+
+// A batch's scratch: its shape's slots, for each of its fragments.
+uint64_t batch_scratch_bytes(const FragmentSurface& s, const FragmentSurface::Batch& b) {
+  const ShapeTables& t = s.tables[s.partition.fragments[s.order[b.begin]].shape];
+  return uint64_t(t.max_slots) * 3 * b.count * sizeof(float);
+}
+
+void place_output(Wave& w, uint64_t alignment) {
+  const uint64_t first_byte = w.first_vertex * sizeof(Point3);
+  w.bind_offset = first_byte - first_byte % alignment;
+  w.shift = static_cast<uint32_t>((first_byte - w.bind_offset) / sizeof(float));
+  w.bind_bytes = w.num_vertices * sizeof(Point3) + (first_byte - w.bind_offset);
+}
+
+// Consecutive batches while their scratch and output fit one binding each (and the dispatch's y).
+WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface::Batch>& batches,
+                    const gpu::DeviceLimits& limits, uint64_t max_wave_bytes, const std::string& device) {
+  const uint64_t alignment = std::max<uint64_t>(limits.min_storage_buffer_offset_alignment, 4);
+  const uint64_t range = max_wave_bytes ? std::min(max_wave_bytes, limits.max_storage_buffer_range)
+                                        : limits.max_storage_buffer_range;
+  const uint64_t scratch_cap = std::min({range, kMaxScratchBytes, limits.max_memory_allocation_size});
+  WavePlan plan;
+  Wave w;
+  uint64_t scratch = 0;
+  for (uint32_t i = 0; i < batches.size(); ++i) {
+    const uint64_t n = batch_vertices(s, batches[i]), need = batch_scratch_bytes(s, batches[i]);
+    if (n * sizeof(Point3) + alignment > range || need > scratch_cap)
+      throw gpu::Unsupported("one batch of fragments needs " + gpu::gib_text(std::max(n * sizeof(Point3), need)) +
+                             " in one storage binding; " + device + " binds " + gpu::gib_text(std::min(range, scratch_cap)));
+    if (w.num_batches == limits.max_compute_work_group_count[1] || scratch + need > scratch_cap ||
+        (w.num_vertices + n) * sizeof(Point3) + alignment > range) {
+      plan.waves.push_back(w);
+      plan.scratch_bytes = std::max(plan.scratch_bytes, scratch);
+      w = Wave{i, 0, w.first_vertex + w.num_vertices, 0};
+      scratch = 0;
+    }
+    plan.scratch_offset.push_back(static_cast<uint32_t>(scratch / sizeof(float)));
+    ++w.num_batches, w.num_vertices += n, scratch += need;
+  }
+  if (w.num_batches) plan.waves.push_back(w);
+  plan.scratch_bytes = std::max({plan.scratch_bytes, scratch, uint64_t(16)});
+  for (Wave& wave : plan.waves) place_output(wave, alignment);
+  return plan;
+}
+
+gpu::ComputePipelineDesc pass(const char* shader) {
+  return {shaders::get(shader), std::vector<gpu::Binding>(kBindings, gpu::Binding::StorageBuffer), sizeof(Push),
+          {{0, kLocalSize}}};
+}
+
+template <class T>
+gpu::Buffer table_buffer(gpu::Context& ctx, std::vector<T> values, const char* name) {
+  if (values.empty()) values.resize(4);  // Vulkan has no empty buffers
+  if (values.size() * sizeof(T) > ctx.limits().max_storage_buffer_range)
+    throw gpu::Unsupported(std::string("the fragments' ") + name + " (" + gpu::gib_text(values.size() * sizeof(T)) +
+                           ") exceed one storage binding on " + ctx.info().name);
+  return gpu::device_buffer_with(ctx, values, BufferUsage::Storage, name);
+}
+
+class VulkanFragmentEvaluation final : public Evaluation {
+ public:
+  VulkanFragmentEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool project,
+                           VulkanOptions options, std::shared_ptr<gpu::Context> ctx)
+      : ctx_(std::move(ctx)),
+        control_(mesh.positions),
+        surface_(mesh, rule, depth, project ? inner_depth_for(mesh, depth) : depth),
+        batches_(surface_.batches_of(kLocalSize)) {
+    const DeviceTables tables = pack_tables(surface_);
+    passes_ = plan_passes(surface_, ctx_->info().driver_name == "llvmpipe", ctx_->info().name);
+    plan_ = plan_waves(surface_, batches_, ctx_->limits(), options.max_wave_bytes, ctx_->info().name);
+    const uint64_t output = std::max<uint64_t>(surface_.num_output_vertices * sizeof(Point3), 16);
+    const uint64_t scratch = plan_.scratch_bytes;
+    gpu::check_memory(*ctx_,
+                      {tables.words.size() * 4 + tables.fragments.size() * 4 + batches_.size() * 16 +
+                           control_.size() * sizeof(Point3) + 2 * scratch + 2 * output,
+                       2 * output + control_.size() * sizeof(Point3)},
+                      mesh.name + " at depth " + std::to_string(depth));
+    if (output > std::min(ctx_->limits().max_memory_allocation_size, ctx_->limits().max_buffer_size))
+      throw gpu::Unsupported("the output's " + gpu::gib_text(output) + " of positions exceed one buffer on " +
+                             ctx_->info().name);
+    make_buffers(tables, scratch, output);
+    make_pipelines();
+    const Bounds box = bounds_of(control_);
+    for (int k = 0; k < 3; ++k) push_.origin[k] = static_cast<float>(box.centre(k));
+    push_.levels = tables.levels;
+    push_.header_words = tables.header_words;
+    push_.flags = (rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0);
+    record_frame();
+    record_readback();
+    surface_.describe(out_);
+    out_.positions.resize(surface_.num_output_vertices);
+    out_.normals.resize(surface_.num_output_vertices);
+  }
+
+  void execute() override {
+    control_staging_.write(control_);
+    ctx_->submit(*frame_);
+    stale_ = true;
+  }
+
+  const Tessellation& result() override {
+    if (!stale_) return out_;
+    ctx_->submit(*readback_);
+    read_back_ = true;
+    positions_staging_.read(out_.positions.data(), out_.positions.size() * sizeof(Point3));
+    normals_staging_.read(out_.normals.data(), out_.normals.size() * sizeof(Point3));
+    stale_ = false;
+    return out_;
+  }
+
+  size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+
+  // Passes of the same name summed over the waves, in the order they first ran.
+  std::optional<GpuTimes> gpu_times() const override {
+    auto passes = frame_timer_->read_passes();
+    if (!passes) return std::nullopt;
+    if (read_back_)
+      if (auto readback = readback_timer_->read_passes()) passes->insert(passes->end(), readback->begin(), readback->end());
+    std::vector<gpu::PassTimestamps> merged;
+    std::map<std::string, size_t> index;
+    for (const gpu::PassTimestamps& p : *passes) {
+      auto [it, fresh] = index.emplace(p.label, merged.size());
+      if (fresh) merged.push_back(p);
+      else merged[it->second].ms += p.ms;
+    }
+    return gpu::to_gpu_times(merged);
+  }
+
+  FragmentStats stats() const {
+    FragmentStats s = surface_.stats();
+    s.waves = static_cast<int>(plan_.waves.size());
+    return s;
+  }
+
+ private:
+  void make_buffers(const DeviceTables& tables, uint64_t scratch, uint64_t output) {
+    gpu::Context& c = *ctx_;
+    std::vector<uint32_t> batch_words;
+    for (size_t i = 0; i < batches_.size(); ++i) {
+      const FragmentSurface::Batch& b = batches_[i];
+      batch_words.insert(batch_words.end(), {uint32_t(surface_.partition.fragments[surface_.order[b.begin]].shape),
+                                             b.begin, b.count, plan_.scratch_offset[i]});
+    }
+    tables_ = table_buffer(c, tables.words, "pattern tables");
+    batches_buffer_ = table_buffer(c, batch_words, "batches");
+    fragments_ = table_buffer(c, tables.fragments, "fragment list");
+    const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
+    control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
+    control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::Storage, "control points");
+    for (int k = 0; k < 2; ++k)
+      scratch_[k] = gpu::Buffer::device(c, scratch, BufferUsage::Storage, k == 0 ? "scratch A" : "scratch B");
+    positions_ = gpu::Buffer::device(c, output, BufferUsage::Storage | BufferUsage::Vertex, "positions");
+    normals_ = gpu::Buffer::device(c, output, BufferUsage::Storage | BufferUsage::Vertex, "normals");
+    positions_staging_ = gpu::Buffer::readback(c, output, "positions (readback)");
+    normals_staging_ = gpu::Buffer::readback(c, output, "normals (readback)");
+  }
+
+  void make_pipelines() {
+    gather_.emplace(*ctx_, pass("gather.comp"));
+    level_.emplace(*ctx_, pass("level.comp"));
+    limit_.emplace(*ctx_, pass("limit.comp"));
+  }
+
+  // Scratch: src, dst for a wave's pass.
+  gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w, int src, int dst) const {
+    return gpu::DescriptorSet(p, {tables_.range(), batches_buffer_.range(), fragments_.range(), control_buffer_.range(),
+                                  scratch_[src].range(), scratch_[dst].range(),
+                                  positions_.range(w.bind_offset, w.bind_bytes),
+                                  normals_.range(w.bind_offset, w.bind_bytes)});
+  }
+
+  // Invocations take chunks of the pass's entries: x the chunk, y the batch (its work group's scratch).
+  void dispatch(gpu::Commands& cmd, const gpu::ComputePipeline& p, const gpu::DescriptorSet& set, const Wave& w,
+                const PassSpec& pass) {
+    uint32_t most = 0;
+    for (uint32_t b = w.first_batch; b < w.first_batch + w.num_batches; ++b)
+      most = std::max(most, pass.entries[surface_.partition.fragments[surface_.order[batches_[b].begin]].shape]);
+    if (most == 0) return;
+    Push push = push_;
+    push.level = pass.level;
+    push.part = static_cast<uint32_t>(pass.part);
+    push.chunk = pass.chunk;
+    push.first_batch = w.first_batch;
+    push.wave_first_vertex = static_cast<uint32_t>(w.first_vertex);
+    push.out_shift = w.shift;
+    cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
+    cmd.bind(p, set);
+    cmd.push(push);
+    cmd.dispatch((most + pass.chunk - 1) / pass.chunk, w.num_batches);
+  }
+
+  void record_wave(gpu::Commands& cmd, size_t i) {
+    const Wave& w = plan_.waves[i];
+    const gpu::DescriptorSet* s = &sets_[4 * i];
+    for (size_t k = 0; k < passes_.size();) {
+      const PassSpec& pass = passes_[k];
+      if (pass.part == Part::Gather || pass.part == Part::Limit) {
+        frame_timer_->begin(cmd, gpu::PassKind::Kernel, pass.part == Part::Gather ? "gather" : "limit");
+        dispatch(cmd, pass.part == Part::Gather ? *gather_ : *limit_, pass.part == Part::Gather ? s[0] : s[3], w, pass);
+        frame_timer_->end(cmd);
+        ++k;
+        continue;
+      }
+      // A level: its face points, then its edge and vertex points, under one timestamp pair.
+      const uint32_t level = pass.level;
+      frame_timer_->begin(cmd, gpu::PassKind::Kernel, "level " + std::to_string(level));
+      for (; k < passes_.size() && passes_[k].level == level && passes_[k].part != Part::Limit; ++k)
+        dispatch(cmd, *level_, s[level % 2 ? 1 : 2], w, passes_[k]);
+      frame_timer_->end(cmd);
+    }
+  }
+
+  void record_frame() {
+    const uint32_t levels = push_.levels;
+    frame_timer_.emplace(*ctx_, 1 + static_cast<uint32_t>(plan_.waves.size()) * (levels + 2));
+    for (const Wave& w : plan_.waves) {
+      sets_.push_back(set_for(*gather_, w, 1, 0));  // writes A
+      sets_.push_back(set_for(*level_, w, 0, 1));   // A -> B
+      sets_.push_back(set_for(*level_, w, 1, 0));   // B -> A
+      sets_.push_back(set_for(*limit_, w, levels % 2, 0));
+    }
+    frame_ = ctx_->record([&](gpu::Commands& cmd) {
+      // The previous frame and readback read what this frame overwrites.
+      cmd.barrier(gpu::Stage::All, gpu::Stage::All);
+      frame_timer_->reset(cmd);
+      frame_timer_->begin(cmd, gpu::PassKind::Upload, "upload");
+      cmd.upload(control_staging_, control_buffer_);
+      frame_timer_->end(cmd);
+      for (size_t i = 0; i < plan_.waves.size(); ++i) record_wave(cmd, i);
+    });
+  }
+
+  void record_readback() {
+    readback_timer_.emplace(*ctx_, 1);
+    readback_ = ctx_->record([&](gpu::Commands& cmd) {
+      readback_timer_->reset(cmd);
+      readback_timer_->begin(cmd, gpu::PassKind::Readback, "readback");
+      cmd.download(positions_, positions_staging_);
+      cmd.download(normals_, normals_staging_);
+      readback_timer_->end(cmd);
+    });
+  }
+
+  std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
+  std::vector<Point3> control_;
+  FragmentSurface surface_;
+  std::vector<FragmentSurface::Batch> batches_;
+  std::vector<PassSpec> passes_;
+  WavePlan plan_;
+  Push push_;
+  gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_[2];
+  gpu::Buffer positions_, normals_, positions_staging_, normals_staging_;
+  std::optional<gpu::ComputePipeline> gather_, level_, limit_;
+  std::vector<gpu::DescriptorSet> sets_;
+  std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
+  std::optional<gpu::Recording> frame_, readback_;
+  Tessellation out_;
+  bool stale_ = false, read_back_ = false;
+};
+
+}  // namespace
+
+std::optional<std::string> vulkan_unavailable() {
+  static const gpu::DeviceInfo device = gpu::probe();
+  if (!device.available) return "no Vulkan device: " + device.reason;
+  if (device.limits.max_per_stage_storage_buffers < kBindings)
+    return device.name + " binds " + std::to_string(device.limits.max_per_stage_storage_buffers) +
+           " storage buffers per stage; the fragment passes bind " + std::to_string(kBindings);
+  return std::nullopt;
+}
+
+std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,
+                                                   bool project_to_limit, VulkanOptions options) {
+  if (auto why = vulkan_unavailable()) throw gpu::Unsupported(*why);
+  return std::make_unique<VulkanFragmentEvaluation>(mesh, rule, depth, project_to_limit, options,
+                                                    gpu::shared_context());
+}
+
+std::optional<FragmentStats> vulkan_stats(const Evaluation& e) {
+  if (auto* v = dynamic_cast<const VulkanFragmentEvaluation*>(&e)) return v->stats();
+  return std::nullopt;
+}
+
+}  // namespace sdb::fragments
