@@ -16,15 +16,15 @@ using gpu::BufferUsage;
 
 // Invocations per work group, one fragment each (the shaders' local_size_x_id = 0).
 constexpr uint32_t kLocalSize = 64;
-constexpr uint32_t kBindings = 8;  // fragments.glsl
+constexpr uint32_t kBindings = 7;  // fragments.glsl
 // Scratch per ping-pong buffer: past this, fragments run in more waves. Small enough for
 // lavapipe's 2 GiB heap beside a large output, large enough that a real GPU runs one wave.
 constexpr uint64_t kMaxScratchBytes = uint64_t(512) << 20;
 constexpr uint32_t kCatmark = 1, kProject = 2;
 
 struct Push {
-  uint32_t level = 0, levels = 0, first_batch = 0, unused = 0, header_words = 0, wave_first_vertex = 0,
-           out_shift = 0, flags = 0, chunk = 0, part = 0, pad[2] = {0, 0};
+  uint32_t level = 0, levels = 0, first_batch = 0, src_base = 0, dst_base = 0, header_words = 0,
+           wave_first_vertex = 0, out_shift = 0, flags = 0, chunk = 0, part = 0, pad = 0;
   float origin[4] = {0, 0, 0, 0};
 };
 
@@ -155,15 +155,17 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
   const uint64_t alignment = std::max<uint64_t>(limits.min_storage_buffer_offset_alignment, 4);
   const uint64_t range = max_wave_bytes ? std::min(max_wave_bytes, limits.max_storage_buffer_range)
                                         : limits.max_storage_buffer_range;
-  const uint64_t scratch_cap = std::min({range, kMaxScratchBytes, limits.max_memory_allocation_size});
+  // The scratch binding holds two halves (a level and the next).
+  const uint64_t scratch_cap = std::min({range, kMaxScratchBytes, limits.max_memory_allocation_size}) / 2 / 16 * 16;
   WavePlan plan;
   Wave w;
   uint64_t scratch = 0;
   for (uint32_t i = 0; i < batches.size(); ++i) {
     const uint64_t n = batch_vertices(s, batches[i]), need = batch_scratch_bytes(s, batches[i]);
     if (n * sizeof(Point3) + alignment > range || need > scratch_cap)
-      throw gpu::Unsupported("one batch of fragments needs " + gpu::gib_text(std::max(n * sizeof(Point3), need)) +
-                             " in one storage binding; " + device + " binds " + gpu::gib_text(std::min(range, scratch_cap)));
+      throw gpu::Unsupported("one batch of fragments writes " + gpu::gib_text(n * sizeof(Point3)) + " and needs " +
+                             gpu::gib_text(2 * need) + " of scratch; " + device + " binds " + gpu::gib_text(range) +
+                             " at once");
     if (w.num_batches == limits.max_compute_work_group_count[1] || scratch + need > scratch_cap ||
         (w.num_vertices + n) * sizeof(Point3) + alignment > range) {
       plan.waves.push_back(w);
@@ -217,6 +219,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
                              ctx_->info().name);
     make_buffers(tables, scratch, output);
     make_pipelines();
+    surface_.describe(out_);
+    if (options.render_width > 0) make_renderer(options);
     const Bounds box = bounds_of(control_);
     for (int k = 0; k < 3; ++k) push_.origin[k] = static_cast<float>(box.centre(k));
     push_.levels = tables.levels;
@@ -224,7 +228,6 @@ class VulkanFragmentEvaluation final : public Evaluation {
     push_.flags = (rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0);
     record_frame();
     record_readback();
-    surface_.describe(out_);
     out_.positions.resize(surface_.num_output_vertices);
     out_.normals.resize(surface_.num_output_vertices);
   }
@@ -284,12 +287,31 @@ class VulkanFragmentEvaluation final : public Evaluation {
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
     control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::Storage, "control points");
-    for (int k = 0; k < 2; ++k)
-      scratch_[k] = gpu::Buffer::device(c, scratch, BufferUsage::Storage, k == 0 ? "scratch A" : "scratch B");
+    scratch_ = gpu::Buffer::device(c, 2 * scratch, BufferUsage::Storage, "scratch (two levels)");
     positions_ = gpu::Buffer::device(c, output, BufferUsage::Storage | BufferUsage::Vertex, "positions");
     normals_ = gpu::Buffer::device(c, output, BufferUsage::Storage | BufferUsage::Vertex, "normals");
     positions_staging_ = gpu::Buffer::readback(c, output, "positions (readback)");
     normals_staging_ = gpu::Buffer::readback(c, output, "normals (readback)");
+  }
+
+  void make_renderer(const VulkanOptions& o) {
+    target_.emplace(*ctx_, o.render_width, o.render_height);
+    renderer_.emplace(*ctx_);
+    if (out_.triangles.empty()) throw gpu::Unsupported("nothing to draw");
+    indices_ = gpu::device_buffer_with(*ctx_, out_.triangles, BufferUsage::Index, "triangle indices");
+    const Bounds box = bounds_of(control_);
+    camera_ = gpu::frame_bounds({float(box.lo[0]), float(box.lo[1]), float(box.lo[2])},
+                                {float(box.hi[0]), float(box.hi[1]), float(box.hi[2])}, target_->aspect());
+  }
+
+  // The output as it is on the device, drawn: what a frame of the poster's Table 1 ends with.
+  void record_render(gpu::Commands& cmd) {
+    cmd.barrier(gpu::Stage::Compute, gpu::Stage::Vertex);
+    frame_timer_->begin(cmd, gpu::PassKind::Draw, "render");
+    target_->render(cmd, [&](gpu::Commands& c) {
+      renderer_->draw(c, {&positions_, &normals_, &indices_, static_cast<uint32_t>(out_.triangles.size())}, camera_);
+    });
+    frame_timer_->end(cmd);
   }
 
   void make_pipelines() {
@@ -298,15 +320,15 @@ class VulkanFragmentEvaluation final : public Evaluation {
     limit_.emplace(*ctx_, pass("limit.comp"));
   }
 
-  // Scratch: src, dst for a wave's pass.
-  gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w, int src, int dst) const {
+  gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w) const {
     return gpu::DescriptorSet(p, {tables_.range(), batches_buffer_.range(), fragments_.range(), control_buffer_.range(),
-                                  scratch_[src].range(), scratch_[dst].range(),
+                                  scratch_.range(),
                                   positions_.range(w.bind_offset, w.bind_bytes),
                                   normals_.range(w.bind_offset, w.bind_bytes)});
   }
 
   // Invocations take chunks of the pass's entries: x the chunk, y the batch (its work group's scratch).
+  // Levels alternate between the scratch halves: level d is in half d % 2.
   void dispatch(gpu::Commands& cmd, const gpu::ComputePipeline& p, const gpu::DescriptorSet& set, const Wave& w,
                 const PassSpec& pass) {
     uint32_t most = 0;
@@ -317,6 +339,10 @@ class VulkanFragmentEvaluation final : public Evaluation {
     push.level = pass.level;
     push.part = static_cast<uint32_t>(pass.part);
     push.chunk = pass.chunk;
+    const uint32_t half = static_cast<uint32_t>(plan_.scratch_bytes / sizeof(float));
+    const uint32_t made = pass.part == Part::Limit ? push_.levels + 1 : pass.level;  // the level this pass writes
+    push.src_base = ((made + 1) % 2) * half;
+    push.dst_base = (made % 2) * half;
     push.first_batch = w.first_batch;
     push.wave_first_vertex = static_cast<uint32_t>(w.first_vertex);
     push.out_shift = w.shift;
@@ -328,12 +354,12 @@ class VulkanFragmentEvaluation final : public Evaluation {
 
   void record_wave(gpu::Commands& cmd, size_t i) {
     const Wave& w = plan_.waves[i];
-    const gpu::DescriptorSet* s = &sets_[4 * i];
+    const gpu::DescriptorSet* s = &sets_[3 * i];
     for (size_t k = 0; k < passes_.size();) {
       const PassSpec& pass = passes_[k];
       if (pass.part == Part::Gather || pass.part == Part::Limit) {
         frame_timer_->begin(cmd, gpu::PassKind::Kernel, pass.part == Part::Gather ? "gather" : "limit");
-        dispatch(cmd, pass.part == Part::Gather ? *gather_ : *limit_, pass.part == Part::Gather ? s[0] : s[3], w, pass);
+        dispatch(cmd, pass.part == Part::Gather ? *gather_ : *limit_, pass.part == Part::Gather ? s[0] : s[2], w, pass);
         frame_timer_->end(cmd);
         ++k;
         continue;
@@ -342,19 +368,18 @@ class VulkanFragmentEvaluation final : public Evaluation {
       const uint32_t level = pass.level;
       frame_timer_->begin(cmd, gpu::PassKind::Kernel, "level " + std::to_string(level));
       for (; k < passes_.size() && passes_[k].level == level && passes_[k].part != Part::Limit; ++k)
-        dispatch(cmd, *level_, s[level % 2 ? 1 : 2], w, passes_[k]);
+        dispatch(cmd, *level_, s[1], w, passes_[k]);
       frame_timer_->end(cmd);
     }
   }
 
   void record_frame() {
     const uint32_t levels = push_.levels;
-    frame_timer_.emplace(*ctx_, 1 + static_cast<uint32_t>(plan_.waves.size()) * (levels + 2));
+    frame_timer_.emplace(*ctx_, 2 + static_cast<uint32_t>(plan_.waves.size()) * (levels + 2));
     for (const Wave& w : plan_.waves) {
-      sets_.push_back(set_for(*gather_, w, 1, 0));  // writes A
-      sets_.push_back(set_for(*level_, w, 0, 1));   // A -> B
-      sets_.push_back(set_for(*level_, w, 1, 0));   // B -> A
-      sets_.push_back(set_for(*limit_, w, levels % 2, 0));
+      sets_.push_back(set_for(*gather_, w));
+      sets_.push_back(set_for(*level_, w));
+      sets_.push_back(set_for(*limit_, w));
     }
     frame_ = ctx_->record([&](gpu::Commands& cmd) {
       // The previous frame and readback read what this frame overwrites.
@@ -364,6 +389,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
       cmd.upload(control_staging_, control_buffer_);
       frame_timer_->end(cmd);
       for (size_t i = 0; i < plan_.waves.size(); ++i) record_wave(cmd, i);
+      if (target_) record_render(cmd);
     });
   }
 
@@ -385,12 +411,16 @@ class VulkanFragmentEvaluation final : public Evaluation {
   std::vector<PassSpec> passes_;
   WavePlan plan_;
   Push push_;
-  gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_[2];
+  gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_;
   gpu::Buffer positions_, normals_, positions_staging_, normals_staging_;
   std::optional<gpu::ComputePipeline> gather_, level_, limit_;
   std::vector<gpu::DescriptorSet> sets_;
   std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
   std::optional<gpu::Recording> frame_, readback_;
+  std::optional<gpu::RenderTarget> target_;
+  std::optional<gpu::MeshRenderer> renderer_;
+  gpu::Buffer indices_;
+  gpu::Camera camera_;
   Tessellation out_;
   bool stale_ = false, read_back_ = false;
 };

@@ -17,9 +17,12 @@ namespace sdb::fragments {
 
 struct FragmentStats;
 
-// Tests: a cap on a wave's scratch and output bindings below the device's, to run many waves.
 struct VulkanOptions {
+  // Tests: a cap on a wave's scratch and output bindings below the device's, to run many waves.
   uint64_t max_wave_bytes = 0;
+  // The poster's Table 1: every frame also draws the output into an offscreen target of this
+  // size (a "render" pass, timed), straight from the device buffers. 0: no drawing.
+  uint32_t render_width = 0, render_height = 0;
 };
 
 // Why there is no Vulkan device to run on, or nullopt.

@@ -8,6 +8,7 @@
 
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
+#include "harness/bench/paper_output.h"
 #include "harness/core/control_mesh.h"
 #include "harness/core/paper_table.h"
 
@@ -29,11 +30,5 @@ int run_fig12(const PaperTableOptions& options, std::ostream& out);
 // "(verts, quads, eqs%)" of a mesh as the paper lists its models, for the mesh as given (before
 // quadrangulation), plus the quads after it when it had other faces.
 std::string mesh_shape(MeasureContext& context, const std::string& mesh, const ControlMesh& quads);
-// The Vulkan device in one line, and whether it is a CPU implementation (lavapipe).
-std::string device_line();
-// Writes `markdown` to <out_dir>/<id>.md and to `out`; returns the path.
-std::string publish(const PaperTableOptions& options, const std::string& id, const std::string& markdown,
-                    std::ostream& out);
-std::string fixed(double value, int decimals);
 
 }  // namespace sdb::cpatch

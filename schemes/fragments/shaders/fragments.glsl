@@ -16,23 +16,24 @@ layout(std430, binding = 0) readonly buffer Tables { uint T[]; };     // device_
 layout(std430, binding = 1) readonly buffer Batches { uvec4 batch[]; };
 layout(std430, binding = 2) readonly buffer Fragments { uint F[]; };  // control list, first vertex
 layout(std430, binding = 3) readonly buffer Control { float control[]; };  // x y z per vertex
-layout(std430, binding = 4) buffer Src { float src[]; };  // level d - 1's slots (this wave's)
-layout(std430, binding = 5) buffer Dst { float dst[]; };  // level d's
-layout(std430, binding = 6) writeonly buffer Positions { float out_position[]; };
-layout(std430, binding = 7) writeonly buffer Normals { float out_normal[]; };
+// Two halves: level d - 1's slots (from src_base) and level d's (from dst_base), this wave's.
+layout(std430, binding = 4) buffer Scratch { float scratch[]; };
+layout(std430, binding = 5) writeonly buffer Positions { float out_position[]; };
+layout(std430, binding = 6) writeonly buffer Normals { float out_normal[]; };
 
 layout(push_constant) uniform Push {
   uint level;          // the level a level pass makes, 1 .. levels
   uint levels;
   uint first_batch;    // the wave's
-  uint unused;
+  uint src_base;       // floats into scratch: the half this pass reads
+  uint dst_base;       // and the half it writes
   uint header_words;
   uint wave_first_vertex;
   uint out_shift;      // floats from the output bindings' start to the wave's first vertex
   uint flags;          // kCatmark | kProject
   uint chunk;          // entries of the pass per invocation (vulkan.cpp: llvmpipe's loop limit)
   uint part;           // kGather, kFaces, kEdgesVertices, kLimit
-  uint pad0, pad1;
+  uint pad0;
   vec4 origin;         // the control box's centre: slots are relative to it
 } pc;
 
@@ -73,16 +74,15 @@ float number(uint at) { return uintBitsToFloat(T[at]); }
 uint scratch_index(uint slot) { return g_scratch + (slot * 3u) * g_count + g_lane; }
 
 vec3 load(bool from_dst, uint slot) {
-  const uint i = scratch_index(slot), w = g_count;
-  return from_dst ? vec3(dst[i], dst[i + w], dst[i + 2u * w]) : vec3(src[i], src[i + w], src[i + 2u * w]);
+  const uint i = (from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot), w = g_count;
+  return vec3(scratch[i], scratch[i + w], scratch[i + 2u * w]);
 }
 float load_axis(bool from_dst, uint slot, uint axis) {
-  const uint i = scratch_index(slot) + axis * g_count;
-  return from_dst ? dst[i] : src[i];
+  return scratch[(from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot) + axis * g_count];
 }
 void store(uint slot, vec3 p) {
-  const uint i = scratch_index(slot), w = g_count;
-  dst[i] = p.x, dst[i + w] = p.y, dst[i + 2u * w] = p.z;
+  const uint i = pc.dst_base + scratch_index(slot), w = g_count;
+  scratch[i] = p.x, scratch[i + w] = p.y, scratch[i + 2u * w] = p.z;
 }
 
 // -0 as +0, by its bits (what kernel.cpp's "+ 0.0f" does, and no compiler can fold away): min and
