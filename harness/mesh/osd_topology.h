@@ -10,16 +10,19 @@
 
 namespace sdb {
 
-// A point as Far::PrimvarRefiner interpolates it (Clear, AddWithWeight).
-struct PrimvarPoint {
-  float p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0f; }
-  void AddWithWeight(const PrimvarPoint& src, float w) {
+// A point as Far::PrimvarRefiner interpolates it (Clear, AddWithWeight): float as the refiners
+// and peers use it, double for the tests' oracles.
+template <class Real>
+struct PrimvarPointT {
+  Real p[3];
+  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = Real(0); }
+  void AddWithWeight(const PrimvarPointT& src, float w) {
     p[0] += w * src.p[0];
     p[1] += w * src.p[1];
     p[2] += w * src.p[2];
   }
 };
+using PrimvarPoint = PrimvarPointT<float>;
 
 OpenSubdiv::Sdc::Options sdc_options(const ControlMesh& mesh);
 

@@ -108,15 +108,7 @@ bool fragments_position_is_exact(const Far::TopologyLevel& l, int v) {
 
 // Far's rules, accumulated in double: the oracle's own rounding stays far below the 1e-6 the
 // float fragments are held to (on a valence-360 pole a float oracle alone is off by 1e-6).
-struct DoublePoint {
-  double p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0; }
-  void AddWithWeight(const DoublePoint& src, float w) {
-    p[0] += w * src.p[0];
-    p[1] += w * src.p[1];
-    p[2] += w * src.p[2];
-  }
-};
+using DoublePoint = PrimvarPointT<double>;
 
 OsdLevel osd_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit) {
   auto r = make_refiner(m, rule);

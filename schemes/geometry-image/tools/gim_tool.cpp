@@ -48,15 +48,6 @@ Timing time_ms(const std::function<void()>& work, int reps) {
   return {median(t), *std::min_element(t.begin(), t.end())};
 }
 
-struct Vertex3 {
-  float p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0f; }
-  void AddWithWeight(const Vertex3& s, float w) {
-    p[0] += w * s.p[0];
-    p[1] += w * s.p[1];
-    p[2] += w * s.p[2];
-  }
-};
 
 // The same work as the harness's osd-uniform peer: PrimvarRefiner::Interpolate per level, Limit
 // with tangents, unit normals.
@@ -66,10 +57,10 @@ Timing time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
   Far::TopologyRefiner::UniformOptions options(level);
   options.fullTopologyInLastLevel = true;
   refiner->RefineUniform(options);
-  std::vector<std::vector<Vertex3>> levels(level + 1);
+  std::vector<std::vector<PrimvarPoint>> levels(level + 1);
   for (int l = 0; l <= level; ++l) levels[l].resize(refiner->GetLevel(l).GetNumVertices());
   const int nv = refiner->GetLevel(level).GetNumVertices();
-  std::vector<Vertex3> pos(nv), du(nv), dv(nv);
+  std::vector<PrimvarPoint> pos(nv), du(nv), dv(nv);
   std::vector<Point3> normals(nv);
   triangles = 2L * refiner->GetLevel(level).GetNumFaces();
   return time_ms(
@@ -78,10 +69,10 @@ Timing time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
           for (int k = 0; k < 3; ++k) levels[0][v].p[k] = g0.positions[v][k];
         Far::PrimvarRefiner primvar(*refiner);
         for (int l = 1; l <= level; ++l) {
-          Vertex3* dst = levels[l].data();
+          PrimvarPoint* dst = levels[l].data();
           primvar.Interpolate(l, levels[l - 1].data(), dst);
         }
-        Vertex3 *p = pos.data(), *a = du.data(), *b = dv.data();
+        PrimvarPoint *p = pos.data(), *a = du.data(), *b = dv.data();
         primvar.Limit(levels[level].data(), p, a, b);
         for (int v = 0; v < nv; ++v) {
           const float* s = du[v].p;
