@@ -1,6 +1,7 @@
 #include "schemes/fragments/vulkan.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 
 #include "harness/gpu/gpu.h"
@@ -17,8 +18,9 @@ using gpu::BufferUsage;
 // Invocations per work group, one fragment each (the shaders' local_size_x_id = 0).
 constexpr uint32_t kLocalSize = 64;
 constexpr uint32_t kBindings = 7;  // fragments.glsl
-// Scratch per ping-pong buffer: past this, fragments run in more waves. Small enough for
-// lavapipe's 2 GiB heap beside a large output, large enough that a real GPU runs one wave.
+// Scratch of a wave, both halves (a level and the next): past this, fragments run in more waves.
+// Small enough for lavapipe's 2 GiB heap beside a large output, large enough that a real GPU
+// runs one wave.
 constexpr uint64_t kMaxScratchBytes = uint64_t(512) << 20;
 constexpr uint32_t kCatmark = 1, kProject = 2;
 
@@ -297,7 +299,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
   void make_renderer(const VulkanOptions& o) {
     target_.emplace(*ctx_, o.render_width, o.render_height);
     renderer_.emplace(*ctx_);
-    if (out_.triangles.empty()) throw gpu::Unsupported("nothing to draw");
+    if (out_.triangles.empty() || out_.triangles.size() > UINT32_MAX)
+      throw gpu::Unsupported(std::to_string(out_.triangles.size() / 3) + " triangles: nothing to draw, or past one draw call");
     indices_ = gpu::device_buffer_with(*ctx_, out_.triangles, BufferUsage::Index, "triangle indices");
     const Bounds box = bounds_of(control_);
     camera_ = gpu::frame_bounds({float(box.lo[0]), float(box.lo[1]), float(box.lo[2])},

@@ -140,6 +140,7 @@ TEST_F(FragmentsVulkan, ManyWavesGiveTheOutputOfOne) {
 }
 
 // Depths 1..5 while the output stays small for lavapipe (depth 1 always); 100,000 rays a run.
+// llvmpipe refuses the valence-360 poles (vulkan.cpp: its loop limit).
 void sweep(SubdivisionRule rule) {
   const std::vector<std::string> shapes = fragments::testing::sweep_shapes(rule);
   if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
@@ -159,8 +160,9 @@ void sweep(SubdivisionRule rule) {
     }
     const long blocks = num_faces(accepted) - static_cast<long>(accepted.holes.size());
     for (int depth = 1; depth <= 5; ++depth) {
-      if (depth > 1 && blocks * (rule == SubdivisionRule::Loop ? 1L : 2L) << (2 * depth) > 50000) break;
+      if (depth > 1 && blocks * (rule == SubdivisionRule::Loop ? 1L : 2L) << (2 * depth) > 20000) break;
       const Agreement a = check(name, accepted, rule, depth, 100000);
+      if (a.vertices == 0) continue;  // refused by the device, said above
       identical += a.identical, vertices += a.vertices, ++runs;
       worst = std::max(worst, a.max_rel), worst_deg = std::max(worst_deg, a.max_deg);
     }
