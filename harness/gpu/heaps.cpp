@@ -23,6 +23,12 @@ std::string gib_text(uint64_t bytes) {
   return text;
 }
 
+void check_storage_binding(const Context& ctx, uint64_t bytes, std::string_view name) {
+  if (bytes > ctx.limits().max_storage_buffer_range)
+    throw Unsupported("'" + std::string(name) + "' of " + gib_text(bytes) + " exceeds one storage binding on " +
+                      ctx.info().name + " (" + gib_text(ctx.limits().max_storage_buffer_range) + ")");
+}
+
 void check_memory(const Context& ctx, const MemoryNeed& need, const std::string& what) {
   const VkPhysicalDeviceMemoryProperties& p = ctx.memory_properties();
   const int device_heap = heap_with(p, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);

@@ -4,7 +4,10 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include "harness/gpu/buffer.h"
 #include "harness/gpu/context.h"
 
 namespace sdb::gpu {
@@ -21,5 +24,17 @@ void check_memory(const Context& ctx, const MemoryNeed& need, const std::string&
 
 // "1.25 GiB" (or "12.5 MiB" below 1 GiB), for such messages.
 std::string gib_text(uint64_t bytes);
+
+// Throws Unsupported naming `name` when `bytes` exceed one storage binding (maxStorageBufferRange).
+void check_storage_binding(const Context& ctx, uint64_t bytes, std::string_view name);
+
+// A Storage device buffer holding `values` (one zero element when empty: Vulkan has no empty
+// buffers), uploaded blocking, checked to fit one storage binding first.
+template <class T>
+Buffer storage_table(Context& ctx, std::vector<T> values, std::string_view name) {
+  if (values.empty()) values.resize(1);
+  check_storage_binding(ctx, values.size() * sizeof(T), name);
+  return device_buffer_with(ctx, values, BufferUsage::Storage, name);
+}
 
 }  // namespace sdb::gpu

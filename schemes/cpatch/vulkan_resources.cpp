@@ -6,22 +6,8 @@
 namespace sdb::cpatch {
 namespace {
 
-// A buffer holding `values`; one element of zeros when there are none (Vulkan has no empty
-// buffers; the shaders never read it then, e.g. c-patch weights on an all-ordinary mesh).
-template <class T>
-gpu::Buffer table_buffer(gpu::Context& ctx, std::vector<T> values, const char* name) {
-  if (values.empty()) values.resize(1);
-  const uint64_t bytes = values.size() * sizeof(T);
-  if (bytes > ctx.limits().max_storage_buffer_range)
-    throw gpu::Unsupported(std::string("c-patch table '") + name + "' of " + gpu::gib_text(bytes) + " exceeds one storage binding on " +
-                           ctx.info().name + " (" + gpu::gib_text(ctx.limits().max_storage_buffer_range) + ")");
-  return gpu::device_buffer_with(ctx, values, gpu::BufferUsage::Storage, name);
-}
-
 gpu::Buffer storage(gpu::Context& ctx, uint64_t bytes, const char* name) {
-  if (bytes > ctx.limits().max_storage_buffer_range)
-    throw gpu::Unsupported(std::string("c-patch buffer '") + name + "' of " + gpu::gib_text(bytes) + " exceeds one storage binding on " +
-                           ctx.info().name + " (" + gpu::gib_text(ctx.limits().max_storage_buffer_range) + ")");
+  gpu::check_storage_binding(ctx, bytes, name);
   return gpu::Buffer::device(ctx, std::max<uint64_t>(bytes, 16), gpu::BufferUsage::Storage, name);
 }
 
@@ -67,16 +53,16 @@ DeviceMesh::DeviceMesh(gpu::Context& ctx, const CpatchTopology& t, const SampleG
   const uint64_t control_bytes = float3_bytes(t.num_vertices);
   control_staging = gpu::Buffer::upload(ctx, control_bytes, "c-patch control points (staging)");
   control_points = storage(ctx, control_bytes, "c-patch control points");
-  first_slot = table_buffer(ctx, t.first_slot, "c-patch first_slot");
-  ring = table_buffer(ctx, t.ring, "c-patch ring");
-  valence_constants = table_buffer(ctx, t.valence_constants, "c-patch valence constants");
+  first_slot = gpu::storage_table(ctx, t.first_slot, "c-patch first_slot");
+  ring = gpu::storage_table(ctx, t.ring, "c-patch ring");
+  valence_constants = gpu::storage_table(ctx, t.valence_constants, "c-patch valence constants");
   std::vector<float> trig_pairs;
   for (size_t j = 0; j < t.trig_cos.size(); ++j) trig_pairs.insert(trig_pairs.end(), {t.trig_cos[j], t.trig_sin[j]});
-  trig = table_buffer(ctx, trig_pairs, "c-patch cos/sin table");
-  corners = table_buffer(ctx, t.corners, "c-patch quad corners");
-  quad_info = table_buffer(ctx, quad_info_table(t), "c-patch quad info");
-  corner_weights = table_buffer(ctx, t.cpatch_weights, "c-patch Table 2 weights");
-  grid = table_buffer(ctx, grid_table(sample_grid), "c-patch grid weights");
+  trig = gpu::storage_table(ctx, trig_pairs, "c-patch cos/sin table");
+  corners = gpu::storage_table(ctx, t.corners, "c-patch quad corners");
+  quad_info = gpu::storage_table(ctx, quad_info_table(t), "c-patch quad info");
+  corner_weights = gpu::storage_table(ctx, t.cpatch_weights, "c-patch Table 2 weights");
+  grid = gpu::storage_table(ctx, grid_table(sample_grid), "c-patch grid weights");
   if (!intermediates) return;
   limit_points = storage(ctx, control_bytes, "c-patch limit points");
   face_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch face points");

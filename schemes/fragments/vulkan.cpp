@@ -189,15 +189,6 @@ gpu::ComputePipelineDesc pass(const char* shader) {
           {{0, kLocalSize}}};
 }
 
-template <class T>
-gpu::Buffer table_buffer(gpu::Context& ctx, std::vector<T> values, const char* name) {
-  if (values.empty()) values.resize(4);  // Vulkan has no empty buffers
-  if (values.size() * sizeof(T) > ctx.limits().max_storage_buffer_range)
-    throw gpu::Unsupported(std::string("the fragments' ") + name + " (" + gpu::gib_text(values.size() * sizeof(T)) +
-                           ") exceed one storage binding on " + ctx.info().name);
-  return gpu::device_buffer_with(ctx, values, BufferUsage::Storage, name);
-}
-
 class VulkanFragmentEvaluation final : public Evaluation {
  public:
   VulkanFragmentEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool project,
@@ -283,9 +274,9 @@ class VulkanFragmentEvaluation final : public Evaluation {
       batch_words.insert(batch_words.end(), {uint32_t(surface_.partition.fragments[surface_.order[b.begin]].shape),
                                              b.begin, b.count, plan_.scratch_offset[i]});
     }
-    tables_ = table_buffer(c, tables.words, "pattern tables");
-    batches_buffer_ = table_buffer(c, batch_words, "batches");
-    fragments_ = table_buffer(c, tables.fragments, "fragment list");
+    tables_ = gpu::storage_table(c, tables.words, "fragments' pattern tables");
+    batches_buffer_ = gpu::storage_table(c, batch_words, "fragments' batches");
+    fragments_ = gpu::storage_table(c, tables.fragments, "fragment list");
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
     control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::Storage, "control points");

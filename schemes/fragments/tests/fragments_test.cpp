@@ -285,9 +285,7 @@ void sweep(SubdivisionRule rule) {
   for (const std::string& name : shapes) {
     ControlMesh accepted;
     try {
-      const ControlMesh m = load_mesh(name);
-      make_refiner(m, rule);
-      accepted = accept_mesh(m, info);
+      accepted = fragments::testing::sweep_mesh(name, rule);
     } catch (const InputError& e) {
       std::printf("  refused %s: %s\n", name.c_str(), e.what());
       ++refused;

@@ -4,7 +4,10 @@
 #include <map>
 
 #include "datasets/manifest.h"
+#include "harness/core/registry.h"
+#include "harness/mesh/acceptance.h"
 #include "harness/mesh/facts.h"
+#include "harness/mesh/osd_topology.h"
 
 namespace sdb::fragments::testing {
 
@@ -23,6 +26,12 @@ std::vector<std::string> sweep_shapes(SubdivisionRule rule) {
   for (const std::string& n : real)
     if (corpus_has(n)) names.push_back(n);
   return names;
+}
+
+ControlMesh sweep_mesh(const std::string& name, SubdivisionRule rule) {
+  const ControlMesh m = load_mesh(name);
+  make_refiner(m, rule);
+  return accept_mesh(m, find_scheme(rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc")->info());
 }
 
 long boundary_edges(const ControlMesh& m) {

@@ -12,6 +12,10 @@ namespace sdb::fragments::testing {
 // those present in ../shared.
 std::vector<std::string> sweep_shapes(SubdivisionRule rule);
 
+// A sweep shape loaded, taken by OpenSubdiv and accepted as the rule's fragments scheme takes it
+// (quadrangulated for Catmull-Clark); throws InputError, naming why, where it is refused.
+ControlMesh sweep_mesh(const std::string& name, SubdivisionRule rule);
+
 // Edges of exactly one face with a surface: the borders of holes count.
 long boundary_edges(const ControlMesh& m);
 

@@ -151,9 +151,7 @@ void sweep(SubdivisionRule rule) {
   for (const std::string& name : shapes) {
     ControlMesh accepted;
     try {
-      const ControlMesh m = load_mesh(name);
-      make_refiner(m, rule);
-      accepted = accept_mesh(m, info);
+      accepted = fragments::testing::sweep_mesh(name, rule);
       fragments::make_evaluation(accepted, rule, default_request(info, Backend::Cpu, 0));
     } catch (const InputError&) {
       continue;  // refused on the cpu too (fragments_test lists them)
