@@ -1,6 +1,9 @@
 #include "datasets/manifest.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -62,20 +65,61 @@ const std::vector<NamedMesh>& named_meshes() {
   return all;
 }
 
-std::optional<ControlMesh> parametrised(const std::string& name) {
+// A generated mesh past this many faces is a typo, not a benchmark: refused before allocating.
+constexpr double kMaxGeneratedFaces = 4e6;
+
+struct NameParser {
+  const std::string& name;
   std::smatch m;
-  auto i = [&](int k) { return std::stoi(m[k].str()); };
-  if (std::regex_match(name, m, std::regex(R"(torus-(\d+)x(\d+))"))) return gen::torus(i(1), i(2));
-  if (std::regex_match(name, m, std::regex(R"(quadsphere-(\d+))"))) return gen::quad_sphere(i(1));
-  if (std::regex_match(name, m, std::regex(R"(icosphere-(\d+))"))) return gen::icosphere(i(1));
-  if (std::regex_match(name, m, std::regex(R"(pole(\d+))"))) return gen::pole(i(1));
-  if (std::regex_match(name, m, std::regex(R"(open-patch-(\d+)x(\d+))"))) return gen::open_patch(i(1), i(2));
-  if (std::regex_match(name, m, std::regex(R"(random-(\d+)-(\d+)(?:-(\d+))?)")))
-    return gen::random_quads(i(1), i(2) / 100.0, m[3].matched ? i(3) : 1);
-  for (const MeshProvider& p : mesh_providers())
-    if (p.parse)
-      if (auto mesh = p.parse(name)) return mesh;
+
+  bool match(const char* pattern) { return std::regex_match(name, m, std::regex(pattern)); }
+  long number(int k) const {
+    long v = 0;
+    const std::string s = m[k].str();
+    auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || end != s.data() + s.size() || v > INT32_MAX)
+      throw InputError(name, "number " + s + " out of range");
+    return v;
+  }
+  void check_faces(double faces) const {
+    if (faces > kMaxGeneratedFaces)
+      throw InputError(name, "would have " + std::to_string(static_cast<long long>(std::min(faces, 1e18))) +
+                                 " faces, more than the " + std::to_string(long(kMaxGeneratedFaces)) +
+                                 " a generated mesh may have");
+  }
+};
+
+std::optional<ControlMesh> parametrised_unchecked(NameParser& p) {
+  auto n = [&](int k) { return p.number(k); };
+  if (p.match(R"(torus-(\d+)x(\d+))")) return p.check_faces(double(n(1)) * n(2)), gen::torus(n(1), n(2));
+  if (p.match(R"(quadsphere-(\d+))")) return p.check_faces(6.0 * n(1) * n(1)), gen::quad_sphere(n(1));
+  if (p.match(R"(icosphere-(\d+))")) return p.check_faces(20 * std::pow(4.0, n(1))), gen::icosphere(n(1));
+  if (p.match(R"(pole(\d+))")) return p.check_faces(10.0 * n(1)), gen::pole(n(1));
+  if (p.match(R"(open-patch-(\d+)x(\d+))")) {
+    if (n(1) < 1 || n(2) < 1) throw InputError(p.name, "needs at least 1 x 1 quads");
+    return p.check_faces(double(n(1)) * n(2)), gen::open_patch(n(1), n(2));
+  }
+  if (p.match(R"(random-(\d+)-(\d+)(?:-(\d+))?)")) {
+    if (n(2) > 100) throw InputError(p.name, "extraordinary share " + std::to_string(n(2)) + "% is over 100%");
+    return p.check_faces(double(n(1))), gen::random_quads(n(1), n(2) / 100.0, p.m[3].matched ? n(3) : 1);
+  }
+  for (const MeshProvider& prov : mesh_providers())
+    if (prov.parse)
+      if (auto mesh = prov.parse(p.name)) return mesh;
   return std::nullopt;
+}
+
+// Generator names with their parameters; a generator's own refusal is given the full name.
+std::optional<ControlMesh> parametrised(const std::string& name) {
+  NameParser p{name, {}};
+  try {
+    return parametrised_unchecked(p);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind(name + ":", 0) == 0) throw;
+    const size_t colon = what.find(": ");
+    throw InputError(name, colon == std::string::npos ? what : what.substr(colon + 2));
+  }
 }
 
 bool is_mesh_file(const fs::path& p) {

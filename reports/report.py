@@ -30,8 +30,21 @@ def load(paths):
             sys.exit(f"report: {p}: unknown results schema {data.get('schema')} (this report reads {SCHEMA})")
         machine = machine or data.get("machine", {})
         created = created or data.get("created", "")
-        rows.extend(data.get("runs", []))
+        rows.extend(nan_for_null(r) for r in data.get("runs", []))
     return machine, created, rows
+
+
+def nan_for_null(row):
+    """JSON has no NaN: the harness writes it as null. Read back as NaN so arithmetic and plots
+    treat it as a missing figure rather than failing."""
+    def fix(v):
+        if isinstance(v, dict):
+            return {k: fix(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [fix(x) for x in v]
+        return float("nan") if v is None else v
+    keep_null = {"deviation", "gpu_time_ms", "peer_backend", "deviation_bound"}
+    return {k: (v if v is None and k in keep_null else fix(v)) for k, v in row.items()}
 
 
 def peer_rates(rows):
@@ -206,4 +219,8 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except (OSError, KeyError, TypeError, ValueError) as err:
+        # One line, not a traceback: the harness adds the folder and the exit status.
+        sys.exit(f"report: {type(err).__name__}: {err}")

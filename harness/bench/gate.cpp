@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -77,6 +79,8 @@ bool GateReport::failed() const {
 }
 
 GateConfig read_gate_config(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a gate configuration");
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open gate configuration");
   GateConfig c;
@@ -95,7 +99,13 @@ GateConfig read_gate_config(const std::string& path) {
       }
       c.thresholds.emplace_back(pattern, t.at("threshold").get<double>());
     }
-    for (const auto& w : j.value("workload", nlohmann::json::array())) c.workload.push_back(parse_run_name(w.get<std::string>()));
+    for (const auto& w : j.value("workload", nlohmann::json::array())) {
+      try {
+        c.workload.push_back(parse_run_name(w.get<std::string>()));
+      } catch (const InputError& e) {
+        throw InputError(path, std::string("workload: ") + e.what());
+      }
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path, std::string("malformed gate configuration: ") + e.what());
   }
@@ -125,6 +135,14 @@ GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, con
     if (!a || !b || a->by != b->by) {
       report.problems.push_back(e.name + ": no common normaliser (its peer " + (cur.peer.empty() ? "(none)" : cur.peer) +
                                 ", the write probe or the bandwidth probe) in both runs");
+      continue;
+    }
+    // A zero or missing time makes 0/0: NaN, which the rank test cannot order (it hung on it).
+    auto finite = [](const std::vector<double>& v) {
+      return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x) && x > 0; });
+    };
+    if (!finite(a->samples) || !finite(b->samples)) {
+      report.problems.push_back(e.name + ": a time or its normaliser is zero or not a number");
       continue;
     }
     e.normaliser = b->by;

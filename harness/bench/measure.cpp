@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <sys/resource.h>
+#include <unistd.h>
 #include <numeric>
 #include <random>
 #include <regex>
@@ -309,6 +311,28 @@ struct DescribedRun {
   std::shared_ptr<const ControlMesh> accepted;
 };
 
+// Memory a run may use: the machine's, or less where the process's address space is limited.
+double memory_for_runs() {
+  double bytes = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  rlimit as{};
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) bytes = std::min(bytes, double(as.rlim_cur));
+  return bytes;
+}
+
+// Refused before anything is allocated: an output that cannot fit would end in bad_alloc, or on
+// an overcommitting kernel in the OOM killer. A triangle costs about 64 bytes between the output
+// (positions, normals, coordinates, indices) and validation's copies of it.
+std::optional<std::string> too_large(const Scheme& scheme, const ControlMesh& accepted, const RunRequest& request) {
+  constexpr double kBytesPerTriangle = 64;
+  const double triangles = double(scheme.estimated_triangles(accepted, request));
+  const double need = triangles * kBytesPerTriangle, have = 0.75 * memory_for_runs();
+  if (triangles >= 0 && need <= have && triangles < 2e9) return std::nullopt;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "output of about %.3g triangles needs about %.3g GiB, more than the %.3g GiB this process may use",
+                triangles, need / (1 << 30), have / (1 << 30));
+  return std::string(buf);
+}
+
 DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
   const ResolvedScheme resolved = resolve_scheme(spec.scheme);
   const SchemeInfo& info = resolved.scheme->info();
@@ -335,6 +359,11 @@ DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureC
     return d;
   }
   d.accepted = ctx.accepted(spec.mesh, *d.scheme);
+  if (auto why = too_large(*d.scheme, *d.accepted, d.request)) {
+    row.status = RunStatus::Unsupported;
+    row.message = *why;
+    return d;
+  }
   const MeshFacts facts = compute_facts(ctx.mesh(spec.mesh));
   row.mesh_faces = facts.faces;
   row.mesh_vertices = facts.vertices;

@@ -3,6 +3,9 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <limits>
+#include <filesystem>
+#include <cmath>
 
 #include "harness/bench/run_spec.h"
 #include "harness/core/errors.h"
@@ -14,10 +17,29 @@ using nlohmann::json;
 void to_json(json& j, const TimeStats& t) {
   j = {{"median", t.median}, {"min", t.min}, {"max", t.max}, {"reps", t.reps}, {"samples", t.samples}};
 }
+namespace {
+
+// JSON has no NaN or infinity; nlohmann writes them as null. So null where a number belongs reads
+// back as NaN, and every reader of results (report, gate) treats NaN as "not measured".
+double number(const json& j, const char* key, double fallback) {
+  if (!j.contains(key)) return fallback;
+  const json& v = j[key];
+  return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+}
+
+long integer(const json& j, const char* key, long fallback) {
+  if (!j.contains(key) || j[key].is_null()) return fallback;
+  return j[key].get<long>();
+}
+
+}  // namespace
+
 void from_json(const json& j, TimeStats& t) {
-  t.median = j.at("median"), t.min = j.at("min"), t.max = j.at("max");
-  t.reps = j.value("reps", 0);
-  t.samples = j.value("samples", std::vector<double>{});
+  if (j.is_null()) return;  // no timing: reps 0
+  t.median = number(j, "median", NAN), t.min = number(j, "min", NAN), t.max = number(j, "max", NAN);
+  t.reps = static_cast<int>(integer(j, "reps", 0));
+  if (j.contains("samples") && !j["samples"].is_null())
+    for (const json& v : j["samples"]) t.samples.push_back(v.is_null() ? NAN : v.get<double>());
 }
 
 namespace {
@@ -106,17 +128,17 @@ void from_json(const json& j, RunRow& r) {
   }
   r.mesh = j.at("mesh");
   r.mesh_faces = j.value("mesh_faces", 0), r.mesh_vertices = j.value("mesh_vertices", 0);
-  r.extraordinary_fraction = j.value("extraordinary_fraction", 0.0);
+  r.extraordinary_fraction = number(j, "extraordinary_fraction", 0.0);
   r.level = j.at("level"), r.tessellation = j.value("tessellation", 0);
-  r.triangles = j.value("triangles", 0L), r.vertices = j.value("vertices", 0L);
-  r.time_ms = j.at("time_ms").get<TimeStats>();
+  r.triangles = integer(j, "triangles", 0L), r.vertices = integer(j, "vertices", 0L);
+  r.time_ms = j.value("time_ms", json()).get<TimeStats>();
   if (j.contains("gpu_time_ms")) r.gpu_time_ms = j["gpu_time_ms"].get<TimeStats>();
-  r.upload_ms = j.value("upload_ms", 0.0), r.readback_ms = j.value("readback_ms", 0.0);
+  r.upload_ms = number(j, "upload_ms", 0.0), r.readback_ms = number(j, "readback_ms", 0.0);
   if (j.contains("gpu_passes"))
     for (const auto& p : j["gpu_passes"]) r.gpu_passes.push_back({p.at("label"), p.at("ms")});
-  r.triangle_rate_mtris = j.value("triangle_rate_mtris", 0.0);
-  r.bytes_out = j.value("bytes_out", 0L);
-  r.bandwidth_fraction = j.value("bandwidth_fraction", 0.0);
+  r.triangle_rate_mtris = number(j, "triangle_rate_mtris", 0.0);
+  r.bytes_out = integer(j, "bytes_out", 0L);
+  r.bandwidth_fraction = number(j, "bandwidth_fraction", 0.0);
   if (j.contains("watertight")) {
     const json& w = j["watertight"];
     r.watertight = {w.value("open_edges", -1L), w.value("rays", 0L), w.value("ray_cracks", -1L), w.value("seed", uint64_t(0))};
@@ -124,13 +146,13 @@ void from_json(const json& j, RunRow& r) {
   if (j.contains("deviation") && !j["deviation"].is_null()) {
     const json& d = j["deviation"];
     r.deviation.measured = d.contains("pos_max_pct") && !d["pos_max_pct"].is_null();
-    r.deviation.hausdorff_rel = d.value("hausdorff_rel", -1.0);
+    r.deviation.hausdorff_rel = number(d, "hausdorff_rel", -1.0);
     if (r.deviation.measured) {
-      r.deviation.pos_max_pct = d.value("pos_max_pct", 0.0), r.deviation.pos_mean_pct = d.value("pos_mean_pct", 0.0);
-      r.deviation.pos_rms_pct = d.value("pos_rms_pct", 0.0), r.deviation.pos_p95_pct = d.value("pos_p95_pct", 0.0);
-      r.deviation.pos_max_rel_diag = d.value("pos_max_rel_diag", 0.0);
-      r.deviation.normal_max_deg = d.value("normal_max_deg", 0.0);
-      r.deviation.normal_mean_deg = d.value("normal_mean_deg", 0.0);
+      r.deviation.pos_max_pct = number(d, "pos_max_pct", 0.0), r.deviation.pos_mean_pct = number(d, "pos_mean_pct", 0.0);
+      r.deviation.pos_rms_pct = number(d, "pos_rms_pct", 0.0), r.deviation.pos_p95_pct = d.value("pos_p95_pct", 0.0);
+      r.deviation.pos_max_rel_diag = number(d, "pos_max_rel_diag", 0.0);
+      r.deviation.normal_max_deg = number(d, "normal_max_deg", 0.0);
+      r.deviation.normal_mean_deg = number(d, "normal_mean_deg", 0.0);
     }
   }
   r.status = status_from(j), r.message = j.value("message", "");
@@ -146,14 +168,28 @@ void to_json(json& j, const MachineInfo& m) {
        {"write_bandwidth_mt_gbs", m.write_bandwidth_mt_gbs}, {"gpu_write_bandwidth_gbs", m.gpu_write_bandwidth_gbs}};
 }
 void from_json(const json& j, MachineInfo& m) {
-  m.cpu_model = j.value("cpu_model", ""), m.cores = j.value("cores", 0), m.memory_gib = j.value("memory_gib", 0.0);
+  m.cpu_model = j.value("cpu_model", ""), m.cores = j.value("cores", 0), m.memory_gib = number(j, "memory_gib", 0.0);
   m.vulkan_device = j.value("vulkan_device", ""), m.vulkan_driver = j.value("vulkan_driver", "");
   m.vulkan_api = j.value("vulkan_api", "");
   m.opengl_renderer = j.value("opengl_renderer", ""), m.opengl_version = j.value("opengl_version", "");
   m.compiler = j.value("compiler", ""), m.build_type = j.value("build_type", ""), m.git_commit = j.value("git_commit", "");
-  m.write_bandwidth_gbs = j.value("write_bandwidth_gbs", 0.0);
-  m.write_bandwidth_mt_gbs = j.value("write_bandwidth_mt_gbs", 0.0);
-  m.gpu_write_bandwidth_gbs = j.value("gpu_write_bandwidth_gbs", 0.0);
+  m.write_bandwidth_gbs = number(j, "write_bandwidth_gbs", 0.0);
+  m.write_bandwidth_mt_gbs = number(j, "write_bandwidth_mt_gbs", 0.0);
+  m.gpu_write_bandwidth_gbs = number(j, "gpu_write_bandwidth_gbs", 0.0);
+}
+
+void prepare_output_folder(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir))
+    throw InputError(dir, std::filesystem::exists(dir) ? "is a file, not a folder for the results"
+                                                       : "cannot create the output folder: " + ec.message());
+  const std::filesystem::path probe = std::filesystem::path(dir) / ".subdivbench-write-test";
+  {
+    std::ofstream out(probe);
+    if (!out) throw InputError(dir, "output folder is not writable");
+  }
+  std::filesystem::remove(probe, ec);
 }
 
 std::string row_json(const RunRow& row, int indent) { return json(row).dump(indent); }
@@ -172,6 +208,9 @@ void write_results(const ResultsFile& r, const std::string& path) {
 }
 
 ResultsFile read_results(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a results file");
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open results file");
   json j;
@@ -180,7 +219,7 @@ ResultsFile read_results(const std::string& path) {
   } catch (const json::parse_error& e) {
     throw InputError(path, std::string("malformed JSON: ") + e.what());
   }
-  if (!j.contains("schema") || !j["schema"].is_number_integer())
+  if (!j.is_object() || !j.contains("schema") || !j["schema"].is_number_integer())
     throw InputError(path, "not a subdivbench results file (no integer 'schema')");
   if (j["schema"].get<int>() != kResultsSchema)
     throw InputError(path, "unknown results schema " + std::to_string(j["schema"].get<int>()) + " (this build reads " +

@@ -89,6 +89,8 @@ struct ResultsFile {
 
 std::string row_json(const RunRow& row, int indent = 2);
 void write_results(const ResultsFile& results, const std::string& path);
+// Creates `dir` if needed and checks it can be written, so a bad --out fails before any measuring.
+void prepare_output_folder(const std::string& dir);
 // Throws InputError for unreadable files, malformed JSON or an unknown schema.
 ResultsFile read_results(const std::string& path);
 

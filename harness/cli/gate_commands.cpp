@@ -1,6 +1,7 @@
 // bench, gate, report, paper and the hidden workload verb: thin wrappers over harness/bench.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -36,6 +37,7 @@ struct GateOptions {
 };
 
 int bench(const GateOptions& opts) {
+  if (!opts.out.empty()) prepare_output_folder(opts.out);
   MeasureContext ctx(describe_machine_with_probes());
   Selection sel;
   sel.schemes = opts.schemes, sel.meshes = opts.meshes, sel.backends = opts.backends, sel.levels = opts.levels;
@@ -63,7 +65,6 @@ int bench(const GateOptions& opts) {
       std::printf("%-44s median %9.4f ms  min %9.4f ms  over %d rounds\n", r.name().c_str(), r.time_ms.median,
                   r.time_ms.min, r.time_ms.reps);
   if (!opts.out.empty()) {
-    fs::create_directories(opts.out);
     write_results(results, (fs::path(opts.out) / "results.json").string());
     std::printf("wrote %s\n", (fs::path(opts.out) / "results.json").string().c_str());
   }
@@ -72,6 +73,18 @@ int bench(const GateOptions& opts) {
 
 int callgrind_gate(const GateOptions& opts) {
   const CallgrindConfig config = read_callgrind_config(opts.config);
+  // A bad baseline or an unwritable record path is said before minutes of valgrind, not after.
+  if (opts.record) {
+    const fs::path parent = fs::path(opts.baseline).parent_path();
+    prepare_output_folder(parent.empty() ? "." : parent.string());
+  } else {
+    const auto baseline = read_callgrind_counts(opts.baseline);
+    const bool any = std::any_of(config.workloads.begin(), config.workloads.end(),
+                                 [&](const RunSpec& w) { return baseline.count(w.name()) > 0; });
+    if (!any)
+      throw InputError(opts.baseline, "holds none of the " + std::to_string(config.workloads.size()) + " workloads of " +
+                                          opts.config + " (record them with --record)");
+  }
   std::map<std::string, long> counts;
   for (const RunSpec& w : config.workloads) counts[w.name()] = callgrind_instructions(w, opts.iterations, self_executable());
   if (opts.record) {
@@ -101,7 +114,9 @@ int gate(const GateOptions& opts) {
                 e.p_value, 100 * e.threshold, e.regression ? "REGRESSION" : e.improvement ? "improvement" : "same");
   for (const auto& p : report.problems) std::printf("cannot judge %s\n", p.c_str());
   if (report.entries.empty() && report.problems.empty()) throw InputError(opts.current, "no benchmark in common with the baseline");
-  if (!report.problems.empty()) return 2;
+  if (!report.problems.empty())
+    throw InputError(opts.current, std::to_string(report.problems.size()) + " benchmarks cannot be judged (first: " +
+                                       report.problems.front() + ")");
   return report.failed() ? 1 : 0;
 }
 
@@ -124,6 +139,7 @@ int paper(const GateOptions& opts) {
 int report(const GateOptions& opts) {
   if (opts.inputs.empty()) throw InputError("report", "--in FILE is required");
   for (const auto& in : opts.inputs) read_results(in);  // refuses unknown schemas with file named
+  prepare_output_folder(opts.out.empty() ? "." : opts.out);
   write_report(opts.inputs, opts.out.empty() ? "." : opts.out);
   std::printf("wrote %s and %s\n", (fs::path(opts.out) / "report.md").string().c_str(),
               (fs::path(opts.out) / "report.html").string().c_str());
@@ -148,7 +164,8 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   b->add_option("--workload", opts->workload_config, "the workload of a gate configuration (ci/gate.json) instead of the selection");
   b->add_option("--out", opts->out, "folder for results.json");
   b->add_option("--rounds", opts->rounds, "run in this many rounds, every benchmark once per round in random order "
-                                          "(the gate pairs samples by round); default: Google Benchmark's flags");
+                                          "(the gate pairs samples by round); default: Google Benchmark's flags")
+      ->check(CLI::NonNegativeNumber);
   b->allow_extras();
   b->callback([b, opts] { opts->bench_flags = b->remaining(); });
   verbs["bench"] = [opts] { return bench(*opts); };

@@ -85,7 +85,16 @@ void print_machine(const ResultsFile& results, size_t runs) {
   std::printf("\n");
 }
 
+// Nothing ran (every row unsupported): said, and exit 2, and no earlier results replaced.
+void require_something_ran(const ResultsFile& results) {
+  for (const RunRow& r : results.runs)
+    if (r.status != RunStatus::Unsupported) return;
+  throw InputError("run", "nothing ran: all " + std::to_string(results.runs.size()) + " runs unsupported (" +
+                              (results.runs.empty() ? std::string() : results.runs.front().message) + "); nothing written");
+}
+
 int run(const RunOptions& opts) {
+  prepare_output_folder(opts.out);  // before the measuring, not after it
   MeasureContext ctx(describe_machine_with_probes());
   Selection sel;
   sel.schemes = opts.schemes, sel.meshes = opts.meshes, sel.backends = opts.backends, sel.levels = opts.levels;
@@ -109,7 +118,7 @@ int run(const RunOptions& opts) {
     print_row(results.runs.back());
     failed |= results.runs.back().status == RunStatus::Failed;
   }
-  std::filesystem::create_directories(opts.out);
+  require_something_ran(results);
   const std::string json_path = (std::filesystem::path(opts.out) / "results.json").string();
   write_results(results, json_path);
   std::printf("wrote %s\n", json_path.c_str());
@@ -136,7 +145,7 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   v->add_option("--mesh", opts->mesh, "mesh name or path")->required();
   v->add_option("--level", opts->level, "depth k or rate N")->required();
   v->add_option("--backend", opts->backend, "cpu | cpu-mt | vulkan | opengl");
-  v->add_option("--rays", opts->rays, "random lines (as many again aimed at patch borders)");
+  v->add_option("--rays", opts->rays, "random lines (as many again aimed at patch borders)")->check(CLI::NonNegativeNumber);
   v->add_option("--seed", opts->seed, "seed of the ray generator");
   v->add_flag("--json", opts->json, "print the row as JSON (results.json row format)");
   v->add_option("--deviation-out", opts->deviation_ply, "write the output with per-vertex deviation as a PLY file");
@@ -144,8 +153,9 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
 
   auto* r = app.add_subcommand("run", "Run, validate and time schemes; write results.json and the report");
   add_selection(r, *opts);
-  r->add_option("--reps", opts->reps, "timed repetitions per run");
-  r->add_option("--rays", opts->rays, "random lines per run, as many again aimed at patch borders (default 50000)");
+  r->add_option("--reps", opts->reps, "timed repetitions per run")->check(CLI::PositiveNumber);
+  r->add_option("--rays", opts->rays, "random lines per run, as many again aimed at patch borders (default 50000)")
+      ->check(CLI::NonNegativeNumber);
   r->add_option("--out", opts->out, "output folder");
   r->add_flag("--no-validate", opts->no_validate, "time only");
   r->add_flag("--no-report", opts->no_report, "write results.json only");

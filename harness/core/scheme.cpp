@@ -1,5 +1,7 @@
 #include "harness/core/scheme.h"
 
+#include <limits>
+
 namespace sdb {
 
 std::string_view to_string(SchemeRole role) {
@@ -33,7 +35,8 @@ long Scheme::estimated_triangles(const ControlMesh& accepted, const RunRequest& 
   const long seg = segments_per_edge(i.level_kind, request.level);
   long doubled = 0;  // twice the count, to keep it integral
   for (int n : accepted.face_sizes) doubled += n == 4 ? 4 : (n == 3 && i.reference == SubdivisionRule::Loop ? 2 : n);
-  return doubled * seg * seg / 2;
+  const double triangles = double(doubled) * double(seg) * double(seg) / 2;  // saturates instead of wrapping
+  return triangles > 9e18 ? std::numeric_limits<long>::max() : static_cast<long>(triangles);
 }
 
 }  // namespace sdb

@@ -43,6 +43,13 @@ struct MeshRequirements {
   bool genus0 = false;
   bool creases = false;        // honours edge creases and corners (else refuses tagged meshes)
   bool holes = false;
+  // Past these the libraries fail rather than refuse: OpenSubdiv segfaults on a 10,000-vertex face
+  // and its Bfr and limit evaluation grow with the square of a face's size (a 1,000-gon: 16 s;
+  // 2,000: over 100 s); Embree aborts past valence 64. The corpus's largest face has 6 vertices,
+  // its largest valence is 720. Checked on the mesh as handed to prepare() (after quadrangulation,
+  // where an n-gon becomes a valence-n vertex).
+  int max_face_size = 64;
+  int max_valence = 1024;
 };
 
 // How far a scheme's output may lie from its reference limit surface at the same SurfaceCoord,

@@ -1,10 +1,26 @@
 #include "harness/mesh/acceptance.h"
 
+#include <algorithm>
+
 #include "harness/core/errors.h"
 #include "harness/mesh/facts.h"
 #include "harness/mesh/quadrangulate.h"
 
 namespace sdb {
+
+namespace {
+
+template <class Refuse>
+void check_sizes(const MeshFacts& facts, const MeshRequirements& req, Refuse refuse) {
+  if (!facts.face_sizes.empty() && facts.face_sizes.rbegin()->first > req.max_face_size)
+    refuse("a face has " + std::to_string(facts.face_sizes.rbegin()->first) + " vertices, over the " +
+           std::to_string(req.max_face_size) + " the scheme takes");
+  if (!facts.valences.empty() && facts.valences.rbegin()->first > req.max_valence)
+    refuse("a vertex has valence " + std::to_string(facts.valences.rbegin()->first) + ", over the " +
+           std::to_string(req.max_valence) + " the scheme takes");
+}
+
+}  // namespace
 
 ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
   const MeshRequirements& req = info.accepts;
@@ -20,12 +36,22 @@ ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
   if (!req.creases && (facts.creased_edges > 0 || !mesh.corners.empty()))
     refuse("it has crease or corner tags, which the scheme does not honour");
   if (!req.holes && !mesh.holes.empty()) refuse("it has hole tags, which the scheme does not honour");
+  if (!mesh.holes.empty() && static_cast<int>(mesh.holes.size()) >= facts.faces) {
+    std::vector<char> hole(facts.faces, 0);
+    for (int h : mesh.holes) hole[h] = 1;
+    if (std::count(hole.begin(), hole.end(), 1) == facts.faces) refuse("every face is a hole: there is no surface");
+  }
+  check_sizes(facts, req, refuse);
   using F = MeshRequirements::Faces;
   if (req.faces == F::TrianglesOnly && !facts.all_triangles) refuse("the scheme takes triangle meshes only");
   if (req.faces == F::QuadsOnly && !facts.all_quads) {
     if (!req.quadrangulate) refuse("the scheme takes quad meshes only");
     ControlMesh quads = quadrangulate(mesh);
     quads.warnings.push_back("quadrangulated by one Catmull-Clark step for " + info.name);
+    // Quadrangulation turns an n-gon into a valence-n vertex.
+    if (facts.face_sizes.rbegin()->first > req.max_valence)
+      refuse("a face of " + std::to_string(facts.face_sizes.rbegin()->first) + " vertices becomes a vertex of that valence, over the " +
+             std::to_string(req.max_valence) + " the scheme takes");
     return quads;
   }
   return mesh;

@@ -23,6 +23,8 @@ std::string read_text(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a mesh file");
+  // A fifo or a device would block the read forever, or never end.
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream ss;
@@ -39,8 +41,8 @@ ControlMesh read_mesh(const std::string& path) {
   if (ext == ".obj") {
     mesh = parse_obj(read_text(path), path);
   } else if (ext == ".off" || ext == ".ply") {
-    read_text(path);  // same existence and readability messages as OBJ
-    mesh = read_openmesh_file(path);
+    const std::string data = read_text(path);
+    mesh = ext == ".off" && !is_binary_off(data) ? parse_off(data, path) : read_openmesh_file(path, data);
   } else {
     throw InputError(path, "unknown mesh format '" + ext + "' (expected .obj, .off or .ply)");
   }

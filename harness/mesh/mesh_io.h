@@ -1,5 +1,6 @@
-// Reading meshes: OBJ (own parser, for OpenSubdiv's `t` tags and exact line numbers), OFF and PLY
-// (OpenMesh's parsers, imported raw so that nothing is repaired behind the user's back).
+// Reading meshes: OBJ and ASCII OFF (own parsers, for OpenSubdiv's `t` tags, header counts held to
+// the content, and exact line numbers), binary OFF and PLY (OpenMesh's parsers, PLY checked against
+// its header first, imported raw so that nothing is repaired behind the user's back).
 // Every reader throws InputError("path:line", reason) on bad input and never returns a partial mesh.
 #pragma once
 
@@ -13,7 +14,10 @@ namespace sdb {
 ControlMesh read_mesh(const std::string& path);
 
 ControlMesh parse_obj(std::string_view text, const std::string& path);
-ControlMesh read_openmesh_file(const std::string& path);  // .off, .ply
+bool is_binary_off(std::string_view text);
+ControlMesh parse_off(std::string_view text, const std::string& path);  // ASCII OFF
+// Binary OFF and PLY (`data`: the file's bytes, for the checks made before OpenMesh reads it).
+ControlMesh read_openmesh_file(const std::string& path, std::string_view data);
 
 // Checks every reader ends with: counts, index ranges, face sizes, finite coordinates.
 // Repeated vertices in a face and non-manifold edges are not errors here: OpenSubdiv's own

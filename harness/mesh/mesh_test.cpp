@@ -76,7 +76,7 @@ TEST(ObjReader, RefusesMalformedInputWithFileAndLine) {
       {"Inf coordinate", q + "v 0 inf 0\nf 1 2 3\n", "bad.obj:5: NaN or Inf coordinate"},
       {"index out of range", q + "f 1 2 9\n", "bad.obj:5: vertex index 9 out of range (mesh has 4 vertices)"},
       {"index zero", q + "f 0 1 2\n", "bad.obj:5: vertex index 0"},
-      {"relative index before start", q + "f -1 -2 -7\n", "bad.obj:5: relative index -7"},
+      {"relative index before start", q + "f -1 -2 -7\n", "bad.obj:5: relative index '-7' reaches before the first vertex"},
       {"fewer than 3 vertices", q + "f 1 2\n", "bad.obj:5: face has 2 vertices; at least 3 needed"},
       {"malformed face index", q + "f 1 2 x\n", "bad.obj:5: malformed integer 'x'"},
       {"empty: no faces", q, "bad.obj: empty mesh: no faces"},
@@ -213,4 +213,31 @@ TEST(Quadrangulate, SpotBecomesAllQuadsWithTheSameTopologyClass) {
   ASSERT_EQ(q.face_lines.size(), q.face_sizes.size());
   EXPECT_EQ(q.face_lines[0], m.face_lines[0]);
   EXPECT_EQ(q.face_lines.back(), m.face_lines.back());
+}
+
+// What the readers must not do silently (issue 14): a byte-order mark drops no vertex, and header
+// counts are held to the content.
+TEST(ReadMesh, ByteOrderMarkIsNotPartOfTheFirstLine) {
+  const ControlMesh m = parse_obj("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "bom.obj");
+  EXPECT_EQ(num_vertices(m), 3);
+  EXPECT_EQ(num_faces(m), 1);
+}
+
+TEST(ReadMesh, OffFaceLineMustHoldTheVerticesItAnnounces) {
+  const std::string off = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n9 0 2 3\n";
+  try {
+    parse_off(off, "f.off");
+    FAIL() << "a face line announcing 9 vertices with 3 was read";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "f.off:8: face announces 9 vertices, line has 3");
+  }
+  EXPECT_THROW(parse_off("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n", "more.off"), InputError);
+  EXPECT_THROW(parse_off("OFF\n4 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n", "fewer.off"), InputError);
+}
+
+TEST(ReadMesh, TagIndicesNeverWrapIntoAnotherVertex) {
+  const std::string cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n";
+  EXPECT_THROW(parse_obj(cube + "t crease 2/1/0 4294967296 1 2.0\n", "w.obj"), InputError);
+  EXPECT_THROW(parse_obj(cube + "t crease 9223372036854775807/1/0 0 1 2.0\n", "o.obj"), InputError);
+  EXPECT_THROW(parse_obj(cube + "f 1 2 -9223372036854775808\n", "m.obj"), InputError);
 }

@@ -1,5 +1,4 @@
 // OBJ with OpenSubdiv's tag lines:  t <name> <nint>/<nfloat>/<nstring> ints... floats... strings...
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -8,60 +7,15 @@
 
 #include "harness/core/errors.h"
 #include "harness/mesh/mesh_io.h"
+#include "harness/mesh/text_lines.h"
 
 namespace sdb {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
-// Splits on blanks; views point into the line.
-std::vector<std::string_view> tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    size_t j = i;
-    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-class LineParser {
- public:
-  LineParser(const std::string& path, int line) : where_(at_line(path, line)) {}
-
-  [[noreturn]] void fail(const std::string& reason) const { throw InputError(where_, reason); }
-
-  float number(std::string_view tok) const {
-    std::string_view t = tok;
-    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
-    float value = 0.0f;
-    auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (ec == std::errc::result_out_of_range) fail("number out of range '" + std::string(tok) + "'");
-    if (ec != std::errc() || ptr != t.data() + t.size() || t.empty())
-      fail("malformed number '" + std::string(tok) + "'");
-    return value;
-  }
-
-  long integer(std::string_view tok) const {
-    std::string_view t = tok;
-    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
-    long value = 0;
-    auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (ec != std::errc() || ptr != t.data() + t.size() || t.empty())
-      fail("malformed integer '" + std::string(tok) + "'");
-    return value;
-  }
-
- private:
-  std::string where_;
-};
+using text::LineParser;
+using text::quoted;
+using text::tokens;
+using text::trim;
 
 struct PendingCrease {
   EdgeCrease crease;
@@ -103,12 +57,12 @@ void parse_face(const LineParser& p, const std::vector<std::string_view>& tok, O
     long idx = p.integer(vpart);
     if (idx == 0) p.fail("vertex index 0 (OBJ indices start at 1)");
     if (idx < 0) {
-      if (-idx > count) p.fail("relative index " + std::to_string(idx) + " reaches before the first vertex");
+      if (idx < -count) p.fail("relative index " + quoted(vpart) + " reaches before the first vertex");
       idx = count + idx;
     } else {
       idx -= 1;  // range against the final vertex count is checked after the whole file is read
     }
-    if (idx > INT32_MAX) p.fail("vertex index " + std::string(vpart) + " out of range");
+    if (idx > INT32_MAX) p.fail("vertex index " + quoted(vpart) + " out of range");
     s.mesh.face_vertices.push_back(static_cast<int>(idx));
   }
   s.mesh.face_sizes.push_back(static_cast<int>(tok.size() - 1));
@@ -127,16 +81,20 @@ Tag parse_tag(const LineParser& p, const std::vector<std::string_view>& tok) {
   Tag tag{tok[1], {}, {}, {}};
   long n[3] = {0, 0, 0};
   std::string_view c = tok[2];
+  const long given = static_cast<long>(tok.size()) - 3;
   for (int k = 0; k < 3; ++k) {
     size_t e = c.find('/');
-    if ((k < 2) == (e == std::string_view::npos)) p.fail("malformed tag counts '" + std::string(tok[2]) + "'");
+    if ((k < 2) == (e == std::string_view::npos)) p.fail("malformed tag counts " + quoted(tok[2]));
     n[k] = p.integer(c.substr(0, e));
-    if (n[k] < 0) p.fail("negative tag count '" + std::string(tok[2]) + "'");
+    if (n[k] < 0) p.fail("negative tag count " + quoted(tok[2]));
+    // Each count checked alone first, so that their sum cannot overflow.
+    if (n[k] > given)
+      p.fail("tag '" + std::string(tag.name) + "' announces " + quoted(tok[2]) + " arguments, has " + std::to_string(given));
     c = k < 2 ? c.substr(e + 1) : c;
   }
-  if (tok.size() != static_cast<size_t>(3 + n[0] + n[1] + n[2]))
+  if (given != n[0] + n[1] + n[2])
     p.fail("tag '" + std::string(tag.name) + "' announces " + std::to_string(n[0] + n[1] + n[2]) +
-           " arguments, has " + std::to_string(tok.size() - 3));
+           " arguments, has " + std::to_string(given));
   size_t i = 3;
   for (long k = 0; k < n[0]; ++k) tag.ints.push_back(p.integer(tok[i++]));
   for (long k = 0; k < n[1]; ++k) {
@@ -153,21 +111,28 @@ float tag_float(const LineParser& p, const Tag& t, size_t i) {
   return std::max(0.0f, t.floats.size() > 1 ? t.floats.at(std::min(i, t.floats.size() - 1)) : t.floats[0]);
 }
 
+int tag_index(const LineParser& p, const Tag& t, size_t i, const char* what) {
+  const long v = t.ints[i];
+  if (v < 0 || v > INT32_MAX)
+    p.fail("tag '" + std::string(t.name) + "' names " + what + " " + std::to_string(v) + ", out of range");
+  return static_cast<int>(v);
+}
+
 void apply_tag(const LineParser& p, const Tag& t, ObjState& s, int line) {
   ControlMesh& m = s.mesh;
   if (t.name == "crease") {
     if (t.ints.size() < 2 || t.ints.size() % 2) p.fail("crease tag needs vertex pairs");
     for (size_t j = 0; j + 1 < t.ints.size(); j += 2)
-      s.creases.push_back({{static_cast<int>(t.ints[j]), static_cast<int>(t.ints[j + 1]), tag_float(p, t, j / 2)}, line});
+      s.creases.push_back({{tag_index(p, t, j, "vertex"), tag_index(p, t, j + 1, "vertex"), tag_float(p, t, j / 2)}, line});
   } else if (t.name == "corner") {
     for (size_t j = 0; j < t.ints.size(); ++j) {
       s.corner_lines.emplace_back(static_cast<int>(m.corners.size()), line);
-      m.corners.push_back({static_cast<int>(t.ints[j]), tag_float(p, t, j)});
+      m.corners.push_back({tag_index(p, t, j, "vertex"), tag_float(p, t, j)});
     }
   } else if (t.name == "hole") {
-    for (long f : t.ints) {
+    for (size_t j = 0; j < t.ints.size(); ++j) {
       s.hole_lines.emplace_back(static_cast<int>(m.holes.size()), line);
-      m.holes.push_back(static_cast<int>(f));
+      m.holes.push_back(tag_index(p, t, j, "face"));
     }
   } else if (t.name == "interpolateboundary") {
     // Numbering as OpenSubdiv's regression shapes: 0 none, 1 edge-and-corner, 2 edge-only.
@@ -201,7 +166,7 @@ ControlMesh parse_obj(std::string_view text, const std::string& path) {
   ObjState s;
   s.mesh.source = path;
   int line_no = 0;
-  size_t pos = 0;
+  size_t pos = text::after_bom(text);
   while (pos < text.size()) {
     size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();

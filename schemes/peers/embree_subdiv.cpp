@@ -153,6 +153,9 @@ class EmbreeSubdiv final : public Scheme {
     info_.accepts.manifold = true;
     info_.accepts.creases = true;
     info_.accepts.holes = true;
+    // Embree's Catmull-Clark rings hold at most 64 faces around a vertex (MAX_RING_FACE_VALENCE);
+    // past it an assertion aborts the process (catmark_pole360, a 65-gon once quadrangulated).
+    info_.accepts.max_valence = 64;
   }
   const SchemeInfo& info() const override { return info_; }
   std::optional<std::string> unsupported(const RunRequest& r) const override {

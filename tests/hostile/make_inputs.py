@@ -1,0 +1,197 @@
+"""Writes the hostile-input suite's files into a folder: bad, lying or extreme meshes, results and
+gate configurations. Every file is made here from a few lines, so the suite needs nothing else."""
+import json
+import os
+import struct
+
+CUBE_V = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+CUBE_F = "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+CUBE = CUBE_V + CUBE_F
+TRI_V = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+
+OFF_CUBE_V = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+OFF_CUBE_F = "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"
+
+
+def big_face(n):
+    import math
+    vs = "".join(f"v {math.cos(6.283185307 * k / n):.7f} {math.sin(6.283185307 * k / n):.7f} 0\n" for k in range(n))
+    return vs + "f " + " ".join(str(k + 1) for k in range(n)) + "\nf " + " ".join(str(n - k) for k in range(n)) + "\n"
+
+
+def ply_ascii(nv, nf, body_v, body_f, extra=""):
+    return (f"ply\nformat ascii 1.0\nelement vertex {nv}\nproperty float x\nproperty float y\nproperty float z\n"
+            f"element face {nf}\nproperty list uchar int vertex_indices\n{extra}end_header\n" + body_v + body_f)
+
+
+PLY_V = OFF_CUBE_V
+PLY_F = OFF_CUBE_F
+
+
+def ply_binary(nv, nf, vertices, faces):
+    head = (f"ply\nformat binary_little_endian 1.0\nelement vertex {nv}\nproperty float x\nproperty float y\n"
+            f"property float z\nelement face {nf}\nproperty list uchar int vertex_indices\nend_header\n").encode()
+    body = b"".join(struct.pack("<3f", *v) for v in vertices)
+    body += b"".join(struct.pack("<B", len(f)) + struct.pack(f"<{len(f)}i", *f) for f in faces)
+    return head + body
+
+
+CUBE_PTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_QUADS = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+
+
+def results(rows, rounds=0):
+    machine = {"cpu_model": "x", "cores": 2, "write_bandwidth_gbs": 10.0, "write_bandwidth_mt_gbs": 12.0}
+    return json.dumps({"schema": 1, "machine": machine, "rounds": rounds, "runs": rows})
+
+
+def files():
+    f = {}
+    # OBJ
+    f["cube.obj"] = CUBE
+    f["empty.obj"] = ""
+    f["comments.obj"] = "# nothing here\n\n# still nothing\n"
+    f["no_faces.obj"] = CUBE_V
+    f["face_first.obj"] = "f 1 2 3\n" + TRI_V
+    f["index0.obj"] = TRI_V + "f 0 1 2\n"
+    f["index_high.obj"] = TRI_V + "f 1 2 4\n"
+    f["index_rel.obj"] = TRI_V + "f -1 -2 -4\n"
+    f["index_min.obj"] = TRI_V + "f 1 2 -9223372036854775808\n"
+    f["index_over.obj"] = TRI_V + "f 1 2 9223372036854775808\n"
+    f["index_wrap.obj"] = TRI_V + "f 1 2 4294967297\n"
+    f["index_big.obj"] = TRI_V + "f 1 2 2147483649\n"
+    f["v2.obj"] = "v 0 0\n" + TRI_V + "f 1 2 3\n"
+    f["vnan.obj"] = TRI_V + "v nan 0 0\nf 1 2 4\n"
+    f["vinf.obj"] = TRI_V + "v 0 -inf 0\nf 1 2 4\n"
+    f["vhuge.obj"] = TRI_V + "v 1e39 0 0\nf 1 2 4\n"
+    f["vbad.obj"] = TRI_V + "v 1.x 0 0\nf 1 2 4\n"
+    f["vhex.obj"] = TRI_V + "v 0x10 0 0\nf 1 2 4\n"
+    f["f2.obj"] = TRI_V + "f 1 2\n"
+    f["fslash.obj"] = TRI_V + "f 1/x 2 3\n"
+    f["fslash_ok.obj"] = TRI_V + "vt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n"
+    f["nul.obj"] = TRI_V + "f 1 2\x003\n"
+    f["bom.obj"] = "\ufeff" + CUBE
+    f["crlf.obj"] = CUBE.replace("\n", "\r\n")
+    f["longnum.obj"] = TRI_V + "v " + "1" * 2_000_000 + " 0 0\nf 1 2 4\n"
+    f["longtok.obj"] = TRI_V + "v x" + "y" * 2_000_000 + " 0 0\nf 1 2 4\n"
+    f["tag_over.obj"] = CUBE + "t crease 9223372036854775807/1/0 1 2 3\n"
+    f["tag_over2.obj"] = CUBE + "t crease 2/9223372036854775807/9223372036854775807 0 1 2.0\n"
+    f["tag_neg.obj"] = CUBE + "t crease -2/1/0 0 1 2.0\n"
+    f["tag_counts.obj"] = CUBE + "t crease 2/1 0 1 2.0\n"
+    f["tag_short.obj"] = CUBE + "t crease 4/1/0 0 1 2.0\n"
+    f["tag_noname.obj"] = CUBE + "t\n"
+    f["crease_wrap.obj"] = CUBE + "t crease 2/1/0 4294967296 1 2.0\n"
+    f["crease_neg.obj"] = CUBE + "t crease 2/1/0 -1 1 2.0\n"
+    f["crease_notedge.obj"] = CUBE + "t crease 2/1/0 0 6 2.0\n"
+    f["crease_odd.obj"] = CUBE + "t crease 3/1/0 0 1 2 2.0\n"
+    f["crease_nosharp.obj"] = CUBE + "t crease 2/0/0 0 1\n"
+    f["crease_nan.obj"] = CUBE + "t crease 2/1/0 0 1 nan\n"
+    f["crease_ok.obj"] = CUBE + "t crease 2/1/0 0 1 2.5\n"
+    f["corner_range.obj"] = CUBE + "t corner 1/1/0 8 2.0\n"
+    f["corner_wrap.obj"] = CUBE + "t corner 1/1/0 4294967296 2.0\n"
+    f["hole_range.obj"] = CUBE + "t hole 1/0/0 6\n"
+    f["hole_wrap.obj"] = CUBE + "t hole 1/0/0 4294967296\n"
+    f["hole_all.obj"] = CUBE + "t hole 6/0/0 0 1 2 3 4 5\n"
+    f["boundary_bad.obj"] = CUBE + "t interpolateboundary 1/0/0 7\n"
+    f["creasemethod_bad.obj"] = CUBE + "t creasemethod 0/0/1 sharp\n"
+    f["smoothtri_bad.obj"] = CUBE + "t smoothtriangles 0/0/1 wobbly\n"
+    f["tag_unknown.obj"] = CUBE + "t vertexedit 0/0/0\n"
+    f["nonmanifold.obj"] = TRI_V + "v 0 0 1\nv 0 0 -1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n"
+    f["degenerate.obj"] = TRI_V + "v 1 1 0\nf 1 1 2\nf 1 2 3\nf 2 4 3\n"
+    f["coincident.obj"] = CUBE_V + "v 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\n" + \
+        "f 9 12 11 10\nf 13 14 15 16\nf 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\nf 12 9 13 16\n"
+    f["inconsistent.obj"] = CUBE_V + CUBE_F.replace("f 5 6 7 8", "f 8 7 6 5")
+    f["face10000.obj"] = big_face(10000)
+    f["face1000.obj"] = big_face(1000)
+    f["face65.obj"] = big_face(65)
+    f["face3000.obj"] = big_face(3000)
+    f["unused.obj"] = CUBE + "v 5 5 5\n"
+    f["dup_face.obj"] = CUBE + "f 1 4 3 2\n"
+    f["mixed.obj"] = CUBE_V + "v 0.5 0.5 -0.5\n" + CUBE_F.replace("f 1 4 3 2\n", "f 1 4 9\nf 4 3 9\nf 3 2 9\nf 2 1 9\n")
+    # OFF
+    f["cube.off"] = "OFF\n8 6 12\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["comment.off"] = "OFF # a cube\n# counts\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["empty.off"] = ""
+    f["noheader.off"] = "8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["badcount.off"] = "OFF\n8 x 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["negcount.off"] = "OFF\n8 -6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["nocount.off"] = "OFF\n"
+    f["hugecount.off"] = "OFF\n8 1000000000000 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["hugecount2.off"] = "OFF\n99999999999999999999 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["fewer.off"] = "OFF\n8 5 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["more.off"] = "OFF\n8 7 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["fewer_v.off"] = "OFF\n7 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["facecount.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "9 3 0 4 7")
+    f["facecount2.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "2 3 0")
+    f["faceneg.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "-4 3 0 4 7")
+    f["faceidx.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "4 3 0 4 8")
+    f["faceidxneg.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "4 3 0 4 -1")
+    f["faceidxfloat.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "4 3 0 4 7.5")
+    f["faceidxwrap.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "4 3 0 4 4294967296")
+    f["facecolour.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F.replace("4 3 0 4 7", "4 3 0 4 7 255 0 0")
+    f["vnan.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V.replace("1 1 1", "nan 1 1") + OFF_CUBE_F
+    f["vshort.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V.replace("1 1 1", "1 1") + OFF_CUBE_F
+    f["vbad.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V.replace("1 1 1", "1 1.x 1") + OFF_CUBE_F
+    f["nofaces.off"] = "OFF\n8 0 0\n" + OFF_CUBE_V
+    f["bom.off"] = "\ufeffOFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["crlf.off"] = ("OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F).replace("\n", "\r\n")
+    f["counts_inline.off"] = "OFF 8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
+    f["binary_lying.off"] = b"OFF BINARY\n" + struct.pack(">3i", 2000000000, 2000000000, 0) + b"\0" * 16
+    # PLY
+    f["cube.ply"] = ply_ascii(8, 6, PLY_V, PLY_F)
+    f["cube_bin.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS)
+    f["fewer.ply"] = ply_ascii(8, 5, PLY_V, PLY_F)
+    f["more.ply"] = ply_ascii(8, 7, PLY_V, PLY_F)
+    f["fewer_v.ply"] = ply_ascii(7, 6, PLY_V, PLY_F)
+    f["huge.ply"] = ply_ascii(8, 4000000000, PLY_V, PLY_F)
+    f["huge_bin.ply"] = ply_binary(2000000000, 2000000000, CUBE_PTS, CUBE_QUADS)
+    f["truncated_bin.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS)[:-10]
+    f["nan.ply"] = ply_ascii(8, 6, PLY_V.replace("1 1 1", "nan 1 1"), PLY_F)
+    f["idx.ply"] = ply_ascii(8, 6, PLY_V, PLY_F.replace("4 3 0 4 7", "4 3 0 4 8"))
+    f["idxneg.ply"] = ply_ascii(8, 6, PLY_V, PLY_F.replace("4 3 0 4 7", "4 3 0 4 -1"))
+    f["listcount.ply"] = ply_ascii(8, 6, PLY_V, PLY_F.replace("4 3 0 4 7", "9 3 0 4 7"))
+    f["list2.ply"] = ply_ascii(8, 6, PLY_V, PLY_F.replace("4 3 0 4 7", "2 3 0"))
+    f["noend.ply"] = ply_ascii(8, 6, PLY_V, PLY_F).replace("end_header\n", "")
+    f["garbage.ply"] = "ply\nthis is not a header\n"
+    f["notply.ply"] = "hello\n"
+    f["empty.ply"] = ""
+    f["vbad.ply"] = ply_ascii(8, 6, PLY_V.replace("1 1 1", "1 1.x 1"), PLY_F)
+    f["bin_idx.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS[:-1] + [(3, 0, 4, 99)])
+    f["bin_nan.ply"] = ply_binary(8, 6, CUBE_PTS[:-1] + [(float("nan"), 1, 1)], CUBE_QUADS)
+    f["bin_bigface.ply"] = ply_binary(8, 1, CUBE_PTS, [tuple(range(8)) * 31])
+    f["unknown.stl"] = "solid x\nendsolid\n"
+    # results and gate configurations
+    zero = {"median": 0.0, "min": 0.0, "max": 0.0, "reps": 5, "samples": [0, 0, 0, 0, 0]}
+    peer = {"scheme": "osd-uniform", "backend": "cpu", "mesh": "cube", "level": 2, "tessellation": 2,
+            "status": "ok", "triangles": 10, "time_ms": zero}
+    row = dict(peer, scheme="cpatch-2pass", peer="osd-uniform", peer_backend="cpu")
+    f["zero_times.json"] = results([peer, row])
+    f["zero_times_rounds.json"] = results([peer, row], rounds=5)
+    f["notjson.json"] = "{ this is not json"
+    f["wrongshape.json"] = json.dumps({"runs": 5})
+    f["array.json"] = "[1, 2, 3]"
+    f["emptyobj.json"] = "{}"
+    f["nulls.json"] = results([dict(row, time_ms=None, triangles=None)])
+    f["gate_badregex.json"] = json.dumps({"thresholds": [{"match": "([", "threshold": 0.1}]})
+    f["gate_badtype.json"] = json.dumps({"alpha": "small"})
+    f["gate_shell.json"] = json.dumps({"workload": ["osd-uniform/cpu/cube' ; touch SHELL_RAN ; echo '/2"]})
+    f["gate_badname.json"] = json.dumps({"workload": ["not-a-run-name"]})
+    f["gate_ok.json"] = json.dumps({"alpha": 0.01, "min_repetitions": 3, "default_threshold": 0.1})
+    f["callgrind_bad.json"] = "{\"x\": 1}"
+    return f
+
+
+def write_all(folder):
+    os.makedirs(folder, exist_ok=True)
+    for name, content in files().items():
+        data = content if isinstance(content, bytes) else content.encode("utf-8")
+        with open(os.path.join(folder, name), "wb") as out:
+            out.write(data)
+    os.makedirs(os.path.join(folder, "dir.obj"), exist_ok=True)
+    os.makedirs(os.path.join(folder, "outdir"), exist_ok=True)
+    fifo = os.path.join(folder, "fifo.obj")
+    if not os.path.exists(fifo):
+        os.mkfifo(fifo)
+    fifo_off = os.path.join(folder, "fifo.off")
+    if not os.path.exists(fifo_off):
+        os.mkfifo(fifo_off)
