@@ -204,7 +204,12 @@ void write_results(const ResultsFile& r, const std::string& path) {
     if (!out) throw InputError(path, "write failed");
   }
   // Written whole or not at all: a crash never leaves a partial file under the real name.
-  std::rename(tmp.c_str(), path.c_str());
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError(path, "cannot write results (is it a folder?)");
+  }
 }
 
 ResultsFile read_results(const std::string& path) {

@@ -189,6 +189,7 @@ def write_all(folder):
             out.write(data)
     os.makedirs(os.path.join(folder, "dir.obj"), exist_ok=True)
     os.makedirs(os.path.join(folder, "outdir"), exist_ok=True)
+    os.makedirs(os.path.join(folder, "resultsdir", "results.json"), exist_ok=True)  # results.json a folder
     fifo = os.path.join(folder, "fifo.obj")
     if not os.path.exists(fifo):
         os.mkfifo(fifo)
