@@ -11,14 +11,16 @@ namespace sdb {
 void write_report(const std::vector<std::string>& inputs, const std::string& out_dir) {
   namespace fs = std::filesystem;
   fs::create_directories(out_dir);
-  // The script reads what this build writes: every input is read here (refusing a bad one with its
-  // name) and written again whole, every field present, NaN as null.
+  // The script reads what this build writes: every input is read here (refusing a bad one, or an
+  // unknown schema, with its name) and written again whole, every field present, NaN as null.
+  std::vector<ResultsFile> read;
+  for (const auto& in : inputs) read.push_back(read_results(in));  // all read before anything is written
   const fs::path staging = fs::path(out_dir) / ".report-inputs";
   fs::create_directories(staging);
   std::vector<std::string> staged;
-  for (size_t i = 0; i < inputs.size(); ++i) {
+  for (size_t i = 0; i < read.size(); ++i) {
     staged.push_back((staging / (std::to_string(i) + ".json")).string());
-    write_results(read_results(inputs[i]), staged.back());
+    write_results(read[i], staged.back());
   }
   // Debian's interpreter: python3-matplotlib lives there, not in a user's pyenv. An argument
   // vector, not a shell line: file names are data.

@@ -1,5 +1,8 @@
 #include "harness/bench/measure.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -7,8 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <sys/resource.h>
-#include <unistd.h>
 #include <numeric>
 #include <random>
 #include <regex>
@@ -326,6 +327,7 @@ std::optional<std::string> too_large(const Scheme& scheme, const ControlMesh& ac
   constexpr double kBytesPerTriangle = 64;
   const double triangles = double(scheme.estimated_triangles(accepted, request));
   const double need = triangles * kBytesPerTriangle, have = 0.75 * memory_for_runs();
+  // Past 2^31 triangles the outputs' 32-bit indices cannot name the vertices, whatever the memory.
   if (triangles >= 0 && need <= have && triangles < 2e9) return std::nullopt;
   char buf[200];
   std::snprintf(buf, sizeof buf, "output of about %.3g triangles needs about %.3g GiB, more than the %.3g GiB this process may use",

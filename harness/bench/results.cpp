@@ -149,7 +149,7 @@ void from_json(const json& j, RunRow& r) {
     r.deviation.hausdorff_rel = number(d, "hausdorff_rel", -1.0);
     if (r.deviation.measured) {
       r.deviation.pos_max_pct = number(d, "pos_max_pct", 0.0), r.deviation.pos_mean_pct = number(d, "pos_mean_pct", 0.0);
-      r.deviation.pos_rms_pct = number(d, "pos_rms_pct", 0.0), r.deviation.pos_p95_pct = d.value("pos_p95_pct", 0.0);
+      r.deviation.pos_rms_pct = number(d, "pos_rms_pct", 0.0), r.deviation.pos_p95_pct = number(d, "pos_p95_pct", 0.0);
       r.deviation.pos_max_rel_diag = number(d, "pos_max_rel_diag", 0.0);
       r.deviation.normal_max_deg = number(d, "normal_max_deg", 0.0);
       r.deviation.normal_mean_deg = number(d, "normal_mean_deg", 0.0);

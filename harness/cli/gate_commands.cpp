@@ -138,7 +138,6 @@ int paper(const GateOptions& opts) {
 
 int report(const GateOptions& opts) {
   if (opts.inputs.empty()) throw InputError("report", "--in FILE is required");
-  for (const auto& in : opts.inputs) read_results(in);  // refuses unknown schemas with file named
   prepare_output_folder(opts.out.empty() ? "." : opts.out);
   write_report(opts.inputs, opts.out.empty() ? "." : opts.out);
   std::printf("wrote %s and %s\n", (fs::path(opts.out) / "report.md").string().c_str(),

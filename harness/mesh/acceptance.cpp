@@ -46,12 +46,12 @@ ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
   if (req.faces == F::TrianglesOnly && !facts.all_triangles) refuse("the scheme takes triangle meshes only");
   if (req.faces == F::QuadsOnly && !facts.all_quads) {
     if (!req.quadrangulate) refuse("the scheme takes quad meshes only");
-    ControlMesh quads = quadrangulate(mesh);
-    quads.warnings.push_back("quadrangulated by one Catmull-Clark step for " + info.name);
-    // Quadrangulation turns an n-gon into a valence-n vertex.
+    // Quadrangulation turns an n-gon into a valence-n vertex: refused before the work, not after.
     if (facts.face_sizes.rbegin()->first > req.max_valence)
       refuse("a face of " + std::to_string(facts.face_sizes.rbegin()->first) + " vertices becomes a vertex of that valence, over the " +
              std::to_string(req.max_valence) + " the scheme takes");
+    ControlMesh quads = quadrangulate(mesh);
+    quads.warnings.push_back("quadrangulated by one Catmull-Clark step for " + info.name);
     return quads;
   }
   return mesh;

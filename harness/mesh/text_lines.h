@@ -64,25 +64,8 @@ class LineParser {
 
   [[noreturn]] void fail(const std::string& reason) const { throw InputError(where_, reason); }
 
-  float number(std::string_view tok) const {
-    std::string_view t = tok;
-    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
-    float value = 0.0f;
-    auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (ec == std::errc::result_out_of_range) fail("number out of range " + quoted(tok));
-    if (ec != std::errc() || ptr != t.data() + t.size() || t.empty()) fail("malformed number " + quoted(tok));
-    return value;
-  }
-
-  long integer(std::string_view tok) const {
-    std::string_view t = tok;
-    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
-    long value = 0;
-    auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (ec == std::errc::result_out_of_range) fail("integer out of range " + quoted(tok));
-    if (ec != std::errc() || ptr != t.data() + t.size() || t.empty()) fail("malformed integer " + quoted(tok));
-    return value;
-  }
+  float number(std::string_view tok) const { return convert<float>(tok, "number"); }
+  long integer(std::string_view tok) const { return convert<long>(tok, "integer"); }
 
   // A 0-based index below `count` (vertices or faces): never wrapped into another element.
   int index(std::string_view tok, long count, const char* what) const {
@@ -94,6 +77,18 @@ class LineParser {
   }
 
  private:
+  // The whole token, an optional leading '+', nothing else; `kind` names it in the message.
+  template <class T>
+  T convert(std::string_view tok, const char* kind) const {
+    std::string_view t = tok;
+    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+    T value{};
+    auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+    if (ec == std::errc::result_out_of_range) fail(std::string(kind) + " out of range " + quoted(tok));
+    if (ec != std::errc() || ptr != t.data() + t.size() || t.empty()) fail("malformed " + std::string(kind) + " " + quoted(tok));
+    return value;
+  }
+
   std::string where_;
 };
 
