@@ -24,6 +24,8 @@ struct LimitEvaluator::Impl {
   std::vector<Bfr::Surface<double>> surfaces;
   std::vector<std::vector<double>> patch_points;  // xyz per patch point, per base face
   std::vector<double> local_size;                 // per base face
+  std::vector<char> inexact_corner;               // per base vertex (inexact_corner_normals)
+  std::vector<int> offsets;                       // per base face, into mesh.face_vertices
 };
 
 namespace {
@@ -40,6 +42,43 @@ double mean_edge_length(const ControlMesh& m, const std::vector<int>& off, int f
   return sum / n;
 }
 
+// Base vertices where Bfr's normal at the vertex itself is not the limit's. Bfr's patch at such a
+// corner is its irregular-patch approximation, whose corner tangents are Far's limit masks; those
+// are exact only at smooth vertices of valence 3 and more, creases with the regular number of
+// faces on each side (Catmull-Clark 2, Loop 3; a boundary, that many in all) and a boundary corner
+// of one face. Only infinite sharpness counts: semi-sharpness is refined away by the approximation
+// level. Elsewhere (darts, cone points, creases and corners of other valences) it lies up to 17
+// degrees from the limit, which the refined ring converges to (schemes/fragments/README.md).
+std::vector<char> inexact_corner_normals(const Far::TopologyLevel& l, SubdivisionRule rule) {
+  std::vector<char> inexact(l.GetNumVertices(), 0);
+  const int side = rule == SubdivisionRule::Loop ? 3 : 2;
+  for (int v = 0; v < l.GetNumVertices(); ++v) {
+    Far::ConstIndexArray ve = l.GetVertexEdges(v);
+    const int faces = l.GetVertexFaces(v).size(), edges = ve.size();
+    std::vector<int> sharp;
+    for (int i = 0; i < edges; ++i)
+      if (l.IsEdgeInfSharp(ve[i])) sharp.push_back(i);
+    bool exact;
+    if (l.IsVertexInfSharp(v) || sharp.size() > 2) exact = l.IsVertexBoundary(v) && faces == 1;
+    else if (sharp.size() == 2) exact = l.IsVertexBoundary(v) ? faces == side : faces == 2 * side && sharp[1] - sharp[0] == side;
+    else exact = sharp.empty() && edges >= 3;
+    inexact[v] = !exact;
+  }
+  return inexact;
+}
+
+// The base vertex at the ptex corner a coord lies on, or -1: a quad's (Catmull-Clark) or a
+// triangle's (Loop) corners are its vertices in order; an n-gon's sub-face k has vertex k at (0, 0).
+int corner_vertex(const ControlMesh& m, const std::vector<int>& off, SubdivisionRule rule, int f, int sub, double u,
+                  double v) {
+  auto at = [&](int k) { return m.face_vertices[off[f] + k]; };
+  if (rule == SubdivisionRule::Loop) return u == 0 && v == 0 ? at(0) : u == 1 && v == 0 ? at(1) : u == 0 && v == 1 ? at(2) : -1;
+  if (m.face_sizes[f] != 4) return u == 0 && v == 0 ? at(sub) : -1;
+  if (u != 0 && u != 1) return -1;
+  if (v != 0 && v != 1) return -1;
+  return at(v == 0 ? (u == 0 ? 0 : 1) : (u == 1 ? 2 : 3));
+}
+
 }  // namespace
 
 LimitEvaluator::LimitEvaluator(const ControlMesh& mesh, SubdivisionRule rule, LimitAccuracy accuracy)
@@ -50,6 +89,7 @@ LimitEvaluator::LimitEvaluator(const ControlMesh& mesh, SubdivisionRule rule, Li
   d.refiner = make_refiner(mesh, rule);
   if (auto defect = bfr_overlapping_patch_defect(mesh)) throw Unsupported(*defect);
   const Far::PtexIndices ptex(*d.refiner);
+  d.inexact_corner = inexact_corner_normals(d.refiner->GetLevel(0), rule);
   const int nf = num_faces(mesh);
   const int regular = rule == SubdivisionRule::Loop ? 3 : 4;
   d.first_ptex.resize(nf);
@@ -73,6 +113,7 @@ LimitEvaluator::LimitEvaluator(const ControlMesh& mesh, SubdivisionRule rule, Li
   for (size_t v = 0; v < mesh.positions.size(); ++v)
     for (int k = 0; k < 3; ++k) points[3 * v + k] = mesh.positions[v][k];
   const auto off = face_offsets(mesh);
+  d.offsets = off;
   d.surfaces.resize(nf);
   d.patch_points.resize(nf);
   d.local_size.resize(nf);
@@ -118,7 +159,9 @@ LimitSample LimitEvaluator::evaluate(SurfaceCoord c) const {
   double p[3], du[3], dv[3];
   s.Evaluate(uv, d.patch_points[f].data(), 3, p, du, dv);
   double n[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const int corner = corner_vertex(d.mesh, d.offsets, d.rule, f, d.ptex_sub[c.face], c.u, c.v);
+  if (corner >= 0 && d.inexact_corner[corner]) len = 0;  // no normal to judge by (see above)
   for (int k = 0; k < 3; ++k) {
     out.position[k] = p[k];
     out.du[k] = du[k] * scale;

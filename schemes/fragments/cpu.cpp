@@ -1,5 +1,7 @@
 #include "schemes/fragments/cpu.h"
 
+#include "schemes/fragments/block_writer.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -26,7 +28,7 @@ CpuFragmentEvaluation::CpuFragmentEvaluation(const ControlMesh& mesh, Subdivisio
 template <int W>
 void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Buffers<W>& s) {
   if (s.a.size() < surface_.max_slots) {
-    s.a.resize(surface_.max_slots), s.b.resize(surface_.max_slots);
+    s.a.resize(surface_.max_slots), s.b.resize(surface_.max_slots), s.net.resize(surface_.max_slots);
     s.position.resize(surface_.max_limit_entries), s.normal.resize(surface_.max_limit_entries);
   }
   const std::vector<Fragment>& fragments = surface_.partition.fragments;
@@ -35,9 +37,12 @@ void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Buffe
   Lanes<W>*src = s.a.data(), *dst = s.b.data();
   for (int l = 0; l < W; ++l) {  // lanes past the batch repeat its last fragment
     const std::vector<int>& control = fragments[ids[std::min<uint32_t>(l, batch.count - 1)]].control;
+    const Point3& first = control_[control[0]];
     for (size_t i = 0; i < control.size(); ++i) {
       const Point3& p = control_[control[i]];
       src[i].x[l] = p[0] - origin_[0], src[i].y[l] = p[1] - origin_[1], src[i].z[l] = p[2] - origin_[2];
+      if (t.limit.net_size)
+        s.net[i].x[l] = p[0] - first[0], s.net[i].y[l] = p[1] - first[1], s.net[i].z[l] = p[2] - first[2];
     }
   }
   const bool catmark = surface_.rule == SubdivisionRule::CatmullClark;
@@ -45,8 +50,20 @@ void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Buffe
     refine_level(level, catmark, src, dst);
     std::swap(src, dst);
   }
-  project_to_limit(t.limit, src, project_, s.position.data(), s.normal.data());
-  for (uint32_t l = 0; l < std::min<uint32_t>(batch.count, W); ++l) {
+  project_to_limit(t.limit, src, s.net.data(), project_, s.position.data(), s.normal.data());
+  const int lanes = static_cast<int>(std::min<uint32_t>(batch.count, W));
+  if constexpr (W == kLanes) {
+    if (t.block_in_order) {
+      Point3 *pos[kLanes], *nrm[kLanes];
+      for (int l = 0; l < kLanes; ++l) {
+        const size_t first = surface_.first_vertex[ids[std::min(l, lanes - 1)]];
+        pos[l] = out_.positions.data() + first, nrm[l] = out_.normals.data() + first;
+      }
+      write_blocks_in_order(s.position.data(), s.normal.data(), t.block.size(), origin_, pos, nrm, lanes);
+      return;
+    }
+  }
+  for (int l = 0; l < lanes; ++l) {
     Point3* pos = out_.positions.data() + surface_.first_vertex[ids[l]];
     Point3* nrm = out_.normals.data() + surface_.first_vertex[ids[l]];
     for (size_t i = 0; i < t.block.size(); ++i) {

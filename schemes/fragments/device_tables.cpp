@@ -80,6 +80,8 @@ void pack_shape(const ShapeTables& t, uint32_t header, std::vector<uint32_t>& wo
   f[kBlock] = p.list(t.block);
   f[kBlockNormal] = p.list(t.block_normal);
   f[kNumSlots0] = t.num_slots0;
+  f[kNetSize] = lim.net_size;
+  f[kNetTangents] = p.list(lim.net_tangents);
   std::copy(f, f + kHeaderLimit, words.data() + header + kHeaderPerLevel * t.levels.size());
 }
 

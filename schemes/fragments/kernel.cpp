@@ -207,11 +207,75 @@ void general_normal(const LimitTable& t, size_t i, const Lanes<W>* last, Lanes<W
   unit_normal(a, b, n);
 }
 
+// The tangents as weights on the control points relative to the first (net[0] is 0).
+template <int W>
+void net_normal(const float* w1, uint32_t n, const Lanes<W>* net, Lanes<W>& out) {
+  const float* w2 = w1 + n;
+  Lanes<W> a{}, b{};
+  for (uint32_t j = 1; j < n; ++j) {
+    const Lanes<W>& p = net[j];
+    const float u = w1[j], v = w2[j];
+    SDB_LANES {
+      a.x[l] += u * p.x[l], a.y[l] += u * p.y[l], a.z[l] += u * p.z[l];
+      b.x[l] += v * p.x[l], b.y[l] += v * p.y[l], b.z[l] += v * p.z[l];
+    }
+  }
+  unit_normal(a, b, out);
+}
+
+// a += w b, lane by lane.
+template <int W>
+inline void add_scaled(Lanes<W>& a, float w, const Lanes<W>& b) {
+  SDB_LANES a.x[l] += w * b.x[l], a.y[l] += w * b.y[l], a.z[l] += w * b.z[l];
+}
+
+// The bicubic fast path (tables.h): per grid row j the column sums R_a = sum_b B_b(v_j) P_ab and
+// R'_a = sum_b B'_b(v_j) P_ab, then per point du = sum_a B'_a(u_i) R_a and dv = sum_a B_a(u_i) R'_a.
+template <int W>
+void bicubic_normals(const LimitTable& t, const Lanes<W>* net, Lanes<W>* normal) {
+  const int n = static_cast<int>(t.bicubic_basis.size() / 8);
+  const float* basis = t.bicubic_basis.data();
+  Lanes<W> p[16];
+  for (int k = 0; k < 16; ++k) p[k] = net[t.bicubic_slots[k]];
+  for (int j = 0; j < n; ++j) {
+    const float* bv = basis + 8 * j;
+    Lanes<W> r[4] = {}, rd[4] = {};
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) add_scaled(r[a], bv[b], p[4 * a + b]), add_scaled(rd[a], bv[4 + b], p[4 * a + b]);
+    for (int i = 0; i < n; ++i) {
+      const float* bu = basis + 8 * i;
+      Lanes<W> du{}, dv{};
+      for (int a = 0; a < 4; ++a) add_scaled(du, bu[4 + a], r[a]), add_scaled(dv, bu[a], rd[a]);
+      unit_normal(du, dv, normal[j * n + i]);
+    }
+  }
+}
+
+// One fragment: the sums run across the net's slots instead, in the vector lanes (normals need
+// not be bit-identical, so their order is free).
+template <>
+void net_normal<1>(const float* w1, uint32_t n, const Lanes<1>* net, Lanes<1>& out) {
+  const float* w2 = w1 + n;
+  float ax = 0, ay = 0, az = 0, bx = 0, by = 0, bz = 0;
+#pragma omp simd reduction(+ : ax, ay, az, bx, by, bz)
+  for (uint32_t j = 1; j < n; ++j) {
+    const float x = net[j].x[0], y = net[j].y[0], z = net[j].z[0];
+    ax += w1[j] * x, ay += w1[j] * y, az += w1[j] * z;
+    bx += w2[j] * x, by += w2[j] * y, bz += w2[j] * z;
+  }
+  unit_normal(Lanes<1>{{ax}, {ay}, {az}}, Lanes<1>{{bx}, {by}, {bz}}, out);
+}
+
 }  // namespace
 
+// AVX2 where the CPU has it, SSE2 otherwise, every helper inlined into each clone
+// (flatten) so that the whole pass runs in the wider lanes. Without fused multiply-adds
+// (-ffp-contract=off) and with IEEE min, max, sqrt and division in both, the two give the same
+// bits: outputs do not depend on the machine.
+#define SDB_KERNEL_CLONES __attribute__((target_clones("avx2", "default"), flatten))
 
 template <int W>
-void refine_level(const LevelTable& t, bool catmark, const Lanes<W>* parent, Lanes<W>* child) {
+SDB_KERNEL_CLONES void refine_level(const LevelTable& t, bool catmark, const Lanes<W>* parent, Lanes<W>* child) {
   Lanes<W>* out = child;
   for (const FaceRule& f : t.faces) {
     const Lanes<W> &a = parent[f.a], &b = parent[f.b], &c = parent[f.c], &d = parent[f.d];
@@ -240,7 +304,8 @@ void refine_level(const LevelTable& t, bool catmark, const Lanes<W>* parent, Lan
 }
 
 template <int W>
-void project_to_limit(const LimitTable& t, const Lanes<W>* last, bool project, Lanes<W>* position, Lanes<W>* normal) {
+SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<W>* last, const Lanes<W>* net, bool project, Lanes<W>* position,
+                      Lanes<W>* normal) {
   for (size_t i = 0; i < t.position.size(); ++i) {
     if (!project) {
       position[i] = last[t.position[i].centre];
@@ -253,8 +318,11 @@ void project_to_limit(const LimitTable& t, const Lanes<W>* last, bool project, L
       position[i] = p;
     }
   }
+  if (!t.bicubic_slots.empty()) return bicubic_normals(t, net, normal);
   for (size_t i = 0; i < t.regular.size(); ++i) {
-    if (t.regular[i] >= 0)
+    if (t.net_size)
+      net_normal(t.net_tangents.data() + i * 2 * t.net_size, t.net_size, net, normal[i]);
+    else if (t.regular[i] >= 0)
       regular_normal(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size, last,
                      normal[i]);
     else
@@ -264,7 +332,8 @@ void project_to_limit(const LimitTable& t, const Lanes<W>* last, bool project, L
 
 template void refine_level<1>(const LevelTable&, bool, const Lanes<1>*, Lanes<1>*);
 template void refine_level<kLanes>(const LevelTable&, bool, const Lanes<kLanes>*, Lanes<kLanes>*);
-template void project_to_limit<1>(const LimitTable&, const Lanes<1>*, bool, Lanes<1>*, Lanes<1>*);
-template void project_to_limit<kLanes>(const LimitTable&, const Lanes<kLanes>*, bool, Lanes<kLanes>*, Lanes<kLanes>*);
+template void project_to_limit<1>(const LimitTable&, const Lanes<1>*, const Lanes<1>*, bool, Lanes<1>*, Lanes<1>*);
+template void project_to_limit<kLanes>(const LimitTable&, const Lanes<kLanes>*, const Lanes<kLanes>*, bool,
+                                       Lanes<kLanes>*, Lanes<kLanes>*);
 
 }  // namespace sdb::fragments

@@ -1,5 +1,6 @@
 // The limit entries of a shape's tables (tables.h, LimitTable): positions, tangents per side,
 // the regular tangents' fast path, and the output blocks that take them.
+#include <algorithm>
 #include <cmath>
 
 #include "schemes/fragments/ring_limit.h"
@@ -21,24 +22,36 @@ void TableBuilder<S>::make_limit(ShapeTables& t) const {
   t.block_normal.assign(t.block.size(), 0);
   LimitTable& lim = t.limit;
   lim.tangent_begin.push_back(0);
+  // Entries in the order of the blocks' vertices, so that a fragment of one face has its entries
+  // in block order (block[i] = i), which the output copy can stream.
+  struct Corner {
+    size_t at;
+    int v, face;
+  };
+  std::vector<Corner> corners;
   for (const RegionFace& r : region_) {
     Far::ConstIndexArray fv = last.GetFaceVertices(r.face);
     for (int j = 0; j < fv.size(); ++j) {
-      const int v = fv[j];
       if ((r.uv[j][0] & mask) || (r.uv[j][1] & mask)) continue;  // between the output's grid points
-      if (entry[v] < 0) {
-        entry[v] = static_cast<int>(lim.position.size());
-        add_limit_position(last, v, lim);
-      }
-      const int side = side_of(last, v, r.face);
-      auto [it, fresh] = tangent_entry.try_emplace({v, side}, static_cast<int>(lim.regular.size()));
-      if (fresh) add_limit_tangents(last, v, side, lim);
-      const size_t at = static_cast<size_t>(r.owner) * bs +
-                        block_index(rule_, out_depth_, r.uv[j][0] >> shift, r.uv[j][1] >> shift);
-      t.block[at] = entry[v];
-      t.block_normal[at] = it->second;
+      corners.push_back({static_cast<size_t>(r.owner) * bs +
+                             block_index(rule_, out_depth_, r.uv[j][0] >> shift, r.uv[j][1] >> shift),
+                         fv[j], r.face});
     }
   }
+  std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.at < b.at; });
+  for (const Corner& c : corners) {
+    if (entry[c.v] < 0) {
+      entry[c.v] = static_cast<int>(lim.position.size());
+      add_limit_position(last, c.v, lim);
+    }
+    const int side = side_of(last, c.v, c.face);
+    auto [it, fresh] = tangent_entry.try_emplace({c.v, side}, static_cast<int>(lim.regular.size()));
+    if (fresh) add_limit_tangents(last, c.v, side, c.face, lim);
+    t.block[c.at] = entry[c.v];
+    t.block_normal[c.at] = it->second;
+  }
+  t.block_in_order = true;
+  for (size_t i = 0; i < t.block.size(); ++i) t.block_in_order &= t.block[i] == i && t.block_normal[i] == i;
 }
 
 // Which of a vertex's sides face f lies on: for a corner the face's slot in the ring (-1 - slot);
@@ -140,20 +153,73 @@ void TableBuilder<S>::add_limit_position(const Far::TopologyLevel& last, int v, 
                                      fw, {fref.begin(), fref.begin() + fw.size()}, lim.ring, "limit"));
 }
 
+// Far's limit masks are the exact limit at smooth vertices of valence 3 and more, at creases with
+// the regular number of faces on each side (Catmull-Clark 2, Loop 3; at a boundary, that many in
+// all) and at a boundary corner of one face. Its crease and corner position masks are exact at
+// any valence (the crease curve does not depend on it), its tangents there are not.
 template <Sdc::SchemeType S>
-void TableBuilder<S>::add_limit_tangents(const Far::TopologyLevel& last, int v, int side, LimitTable& lim) const {
+bool TableBuilder<S>::far_tangents_are_exact(const Far::TopologyLevel& last, int v) const {
+  const int faces = last.GetVertexFaces(v).size(), edges = last.GetVertexEdges(v).size(), side = kCatmark ? 2 : 3;
+  switch (last.GetVertexRule(v)) {
+    case Sdc::Crease::RULE_SMOOTH: return edges >= 3;
+    case Sdc::Crease::RULE_CREASE: {
+      if (last.IsVertexBoundary(v)) return faces == side;
+      if (faces != 2 * side) return false;
+      int sharp[2] = {-1, -1};
+      for (int i = 0, k = 0; i < edges && k < 2; ++i)
+        if (last.GetEdgeSharpness(last.GetVertexEdges(v)[i]) > 0) sharp[k++] = i;
+      return sharp[1] - sharp[0] == side;
+    }
+    case Sdc::Crease::RULE_CORNER: return last.IsVertexBoundary(v) && faces == 1;
+    default: return false;
+  }
+}
+
+// The ring's rules repeat from this level on: no sharpness left that decays.
+template <Sdc::SchemeType S>
+bool TableBuilder<S>::stationary(const Far::TopologyLevel& last, int v) const {
+  if (last.IsVertexSemiSharp(v)) return false;
+  for (int e : last.GetVertexEdges(v))
+    if (last.IsEdgeSemiSharp(e)) return false;
+  return true;
+}
+
+// Where Far's tangents are not exact, the ring's eigenvectors on the side of `face` (ring_limit.h).
+template <Sdc::SchemeType S>
+bool TableBuilder<S>::add_exact_limit_tangents(const Far::TopologyLevel& last, int v, int face,
+                                                std::map<uint32_t, std::pair<float, float>>& tangent) const {
+  if (far_tangents_are_exact(last, v) || !stationary(last, v)) return false;
+  Far::ConstIndexArray vf = last.GetVertexFaces(v);
+  const int slot = static_cast<int>(std::find(vf.begin(), vf.end(), face) - vf.begin());
+  const RingTangents t = ring_limit_tangents(last, refiner_->GetSchemeOptions(), kCatmark, v, slot);
+  if (t.first.empty()) return false;
+  std::vector<uint32_t> ring = {parent_slot(v)};
+  for (uint32_t r : ring_vertices(last, v, 0)) ring.push_back(r);
+  if (kCatmark)
+    for (uint32_t r : opposite_vertices(last, v, 0)) ring.push_back(r);
+  for (size_t k = 0; k < ring.size(); ++k) {
+    auto& [a, b] = tangent[ring[k]];
+    a += static_cast<float>(t.first[k]), b += static_cast<float>(t.second[k]);
+  }
+  return true;
+}
+
+template <Sdc::SchemeType S>
+void TableBuilder<S>::add_limit_tangents(const Far::TopologyLevel& last, int v, int side, int face,
+                                         LimitTable& lim) const {
   std::map<uint32_t, std::pair<float, float>> tangent;
   auto add = [&](uint32_t slot, float w1, float w2) {
     auto& [a, b] = tangent[slot];
     a += w1, b += w2;
   };
-  if (side < 0) {  // a corner: the two edges bounding the face (Sdc's corner tangents, per face)
+  const bool exact = add_exact_limit_tangents(last, v, face, tangent);
+  if (!exact && side < 0) {  // a corner: the two edges bounding the face (Sdc's corner tangents, per face)
     const std::vector<uint32_t> eref = ring_vertices(last, v, 0);
     const int slot = -1 - side;
     add(parent_slot(v), -1, -1);
     add(eref[slot], 1, 0);
     add(eref[(slot + 1) % eref.size()], 0, 1);
-  } else {
+  } else if (!exact) {
     const int max = std::max(last.GetVertexEdges(v).size(), last.GetVertexFaces(v).size()) + 1;
     Mask pos(max), t1(max), t2(max);
     scheme_.ComputeVertexLimitMask(VertexHood(last, last, v, v, side), pos, t1, t2, last.GetVertexRule(v));
@@ -188,16 +254,14 @@ bool TableBuilder<S>::add_regular_tangents(const Far::TopologyLevel& last, int v
   for (int i = 0; i < t1.GetNumFaceWeights(); ++i)
     w1.push_back(t1.FaceWeight(i)), w2.push_back(t2.FaceWeight(i)), slots.push_back(fref[i]);
   // The weights kernel.cpp's regular_normal() is written for.
-  const float h = 0.866025404f;
-  static const std::vector<float> cc1 = {0, 4, 0, -4, 0, 1, -1, -1, 1}, cc2 = {0, 0, 4, 0, -4, 1, 1, -1, -1};
-  static const std::vector<float> loop1 = {0, 1, 0.5f, -0.5f, -1, -0.5f, 0.5f}, loop2 = {0, 0, h, h, 0, -h, -h};
-  auto near = [](const std::vector<float>& a, const std::vector<float>& b) {
+  auto near = [](const std::vector<float>& a, const std::vector<double>& b) {
     if (a.size() != b.size()) return false;
     for (size_t i = 0; i < a.size(); ++i)
-      if (std::abs(a[i] - b[i]) > 1e-6f) return false;
+      if (std::abs(a[i] - b[i]) > 1e-6) return false;
     return true;
   };
-  if (!(kCatmark ? near(w1, cc1) && near(w2, cc2) : near(w1, loop1) && near(w2, loop2))) return false;
+  const RegularTangents& regular = regular_tangents(kCatmark);
+  if (!near(w1, regular.first) || !near(w2, regular.second)) return false;
   lim.regular_size = static_cast<int>(slots.size());
   lim.regular.push_back(static_cast<int32_t>(lim.regular_slots.size() / lim.regular_size));
   lim.regular_slots.insert(lim.regular_slots.end(), slots.begin(), slots.end());

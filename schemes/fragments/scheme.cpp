@@ -36,10 +36,10 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.accepts.creases = true;
   info.accepts.holes = true;
   // Positions: 1e-5 of the diagonal (the default set's worst: 7.9e-7, gim-sphere-31's valence-2
-  // vertices). Normals come from Far's tangent masks: at extraordinary corners they lie up to 0.021
-  // degrees from the reference's while equal to Far's eigen-analysis to 1e-6 (Spot's triangle
-  // mesh, depth 4); which of the two is exact there is not settled (README.md).
-  info.bound = {1e-5, 0.05};
+  // vertices). Normals: 0.01 degrees, taken from the control points (net_tangents.cpp) so that
+  // float's rounding does not grow with the depth, and from the ring's eigenvectors where Far's
+  // masks are not the limit (ring_limit.h).
+  info.bound = {1e-5, 0.01};
   // Depth schemes are read against OpenSubdiv's uniform refinement at the same depth.
   info.peer = loop ? "osd-uniform-loop" : "osd-uniform";
   info.default_meshes = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",

@@ -28,6 +28,20 @@ namespace Sdc = OpenSubdiv::Sdc;
 // The kernel's ring sums take at most this many terms.
 constexpr int kMaxValence = 1024;
 
+// Shapes with more level-0 slots keep the last level's tangents (net_tangents.cpp): the weights
+// cost 2 floats per slot for every tangent entry, and a net this large is a vertex of valence
+// 20 or more, where the ring shrinks no faster than a regular one.
+constexpr uint32_t kMaxTangentNet = 64;
+
+// Adds LimitTable::net_tangents to a finished shape.
+void add_net_tangents(ShapeTables& t, bool catmark);
+
+// Sdc's tangent masks at a regular vertex, in the order centre, ring, opposite vertices.
+struct RegularTangents {
+  std::vector<double> first, second;
+};
+const RegularTangents& regular_tangents(bool catmark);
+
 [[noreturn]] void asymmetric(const char* what);
 
 // wv c + (weights on the ring) as wv c + wc (p0 + p1) + we sum(e) + wf sum(f); throws Unsupported
@@ -105,7 +119,17 @@ class TableBuilder {
 
   void add_limit_position(const Far::TopologyLevel& last, int v, LimitTable& lim) const;
 
-  void add_limit_tangents(const Far::TopologyLevel& last, int v, int side, LimitTable& lim) const;
+  // LimitTable::bicubic_*, where the shape is one regular quad with a regular 1-ring
+  // (bicubic_tangents.cpp).
+  void add_bicubic_tangents(ShapeTables& t) const;
+
+  // Tangents of v on `side` (side_of), `face` a face of that side.
+  void add_limit_tangents(const Far::TopologyLevel& last, int v, int side, int face, LimitTable& lim) const;
+
+  bool far_tangents_are_exact(const Far::TopologyLevel& last, int v) const;
+  bool stationary(const Far::TopologyLevel& last, int v) const;
+  bool add_exact_limit_tangents(const Far::TopologyLevel& last, int v, int face,
+                                std::map<uint32_t, std::pair<float, float>>& tangent) const;
 
   // The regular vertex's tangents, in Sdc's order (centre, ring, opposite vertices); false where
   // the vertex is not regular or its weights differ from the first regular vertex's.

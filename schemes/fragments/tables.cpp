@@ -69,6 +69,8 @@ ShapeTables TableBuilder<S>::build() {
     t.max_slots = std::max(t.max_slots, t.levels.back().num_slots);
   }
   make_limit(t);
+  add_net_tangents(t, kCatmark);
+  if constexpr (kCatmark) add_bicubic_tangents(t);
   return t;
 }
 

@@ -71,6 +71,19 @@ struct LimitTable {
   std::vector<uint32_t> tangent_begin;
   std::vector<uint32_t> tangent_slot;
   std::vector<float> tangent_w1, tangent_w2;
+  // The same tangents as weights on the fragment's level-0 slots (net_tangents.cpp), where the
+  // shape has them: entry i's first tangent is net_tangents[2 i net_size ...], its second the
+  // net_size after. Applied to the control points relative to the first, they keep float's
+  // precision at any depth; from the last level's points they lose a bit a level (README.md).
+  uint32_t net_size = 0;
+  std::vector<float> net_tangents;
+  // A Catmull-Clark facet patch whose face and 1-ring are regular is a bicubic B-spline patch: its
+  // tangents at grid point (i, j) are sum B'_a(u_i) B_b(v_j) P_ab and sum B_a(u_i) B'_b(v_j) P_ab,
+  // a quarter of the work of net_tangents, which they equal (checked in prepare). Where present:
+  // the 16 level-0 slots of P_ab at [4 a + b], and per grid index k the basis at k / 2^depth,
+  // B_0..B_3 then B'_0..B'_3. Entries are in block order.
+  std::vector<uint32_t> bicubic_slots;
+  std::vector<float> bicubic_basis;
 };
 
 struct ShapeTables {
@@ -82,6 +95,7 @@ struct ShapeTables {
   // Per owned face, per vertex of its output block (block_size(), ptex grid order), the limit
   // position entry and the tangent entry it takes.
   std::vector<uint32_t> block, block_normal;
+  bool block_in_order = false;  // block[i] = block_normal[i] = i: a fragment of one face
 };
 
 // Vertices per owned face at depth d: (2^d + 1)^2 for a quad, (2^d + 1)(2^d + 2) / 2 for a

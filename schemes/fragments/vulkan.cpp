@@ -71,7 +71,8 @@ std::vector<uint64_t> entry_costs(const ShapeTables& t, Part part, uint32_t leve
     const uint32_t p = t.block[i], n = t.block_normal[i];
     uint64_t cost = 1 + (lim.stencil[p] < 0 ? vertex_rule_cost(lim.position[p])
                                             : lim.stencil_begin[lim.stencil[p] + 1] - lim.stencil_begin[lim.stencil[p]]);
-    if (lim.regular[n] < 0) cost += lim.tangent_begin[n + 1] - lim.tangent_begin[n];
+    if (lim.net_size) cost += lim.net_size;
+    else if (lim.regular[n] < 0) cost += lim.tangent_begin[n + 1] - lim.tangent_begin[n];
     c.push_back(cost);
   }
   return c;

@@ -70,7 +70,22 @@ precise vec3 general_normal(uint lh, uint entry) {
   return unit_normal(a + ca, b + cb);
 }
 
+vec3 control_point(uint v) { return vec3(control[3u * v], control[3u * v + 1u], control[3u * v + 2u]); }
+
+// kernel.cpp's net_normal: the tangents as weights on the control points relative to the first.
+precise vec3 net_normal(uint lh, uint entry) {
+  const uint n = T[lh + kNetSize], w = T[lh + kNetTangents] + 2u * n * entry, list = F[2u * g_fragment];
+  const vec3 first = control_point(T[list]);
+  precise vec3 a = vec3(0.0), b = vec3(0.0);
+  for (uint j = 1u; j < n; ++j) {
+    precise vec3 p = control_point(T[list + j]) - first;
+    a = a + p * number(w + j), b = b + p * number(w + n + j);
+  }
+  return unit_normal(a, b);
+}
+
 precise vec3 limit_normal(uint lh, uint entry) {
+  if (T[lh + kNetSize] != 0u) return net_normal(lh, entry);
   const int regular = int(T[T[lh + kRegular] + entry]);
   if (regular >= 0) {
     const uint size = T[lh + kRegularSize];
