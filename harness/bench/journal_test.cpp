@@ -2,6 +2,13 @@
 // a failing report leaves behind, without measuring anything.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <functional>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -123,6 +130,30 @@ TEST(Journal, TornLastLineIsDroppedAndCutBeforeAppending) {
   EXPECT_EQ(c.intact_bytes, whole);
   JournalWriter::reopen(path.string(), c.intact_bytes).append(row("osd-uniform", 2));
   c = read_journal(path.string());
+  ASSERT_EQ(c.rows.size(), 2u);
+  EXPECT_EQ(c.rows[1].name(), "osd-uniform/cpu/cube/2");
+  EXPECT_FALSE(c.dropped_torn_line);
+}
+
+// A full disk mid-row (here a file-size limit, which fails write() the same way): the row is
+// refused with the journal named, and the journal is cut back to its last whole row.
+TEST(Journal, AFullDiskLosesOnlyTheRowInFlight) {
+  const fs::path path = fresh_folder("full") / kJournalFile;
+  JournalWriter w = JournalWriter::create(path.string(), header());
+  w.append(row("osd-bfr", 2));
+  const auto whole = fs::file_size(path);
+  rlimit before{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &before), 0);
+  std::signal(SIGXFSZ, SIG_IGN);  // write() fails with EFBIG instead
+  rlimit full = before;
+  full.rlim_cur = whole + 100;  // room for part of the next row
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &full), 0);
+  const std::string why = expect_input_error([&] { w.append(row("osd-bfr", 3)); });
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &before), 0);
+  EXPECT_NE(why.find(path.string() + ": cannot journal row osd-bfr/cpu/cube/3: File too large"), std::string::npos) << why;
+  EXPECT_EQ(fs::file_size(path), whole);
+  w.append(row("osd-uniform", 2));  // room again: the run could go on
+  const JournalContents c = read_journal(path.string());
   ASSERT_EQ(c.rows.size(), 2u);
   EXPECT_EQ(c.rows[1].name(), "osd-uniform/cpu/cube/2");
   EXPECT_FALSE(c.dropped_torn_line);
