@@ -1,5 +1,6 @@
 #include "harness/bench/run_set.h"
 
+#include <algorithm>
 #include <ctime>
 #include <deque>
 #include <filesystem>
