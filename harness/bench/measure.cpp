@@ -335,13 +335,9 @@ std::optional<std::string> too_large(const Scheme& scheme, const ControlMesh& ac
   return std::string(buf);
 }
 
-DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
-  const ResolvedScheme resolved = resolve_scheme(spec.scheme);
+RunRow policy_row(const RunSpec& spec, const ResolvedScheme& resolved, const MachineInfo& m) {
   const SchemeInfo& info = resolved.scheme->info();
-  DescribedRun d;
-  d.scheme = resolved.scheme;
-  d.request = {spec.backend, spec.level, o.threads, resolved.parameters};
-  RunRow& row = d.row;
+  RunRow row;
   row.scheme = info.name;
   row.spec = resolved.spec;
   row.role = std::string(to_string(info.role));
@@ -352,9 +348,18 @@ DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureC
   row.peer = info.peer;
   row.peer_backend = peer_backend_for(info, spec.backend);
   row.bound = info.bound;
-  const MachineInfo& m = ctx.machine();
   row.device = spec.backend == Backend::Vulkan ? m.vulkan_device : spec.backend == Backend::OpenGl ? m.opengl_renderer : m.cpu_model;
   row.tessellation = segments_per_edge(info.level_kind, spec.level);
+  return row;
+}
+
+DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
+  const ResolvedScheme resolved = resolve_scheme(spec.scheme);
+  DescribedRun d;
+  d.scheme = resolved.scheme;
+  d.request = {spec.backend, spec.level, o.threads, resolved.parameters};
+  d.row = policy_row(spec, resolved, ctx.machine());
+  RunRow& row = d.row;
   if (auto why = declined(*d.scheme, d.request)) {
     row.status = RunStatus::Unsupported;
     row.message = *why;
@@ -382,12 +387,21 @@ void record_output(RunRow& row, Evaluation& e) {
   row.bytes_out = static_cast<long>(e.bytes_out());
 }
 
+void enter_stage(const MeasureOptions& o, const char* stage, const RunRow& row) {
+  if (o.on_stage) o.on_stage(stage, row);
+}
+
 }  // namespace
+
+RunRow describe_spec(const RunSpec& spec, const MachineInfo& machine) {
+  return policy_row(spec, resolve_scheme(spec.scheme), machine);
+}
 
 RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
   DescribedRun d = describe_run(spec, o, ctx);
   RunRow& row = d.row;
   if (row.status == RunStatus::Unsupported) return row;
+  enter_stage(o, "prepare", row);
   std::unique_ptr<Evaluation> eval;
   try {
     eval = d.scheme->prepare(*d.accepted, d.request);
@@ -402,11 +416,13 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
     row.message = e.what();
     return row;
   }
+  enter_stage(o, "execute", row);
   const auto start = std::chrono::steady_clock::now();
   execute_on(*eval, spec.backend);
   const double once_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   record_output(row, *eval);
   if (o.validate) {
+    enter_stage(o, "validate", row);
     const Tessellation& out = eval->result();
     validate_into(row, out, out.reference ? out.reference : d.accepted, d.scheme->info().reference, o, ctx);
   }
@@ -418,6 +434,7 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
     fill_timing(row, once, eval.get(), gpu && !once.time_ms.empty(), ctx.machine());
     return row;
   }
+  enter_stage(o, "time", row);
   Evaluation* e = eval.get();
   register_timing(spec.name(), [e] { return e; }, spec.backend)->Repetitions(o.reps)->MinTime(o.min_time_s);
   CollectingReporter collector;

@@ -51,6 +51,9 @@ struct MeasureOptions {
   // Default sets: a scheme refusing a mesh late (in prepare) gives an "unsupported" row instead
   // of stopping the run. Explicit requests keep the InputError (exit code 2).
   bool refusals_as_rows = false;
+  // Called as measure_run enters each stage ("prepare", "execute", "validate", "time") with the
+  // row as it stands: a worker reports them so that a crash is named with its stage (row_worker.h).
+  std::function<void(const char* stage, const RunRow& row)> on_stage;
 };
 
 // Meshes, accepted meshes and reference surfaces shared by the rows of one run.
@@ -80,6 +83,10 @@ class MeasureContext {
 
 // Evaluation::execute() as a backend means it: on `cpu`, inside a one-thread TBB arena.
 void execute_on(Evaluation& e, Backend backend);
+
+// What a row records before its mesh is read: the run, its device and its scheme's policy (peer,
+// bound, parameters). InputError for an unknown scheme or a bad parameter.
+RunRow describe_spec(const RunSpec& spec, const MachineInfo& machine);
 
 // Runs one spec start to finish. Throws InputError when the mesh is refused or the spec unknown;
 // returns a row with status "unsupported" when the scheme declines the backend or level, or runs

@@ -36,6 +36,16 @@ std::vector<RunSpec> headline_runs() {
 
 }  // namespace
 
+MeasureOptions measure_options(const RunSelection& r) {
+  MeasureOptions m;
+  m.reps = r.reps;
+  m.rays = r.rays;
+  m.seed = r.seed;
+  m.validate = r.validate;
+  m.refusals_as_rows = !(r.selection.schemes.size() == 1 && r.selection.meshes.size() == 1);
+  return m;
+}
+
 std::vector<Backend> available_backends() {
   std::vector<Backend> b = {Backend::Cpu, Backend::CpuMt};
   if (gpu::probe().available) b.push_back(Backend::Vulkan);

@@ -16,7 +16,23 @@ struct Selection {
   bool all_corpus = false;  // with all_meshes: OpenSubdiv's regression shapes too
   long max_triangles = 1'000'000;  // default levels only: skip outputs larger than this
   bool headline = true;  // default set: also the schemes' headline runs (SchemeInfo::headline_runs)
+  bool operator==(const Selection&) const = default;
 };
+
+// What `run` is asked: the selection and the options that shape its rows. A journal records it,
+// and a run is resumed only under the same one.
+struct RunSelection {
+  Selection selection;
+  int reps = 5;
+  long rays = 50000;
+  uint64_t seed = 1;
+  bool validate = true;
+  bool operator==(const RunSelection&) const = default;
+};
+
+// The measuring options of a run's rows. A default set turns a scheme's late refusal of a mesh
+// into an "unsupported" row; one scheme on one mesh keeps it an error (exit code 2).
+MeasureOptions measure_options(const RunSelection& selection);
 
 struct Plan {
   std::vector<RunSpec> runs;

@@ -1,10 +1,13 @@
 #include "harness/bench/process.h"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/socket.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -13,33 +16,120 @@
 extern char** environ;
 
 namespace sdb {
+namespace {
 
-std::string ProcessResult::describe() const {
-  if (signal) return "killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")";
-  return "exit code " + std::to_string(exit_code);
-}
+struct SpawnActions {
+  posix_spawn_file_actions_t actions;
+  SpawnActions() { posix_spawn_file_actions_init(&actions); }
+  ~SpawnActions() { posix_spawn_file_actions_destroy(&actions); }
+  SpawnActions(const SpawnActions&) = delete;
+  SpawnActions& operator=(const SpawnActions&) = delete;
+};
 
-ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& options) {
+pid_t spawn(const std::vector<std::string>& argv, const SpawnActions& actions) {
   if (argv.empty()) throw std::logic_error("run_process: empty argument vector");
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (options.quiet) {
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  }
   pid_t pid = 0;
-  const int err = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  const int err = posix_spawnp(&pid, args[0], &actions.actions, nullptr, args.data(), environ);
   if (err != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(err));
+  return pid;
+}
+
+ProcessResult wait_for(pid_t pid, const std::string& name) {
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error("waiting for " + argv[0] + ": " + std::strerror(errno));
+    if (errno != EINTR) throw std::runtime_error("waiting for " + name + ": " + std::strerror(errno));
   ProcessResult r;
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  return r;
+}
+
+}  // namespace
+
+std::string ProcessResult::describe() const {
+  if (!signal) return "exit code " + std::to_string(exit_code);
+  const char* abbrev = sigabbrev_np(signal);
+  return "killed by signal " + std::to_string(signal) + " (" + (abbrev ? "SIG" + std::string(abbrev) + ", " : "") +
+         strsignal(signal) + ")";
+}
+
+ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& options) {
+  SpawnActions actions;
+  if (options.quiet) {
+    posix_spawn_file_actions_addopen(&actions.actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions.actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  }
+  return wait_for(spawn(argv, actions), argv.at(0));
+}
+
+ChannelProcess::ChannelProcess(const std::vector<std::string>& argv, int channel_fd) : name_(argv.at(0)) {
+  int ends[2];
+  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
+    throw std::runtime_error(std::string("cannot make a channel: ") + std::strerror(errno));
+  // The child's end above the channel's number: dup2 onto itself would keep close-on-exec set.
+  const int child_end = fcntl(ends[1], F_DUPFD_CLOEXEC, channel_fd + 1);
+  close(ends[1]);
+  fd_ = ends[0];
+  if (child_end < 0) {
+    close(fd_);
+    throw std::runtime_error(std::string("cannot place a channel: ") + std::strerror(errno));
+  }
+  SpawnActions actions;
+  posix_spawn_file_actions_adddup2(&actions.actions, child_end, channel_fd);
+  try {
+    pid_ = spawn(argv, actions);
+  } catch (...) {
+    close(child_end);
+    close(fd_);
+    throw;
+  }
+  close(child_end);  // the child holds the only other end: its death closes the channel
+}
+
+ChannelProcess::~ChannelProcess() {
+  if (fd_ >= 0) close(fd_);
+  if (pid_ > 0) {
+    kill(pid_, SIGKILL);
+    int status = 0;
+    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+}
+
+bool ChannelProcess::send_line(const std::string& line) {
+  const std::string data = line + "\n";
+  for (size_t done = 0; done < data.size();) {
+    // MSG_NOSIGNAL: a child that died is an answer (false), not a SIGPIPE that ends this process.
+    const ssize_t n = send(fd_, data.data() + done, data.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return false;
+    done += size_t(n);
+  }
+  return true;
+}
+
+std::optional<std::string> ChannelProcess::read_line() {
+  std::array<char, 65536> buf;
+  for (size_t nl; (nl = pending_.find('\n')) == std::string::npos;) {
+    const ssize_t n = read(fd_, buf.data(), buf.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return std::nullopt;
+    pending_.append(buf.data(), size_t(n));
+  }
+  const size_t nl = pending_.find('\n');
+  std::string line = pending_.substr(0, nl);
+  pending_.erase(0, nl + 1);
+  return line;
+}
+
+ProcessResult ChannelProcess::wait() {
+  close(fd_);
+  fd_ = -1;
+  const ProcessResult r = wait_for(pid_, name_);
+  pid_ = -1;
   return r;
 }
 

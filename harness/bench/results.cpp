@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/bench/results_json.h"
+
 #include <fstream>
 #include <limits>
 #include <filesystem>
@@ -145,7 +147,12 @@ void from_json(const json& j, RunRow& r) {
   }
   if (j.contains("deviation") && !j["deviation"].is_null()) {
     const json& d = j["deviation"];
-    r.deviation.measured = d.contains("pos_max_pct") && !d["pos_max_pct"].is_null();
+    // Hausdorff-only rows (no SurfaceCoords) have every per-vertex figure null; a measured row
+    // keeps its finite figures beside the ones that were NaN.
+    r.deviation.measured = false;
+    for (const char* key : {"pos_max_pct", "pos_mean_pct", "pos_rms_pct", "pos_p95_pct", "pos_max_rel_diag", "normal_max_deg",
+                            "normal_mean_deg"})
+      r.deviation.measured |= d.contains(key) && !d[key].is_null();
     r.deviation.hausdorff_rel = number(d, "hausdorff_rel", -1.0);
     if (r.deviation.measured) {
       r.deviation.pos_max_pct = number(d, "pos_max_pct", 0.0), r.deviation.pos_mean_pct = number(d, "pos_mean_pct", 0.0);
@@ -192,7 +199,11 @@ void prepare_output_folder(const std::string& dir) {
   std::filesystem::remove(probe, ec);
 }
 
-std::string row_json(const RunRow& row, int indent) { return json(row).dump(indent); }
+std::string one_line(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+std::string row_json(const RunRow& row, int indent) {
+  return indent < 0 ? one_line(row) : json(row).dump(indent, ' ', false, json::error_handler_t::replace);
+}
 
 void write_results(const ResultsFile& r, const std::string& path) {
   const json j = {{"schema", r.schema}, {"machine", r.machine}, {"created", r.created}, {"rounds", r.rounds}, {"runs", r.runs}};
@@ -200,7 +211,7 @@ void write_results(const ResultsFile& r, const std::string& path) {
   {
     std::ofstream out(tmp);
     if (!out) throw InputError(path, "cannot write results");
-    out << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
     if (!out) throw InputError(path, "write failed");
   }
   // Written whole or not at all: a crash never leaves a partial file under the real name.

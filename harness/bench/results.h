@@ -87,7 +87,7 @@ struct ResultsFile {
   std::vector<RunRow> runs;
 };
 
-std::string row_json(const RunRow& row, int indent = 2);
+std::string row_json(const RunRow& row, int indent = 2);  // indent < 0: one line
 void write_results(const ResultsFile& results, const std::string& path);
 // Creates `dir` if needed and checks it can be written, so a bad --out fails before any measuring.
 void prepare_output_folder(const std::string& dir);

@@ -1,16 +1,19 @@
 // validate and run: one checked run, or a selection measured and written with its report.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
 #include "harness/bench/plan.h"
 #include "harness/bench/results.h"
+#include "harness/bench/row_worker.h"
+#include "harness/bench/run_set.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
 #include "reports/report.h"
@@ -21,19 +24,15 @@ namespace {
 struct RunOptions {
   std::vector<std::string> schemes, meshes, backends;
   std::vector<int> levels;
-  std::string scheme, mesh, backend = "cpu", out = "results/latest", deviation_ply;
+  std::string scheme, mesh, backend = "cpu", out = "results/latest", deviation_ply, resume;
   int level = 0, reps = 5;
   long rays = 50000;
   uint64_t seed = 1;
   bool json = false, all_meshes = false, all_corpus = false, no_validate = false, no_report = false;
+  bool in_process = false;
+  int worker_channel = -1;
+  long worker_parent = 0;
 };
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
 
 void print_row(const RunRow& r) {
   std::printf("%-44s", r.name().c_str());
@@ -51,7 +50,7 @@ void print_row(const RunRow& r) {
   std::printf("%s%s\n", ok ? "" : "  FAILED: ", ok ? "" : r.message.c_str());
 }
 
-MeasureOptions measure_options(const RunOptions& opts) {
+MeasureOptions validate_options(const RunOptions& opts) {
   MeasureOptions m;
   m.reps = opts.reps;
   m.rays = opts.rays;
@@ -64,7 +63,7 @@ int validate(const RunOptions& opts) {
   auto backend = parse_backend(opts.backend);
   if (!backend) throw InputError(opts.backend, "no such backend (" + backend_names() + ")");
   MeasureContext ctx(describe_machine(is_gpu(*backend)));
-  MeasureOptions m = measure_options(opts);
+  MeasureOptions m = validate_options(opts);
   m.time = false;
   m.deviation_ply = opts.deviation_ply;
   const RunSpec spec{opts.scheme, opts.mesh, *backend, opts.level};
@@ -76,8 +75,7 @@ int validate(const RunOptions& opts) {
   return row.status == RunStatus::Failed ? 1 : 0;
 }
 
-void print_machine(const ResultsFile& results, size_t runs) {
-  const MachineInfo& m = results.machine;
+void print_machine(const MachineInfo& m, size_t runs) {
   std::printf("%zu runs; machine: %s, %d cores, write bandwidth %.1f GB/s (1 thread), %.1f GB/s (all)", runs,
               m.cpu_model.c_str(), m.cores, m.write_bandwidth_gbs, m.write_bandwidth_mt_gbs);
   if (!m.vulkan_device.empty()) std::printf(", %s %.2f GB/s", m.vulkan_device.c_str(), m.gpu_write_bandwidth_gbs);
@@ -85,44 +83,39 @@ void print_machine(const ResultsFile& results, size_t runs) {
   std::printf("\n");
 }
 
-// Nothing ran (every row unsupported): said, and exit 2, and no earlier results replaced.
-void require_something_ran(const ResultsFile& results) {
-  for (const RunRow& r : results.runs)
-    if (r.status != RunStatus::Unsupported) return;
-  throw InputError("run", "nothing ran: all " + std::to_string(results.runs.size()) + " runs unsupported (" +
-                              (results.runs.empty() ? std::string() : results.runs.front().message) + "); nothing written");
-}
-
-int run(const RunOptions& opts) {
-  prepare_output_folder(opts.out);  // before the measuring, not after it
-  MeasureContext ctx(describe_machine_with_probes());
-  Selection sel;
+RunSelection run_selection(const RunOptions& opts) {
+  RunSelection r;
+  Selection& sel = r.selection;
   sel.schemes = opts.schemes, sel.meshes = opts.meshes, sel.backends = opts.backends, sel.levels = opts.levels;
   sel.all_meshes = opts.all_meshes || opts.all_corpus;
   sel.all_corpus = opts.all_corpus;
-  const Plan plan = make_plan(sel, ctx);
-  for (const auto& n : plan.notes) std::printf("note: %s\n", n.c_str());
-  if (plan.runs.empty()) {
+  r.reps = opts.reps, r.rays = opts.rays, r.seed = opts.seed, r.validate = !opts.no_validate;
+  return r;
+}
+
+// `selection_given`: with --resume, whether the command line named a selection of its own (it
+// must then be the journalled one) or leaves it to the journal.
+int run(const RunOptions& opts, bool selection_given) {
+  const bool isolate = !opts.in_process;
+  RunSet set = opts.resume.empty()
+                   ? RunSet::start(opts.out, run_selection(opts), isolate)
+                   : RunSet::resume(opts.resume, selection_given ? std::optional(run_selection(opts)) : std::nullopt, isolate);
+  const std::string out = opts.resume.empty() ? opts.out : opts.resume;
+  for (const auto& n : set.plan().notes) std::printf("note: %s\n", n.c_str());
+  if (set.plan().runs.empty()) {
     std::printf("nothing to run for this selection; nothing written\n");
     return 0;
   }
-  ResultsFile results;
-  results.machine = ctx.machine();
-  results.created = utc_now();
-  print_machine(results, plan.runs.size());
-  bool failed = false;
-  MeasureOptions options = measure_options(opts);
-  options.refusals_as_rows = !(opts.schemes.size() == 1 && opts.meshes.size() == 1);
-  for (const RunSpec& spec : plan.runs) {
-    results.runs.push_back(measure_run(spec, options, ctx));
-    print_row(results.runs.back());
-    failed |= results.runs.back().status == RunStatus::Failed;
-  }
-  require_something_ran(results);
-  const std::string json_path = (std::filesystem::path(opts.out) / "results.json").string();
-  write_results(results, json_path);
-  std::printf("wrote %s\n", json_path.c_str());
-  if (!opts.no_report) write_report({json_path}, opts.out);
+  print_machine(set.machine(), set.plan().runs.size());
+  if (!opts.resume.empty())
+    std::printf("resuming %s: %zu of %zu rows journalled%s; measuring %zu\n", out.c_str(), set.journalled(),
+                set.plan().runs.size(), set.dropped_torn_line() ? " (a torn last line dropped)" : "", set.remaining());
+  set.measure_remaining(print_row);
+  RunSet::ReportWriter report;
+  if (!opts.no_report) report = [](const std::string& results, const std::string& dir) { write_report({results}, dir); };
+  const ResultsFile results = set.publish(report);
+  std::printf("wrote %s\n", (std::filesystem::path(out) / "results.json").string().c_str());
+  const bool failed = std::any_of(results.runs.begin(), results.runs.end(), [](const RunRow& r) { return r.status == RunStatus::Failed; });
   return failed ? 1 : 0;
 }
 
@@ -156,10 +149,29 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   r->add_option("--reps", opts->reps, "timed repetitions per run")->check(CLI::PositiveNumber);
   r->add_option("--rays", opts->rays, "random lines per run, as many again aimed at patch borders (default 50000)")
       ->check(CLI::NonNegativeNumber);
-  r->add_option("--out", opts->out, "output folder");
   r->add_flag("--no-validate", opts->no_validate, "time only");
+  // What a resumed run compares with its journal: given at all, the whole selection must match.
+  std::vector<const CLI::Option*> selection;
+  for (const char* name : {"--scheme", "--mesh", "--backend", "--level", "--all", "--all-corpus", "--reps", "--rays", "--no-validate"})
+    selection.push_back(r->get_option(name));
+  auto* out = r->add_option("--out", opts->out, "output folder (results.json, report, journal.jsonl)");
+  r->add_option("--resume", opts->resume,
+                "continue the interrupted run journalled in DIR (DIR/journal.jsonl): measure only the rows it lacks")
+      ->excludes(out);
   r->add_flag("--no-report", opts->no_report, "write results.json only");
-  verbs["run"] = [opts] { return run(*opts); };
+  r->add_flag("--in-process", opts->in_process,
+              "measure every row in this process, for profilers and debuggers (default: in a worker process, "
+              "so that a crash in a library fails its row and the run goes on)");
+  verbs["run"] = [opts, selection] {
+    const bool given = std::any_of(selection.begin(), selection.end(), [](const CLI::Option* o) { return o->count() > 0; });
+    return run(*opts, given);
+  };
+
+  auto* w = app.add_subcommand("row-worker", "");  // hidden: measures run's rows in a worker process (row_worker.h)
+  w->group("");
+  w->add_option("--channel-fd", opts->worker_channel)->required();
+  w->add_option("--parent", opts->worker_parent)->required();
+  verbs["row-worker"] = [opts]() -> int { serve_rows(opts->worker_channel, opts->worker_parent); };
 }
 
 }  // namespace sdb::cli

@@ -181,6 +181,22 @@ def files():
     return f
 
 
+def journals():
+    """Run journals for `run --resume` (harness/bench/journal.h): a folder each, holding journal.jsonl."""
+    selection = {"schemes": ["osd-uniform"], "meshes": ["cube"], "backends": [], "levels": [1], "all": False,
+                 "all_corpus": False, "max_triangles": 1000000, "headline": True, "reps": 5, "rays": 50000,
+                 "seed": 1, "validate": True}
+    header = {"journal": 1, "schema": 1, "created": "2026-01-01T00:00:00Z", "cwd": "/nowhere",
+              "machine": {"git_commit": "0000000"}, "selection": selection, "runs": ["osd-uniform/cpu/cube/1"]}
+    row = json.dumps({"scheme": "osd-uniform", "backend": "cpu", "mesh": "cube", "level": 1, "status": "ok"})
+    return {
+        "journal_commit": json.dumps(header) + "\n",
+        "journal_corrupt": json.dumps(header) + "\n" + row + "\n" + "{\"scheme\": \n" + row + "\n",
+        "journal_header": "this is not a journal\n" + row + "\n",
+        "journal_version": json.dumps(dict(header, journal=99)) + "\n",
+    }
+
+
 def write_all(folder):
     os.makedirs(folder, exist_ok=True)
     for name, content in files().items():
@@ -190,6 +206,11 @@ def write_all(folder):
     os.makedirs(os.path.join(folder, "dir.obj"), exist_ok=True)
     os.makedirs(os.path.join(folder, "outdir"), exist_ok=True)
     os.makedirs(os.path.join(folder, "resultsdir", "results.json"), exist_ok=True)  # results.json a folder
+    os.makedirs(os.path.join(folder, "journal_none"), exist_ok=True)
+    for name, text in journals().items():
+        os.makedirs(os.path.join(folder, name), exist_ok=True)
+        with open(os.path.join(folder, name, "journal.jsonl"), "w") as out:
+            out.write(text)
     fifo = os.path.join(folder, "fifo.obj")
     if not os.path.exists(fifo):
         os.mkfifo(fifo)

@@ -1,0 +1,196 @@
+#include "harness/bench/run_set.h"
+
+#include <algorithm>
+#include <ctime>
+#include <deque>
+#include <filesystem>
+
+#include "harness/bench/machine.h"
+#include "harness/bench/process.h"
+#include "harness/bench/row_worker.h"
+#include "harness/core/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace sdb {
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+std::vector<std::string> run_names(const Plan& plan) {
+  std::vector<std::string> names;
+  for (const RunSpec& r : plan.runs) names.push_back(r.name());
+  return names;
+}
+
+// The machine as far as it shapes the rows; the probes' bandwidths are measured, not compared.
+std::string machine_difference(const MachineInfo& a, const MachineInfo& b) {
+  const std::pair<const char*, std::pair<std::string, std::string>> fields[] = {
+      {"CPU", {a.cpu_model, b.cpu_model}},
+      {"cores", {std::to_string(a.cores), std::to_string(b.cores)}},
+      {"Vulkan device", {a.vulkan_device, b.vulkan_device}},
+      {"Vulkan driver", {a.vulkan_driver, b.vulkan_driver}},
+      {"OpenGL renderer", {a.opengl_renderer, b.opengl_renderer}},
+      {"compiler", {a.compiler, b.compiler}},
+      {"build type", {a.build_type, b.build_type}}};
+  for (const auto& [what, values] : fields)
+    if (values.first != values.second) return std::string(what) + " '" + values.first + "', now '" + values.second + "'";
+  return "";
+}
+
+std::string plan_difference(const std::vector<std::string>& journalled, const std::vector<std::string>& now) {
+  for (size_t i = 0; i < std::max(journalled.size(), now.size()); ++i) {
+    const std::string a = i < journalled.size() ? journalled[i] : "(none)", b = i < now.size() ? now[i] : "(none)";
+    if (a != b)
+      return "this selection now plans " + std::to_string(now.size()) + " runs, the journal " + std::to_string(journalled.size()) +
+             "; run " + std::to_string(i + 1) + " was " + a + ", now " + b + " (a backend or the corpus changed?)";
+  }
+  return "";
+}
+
+// Nothing ran (every row unsupported): said, exit 2, and no earlier results replaced.
+void require_something_ran(const ResultsFile& results) {
+  for (const RunRow& r : results.runs)
+    if (r.status != RunStatus::Unsupported) return;
+  throw InputError("run", "nothing ran: all " + std::to_string(results.runs.size()) + " runs unsupported (" +
+                              (results.runs.empty() ? std::string() : results.runs.front().message) +
+                              "); results.json and the report left as they were");
+}
+
+// Moves `from` over `to`: a file by rename (atomic), a folder (the plots) by renaming the old one
+// aside first, since a rename cannot replace a folder that holds files.
+void replace(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  if (fs::is_directory(from)) {
+    const fs::path old = to.parent_path() / (".old-" + to.filename().string());
+    fs::remove_all(old, ec);
+    if (fs::exists(to)) fs::rename(to, old, ec);
+    if (!ec) fs::rename(from, to, ec);
+    if (ec) throw InputError(to.string(), "cannot replace: " + ec.message());
+    fs::remove_all(old, ec);
+    return;
+  }
+  fs::rename(from, to, ec);
+  if (ec && to.filename() == "results.json") throw InputError(to.string(), "cannot write results (is it a folder?)");
+  if (ec) throw InputError(to.string(), "cannot replace: " + ec.message());
+}
+
+}  // namespace
+
+RunSet::RunSet(std::string out, const MachineInfo& machine, bool isolate)
+    : out_(std::move(out)), isolate_(isolate), context_(std::make_unique<MeasureContext>(machine)) {}
+RunSet::RunSet(RunSet&&) noexcept = default;
+RunSet::~RunSet() = default;
+
+const MachineInfo& RunSet::machine() const { return context_->machine(); }
+std::string RunSet::journal_path() const { return (fs::path(out_) / kJournalFile).string(); }
+
+RunSet RunSet::start(const std::string& out, const RunSelection& selection, bool isolate) {
+  prepare_output_folder(out);  // before the measuring, not after it
+  RunSet set(out, describe_machine_with_probes(), isolate);
+  set.selection_ = selection;
+  set.plan_ = make_plan(selection.selection, *set.context_);
+  if (set.plan_.runs.empty()) return set;
+  const JournalHeader header{set.machine(), utc_now(), fs::current_path().string(), selection, run_names(set.plan_)};
+  set.journal_.emplace(JournalWriter::create(set.journal_path(), header));
+  return set;
+}
+
+RunSet RunSet::resume(const std::string& out, const std::optional<RunSelection>& selection, bool isolate) {
+  const std::string path = (fs::path(out) / kJournalFile).string();
+  JournalContents journal = read_journal(path);
+  const JournalHeader& h = journal.header;
+  if (selection && !(*selection == h.selection))
+    throw InputError(path, "the interrupted run had another selection (" + selection_difference(h.selection, *selection) +
+                               "): resume with its options or none");
+  // The rows already journalled must be comparable with the ones still to measure.
+  const MachineInfo here = describe_machine();
+  if (here.git_commit != h.machine.git_commit)
+    throw InputError(path, "journalled at commit " + h.machine.git_commit + ", this build is " + here.git_commit +
+                               ": resume with the build that started the run");
+  if (const std::string d = machine_difference(h.machine, here); !d.empty())
+    throw InputError(path, "journalled on another machine (" + d + ")");
+  if (fs::current_path().string() != h.cwd)
+    throw InputError(path, "journalled in " + h.cwd + " (mesh paths are relative to it): resume from there");
+  // The journal's machine block, probes included: every row reads its bandwidth against the same.
+  RunSet set(out, h.machine, isolate);
+  set.selection_ = h.selection;
+  set.plan_ = make_plan(h.selection.selection, *set.context_);
+  if (const std::string d = plan_difference(h.runs, run_names(set.plan_)); !d.empty()) throw InputError(path, d);
+  std::map<std::string, int> planned;
+  for (const std::string& name : h.runs) ++planned[name];
+  for (size_t i = 0; i < journal.rows.size(); ++i) {
+    const std::string name = journal.rows[i].name();
+    if (++set.done_[name] > planned[name])
+      throw InputError(at_line(path, journal.row_lines[i]), "row " + name + (planned[name] ? " journalled twice" : " is not in the run's plan"));
+  }
+  set.journalled_ = journal.rows.size();
+  set.dropped_torn_line_ = journal.dropped_torn_line;
+  set.journal_.emplace(JournalWriter::reopen(path, journal.intact_bytes));
+  return set;
+}
+
+void RunSet::measure_remaining(const std::function<void(const RunRow&)>& on_row) {
+  const MeasureOptions options = measure_options(selection_);
+  std::optional<RowWorker> worker;
+  if (isolate_) worker.emplace(self_executable(), machine(), options);
+  std::map<std::string, int> skip = done_;
+  for (const RunSpec& spec : plan_.runs) {
+    if (skip[spec.name()]-- > 0) continue;
+    const RunRow row = worker ? worker->measure(spec) : measure_run(spec, options, *context_);
+    journal_->append(row);
+    ++done_[spec.name()];
+    on_row(row);
+  }
+}
+
+ResultsFile RunSet::publish(const ReportWriter& report) const {
+  const JournalContents journal = read_journal(journal_path());
+  std::map<std::string, std::deque<RunRow>> by_name;
+  for (const RunRow& r : journal.rows) by_name[r.name()].push_back(r);
+  ResultsFile results;
+  results.machine = journal.header.machine;
+  results.created = journal.header.created;
+  for (const RunSpec& spec : plan_.runs) {
+    auto& rows = by_name[spec.name()];
+    if (rows.empty()) throw std::logic_error("publish: " + spec.name() + " is not journalled");
+    results.runs.push_back(std::move(rows.front()));
+    rows.pop_front();
+  }
+  require_something_ran(results);
+  publish_results(results, out_, report);
+  return results;
+}
+
+void publish_results(const ResultsFile& results, const std::string& dir, const RunSet::ReportWriter& report) {
+  const fs::path staging = fs::path(dir) / ".publishing";
+  std::error_code ec;
+  fs::remove_all(staging, ec);  // what a killed publish left
+  fs::create_directories(staging, ec);
+  if (ec) throw InputError(staging.string(), "cannot make a staging folder: " + ec.message());
+  try {
+    write_results(results, (staging / "results.json").string());
+    if (report) report((staging / "results.json").string(), staging.string());
+  } catch (const std::exception& e) {
+    fs::remove_all(staging, ec);
+    throw InputError(dir, std::string("nothing replaced: ") + e.what() + " (the rows are in " + kJournalFile +
+                              "; `run --resume " + dir + "` publishes them again)");
+  }
+  // Every file is written: now they replace the earlier set, results.json first.
+  try {
+    replace(staging / "results.json", fs::path(dir) / "results.json");
+    for (const auto& entry : fs::directory_iterator(staging)) replace(entry.path(), fs::path(dir) / entry.path().filename());
+  } catch (const InputError&) {
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  fs::remove_all(staging, ec);
+}
+
+}  // namespace sdb
