@@ -27,7 +27,7 @@ class CpuFragmentEvaluation final : public Evaluation {
  private:
   template <int W>
   struct Buffers {
-    std::vector<Lanes<W>> a, b, net, position, normal;
+    std::vector<Lanes<W>> a, b, net, local_a, local_b, position, normal;
   };
   struct Scratch {
     Buffers<kLanes> wide;

@@ -229,24 +229,40 @@ inline void add_scaled(Lanes<W>& a, float w, const Lanes<W>& b) {
   SDB_LANES a.x[l] += w * b.x[l], a.y[l] += w * b.y[l], a.z[l] += w * b.z[l];
 }
 
-// The bicubic fast path (tables.h): per grid row j the column sums R_a = sum_b B_b(v_j) P_ab and
-// R'_a = sum_b B'_b(v_j) P_ab, then per point du = sum_a B'_a(u_i) R_a and dv = sum_a B_a(u_i) R'_a.
+// The patch polynomial (tables.h, patch_*): its coefficients from the net once, then per row the
+// derivatives' coefficients as cubics in u, then per vertex Horner's rule.
 template <int W>
-void bicubic_normals(const LimitTable& t, const Lanes<W>* net, Lanes<W>* normal) {
-  const int n = static_cast<int>(t.bicubic_basis.size() / 8);
-  const float* basis = t.bicubic_basis.data();
-  Lanes<W> p[16];
-  for (int k = 0; k < 16; ++k) p[k] = net[t.bicubic_slots[k]];
-  for (int j = 0; j < n; ++j) {
-    const float* bv = basis + 8 * j;
-    Lanes<W> r[4] = {}, rd[4] = {};
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) add_scaled(r[a], bv[b], p[4 * a + b]), add_scaled(rd[a], bv[4 + b], p[4 * a + b]);
-    for (int i = 0; i < n; ++i) {
-      const float* bu = basis + 8 * i;
-      Lanes<W> du{}, dv{};
-      for (int a = 0; a < 4; ++a) add_scaled(du, bu[4 + a], r[a]), add_scaled(dv, bu[a], rd[a]);
-      unit_normal(du, dv, normal[j * n + i]);
+void patch_normals(const LimitTable& t, const Lanes<W>* net, Lanes<W>* normal) {
+  const uint32_t n = t.net_size;
+  const int s = t.patch_segments, m = static_cast<int>(t.patch_powers.size());
+  Lanes<W> c[25];
+  for (int k = 0; k < m; ++k) {
+    c[k] = {};
+    const float* w = t.patch_weights.data() + size_t(k) * n;
+    for (uint32_t slot = 1; slot < n; ++slot) add_scaled(c[k], w[slot], net[slot]);
+  }
+  for (int j = 0; j <= s; ++j) {
+    const float v = float(j) / float(s);
+    float vp[5] = {1, v, v * v, v * v * v, v * v * v * v};
+    Lanes<W> du[4] = {}, dv[4] = {};  // coefficients of u^0 .. u^3
+    for (int k = 0; k < m; ++k) {
+      const int a = t.patch_powers[k][0], b = t.patch_powers[k][1];
+      if (a > 0) add_scaled(du[a - 1], float(a) * vp[b], c[k]);
+      if (b > 0) add_scaled(dv[a], float(b) * vp[b - 1], c[k]);
+    }
+    const int points = t.patch_triangle ? s + 1 - j : s + 1;
+    for (int i = 0; i < points; ++i) {
+      const float u = float(i) / float(s);
+      Lanes<W> d[2];
+      for (int tangent = 0; tangent < 2; ++tangent) {
+        const Lanes<W>* p = tangent ? dv : du;
+        SDB_LANES {
+          d[tangent].x[l] = ((p[3].x[l] * u + p[2].x[l]) * u + p[1].x[l]) * u + p[0].x[l];
+          d[tangent].y[l] = ((p[3].y[l] * u + p[2].y[l]) * u + p[1].y[l]) * u + p[0].y[l];
+          d[tangent].z[l] = ((p[3].z[l] * u + p[2].z[l]) * u + p[1].z[l]) * u + p[0].z[l];
+        }
+      }
+      unit_normal(d[0], d[1], *normal++);
     }
   }
 }
@@ -304,8 +320,9 @@ SDB_KERNEL_CLONES void refine_level(const LevelTable& t, bool catmark, const Lan
 }
 
 template <int W>
-SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<W>* last, const Lanes<W>* net, bool project, Lanes<W>* position,
-                      Lanes<W>* normal) {
+SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<W>* last, const Lanes<W>* net,
+                                        const Lanes<W>* local_last, bool project, Lanes<W>* position,
+                                        Lanes<W>* normal) {
   for (size_t i = 0; i < t.position.size(); ++i) {
     if (!project) {
       position[i] = last[t.position[i].centre];
@@ -318,22 +335,24 @@ SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<W>* las
       position[i] = p;
     }
   }
-  if (!t.bicubic_slots.empty()) return bicubic_normals(t, net, normal);
+  if (!t.patch_weights.empty()) return patch_normals(t, net, normal);
+  const Lanes<W>* from = local_last ? local_last : last;
   for (size_t i = 0; i < t.regular.size(); ++i) {
-    if (t.net_size)
+    if (t.net_size && (!local_last || t.at_control_vertex[i]))
       net_normal(t.net_tangents.data() + i * 2 * t.net_size, t.net_size, net, normal[i]);
     else if (t.regular[i] >= 0)
-      regular_normal(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size, last,
+      regular_normal(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size, from,
                      normal[i]);
     else
-      general_normal(t, i, last, normal[i]);
+      general_normal(t, i, from, normal[i]);
   }
 }
 
 template void refine_level<1>(const LevelTable&, bool, const Lanes<1>*, Lanes<1>*);
 template void refine_level<kLanes>(const LevelTable&, bool, const Lanes<kLanes>*, Lanes<kLanes>*);
-template void project_to_limit<1>(const LimitTable&, const Lanes<1>*, const Lanes<1>*, bool, Lanes<1>*, Lanes<1>*);
-template void project_to_limit<kLanes>(const LimitTable&, const Lanes<kLanes>*, const Lanes<kLanes>*, bool,
-                                       Lanes<kLanes>*, Lanes<kLanes>*);
+template void project_to_limit<1>(const LimitTable&, const Lanes<1>*, const Lanes<1>*, const Lanes<1>*, bool, Lanes<1>*,
+                                  Lanes<1>*);
+template void project_to_limit<kLanes>(const LimitTable&, const Lanes<kLanes>*, const Lanes<kLanes>*,
+                                       const Lanes<kLanes>*, bool, Lanes<kLanes>*, Lanes<kLanes>*);
 
 }  // namespace sdb::fragments

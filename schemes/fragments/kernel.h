@@ -27,9 +27,11 @@ void refine_level(const LevelTable& table, bool catmark, const Lanes<W>* parent,
 // Limit position of every position entry and unit normal of every tangent entry, from the last
 // level's slots; with project = false the positions are the last level's points themselves (the
 // exactness oracle's side), the normals still the limit's. `net`: the level-0 slots relative to
-// the first (tables.h, net_tangents), read where the table has net tangents.
+// the first (tables.h, net_tangents), read where the table has net tangents. `local_last`, where
+// not null: the last level refined from `net` instead, for the tangents of every entry but those
+// at control vertices (LimitTable::at_control_vertex).
 template <int W>
-void project_to_limit(const LimitTable& table, const Lanes<W>* last, const Lanes<W>* net, bool project,
-                      Lanes<W>* position, Lanes<W>* normal);
+void project_to_limit(const LimitTable& table, const Lanes<W>* last, const Lanes<W>* net, const Lanes<W>* local_last,
+                      bool project, Lanes<W>* position, Lanes<W>* normal);
 
 }  // namespace sdb::fragments

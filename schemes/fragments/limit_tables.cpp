@@ -22,6 +22,14 @@ void TableBuilder<S>::make_limit(ShapeTables& t) const {
   t.block_normal.assign(t.block.size(), 0);
   LimitTable& lim = t.limit;
   lim.tangent_begin.push_back(0);
+  std::vector<char> control(refiner_->GetLevel(0).GetNumVertices(), 1);
+  for (int l = 0; l < depth_; ++l) {
+    const Far::TopologyLevel& level = refiner_->GetLevel(l);
+    std::vector<char> next(refiner_->GetLevel(l + 1).GetNumVertices(), 0);
+    for (int v = 0; v < level.GetNumVertices(); ++v)
+      if (control[v] && level.GetVertexChildVertex(v) >= 0) next[level.GetVertexChildVertex(v)] = 1;
+    control = std::move(next);
+  }
   // Entries in the order of the blocks' vertices, so that a fragment of one face has its entries
   // in block order (block[i] = i), which the output copy can stream.
   struct Corner {
@@ -46,7 +54,10 @@ void TableBuilder<S>::make_limit(ShapeTables& t) const {
     }
     const int side = side_of(last, c.v, c.face);
     auto [it, fresh] = tangent_entry.try_emplace({c.v, side}, static_cast<int>(lim.regular.size()));
-    if (fresh) add_limit_tangents(last, c.v, side, c.face, lim);
+    if (fresh) {
+      add_limit_tangents(last, c.v, side, c.face, lim);
+      lim.at_control_vertex.push_back(control[c.v]);
+    }
     t.block[c.at] = entry[c.v];
     t.block_normal[c.at] = it->second;
   }

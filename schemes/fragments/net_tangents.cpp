@@ -8,7 +8,12 @@
 // control points, so it can be taken there instead: the same masks, composed with the levels'
 // rules in double here, give weights on the level-0 slots; the kernel applies them to the control
 // points relative to the fragment's first, which float holds to its full precision.
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <random>
 
 #include "schemes/fragments/table_builder.h"
 
@@ -57,6 +62,8 @@ NetRows refine_rows(const LevelTable& t, bool catmark, const NetRows& parent, ui
   return child;
 }
 
+void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last);
+
 }  // namespace
 
 void add_net_tangents(ShapeTables& t, bool catmark) {
@@ -87,7 +94,80 @@ void add_net_tangents(ShapeTables& t, bool catmark) {
     float* out = lim.net_tangents.data() + i * 2 * n;
     for (uint32_t j = 0; j < n; ++j) out[j] = static_cast<float>(a[j]), out[n + j] = static_cast<float>(b[j]);
   }
+  add_patch_polynomial(t, catmark, rows);
 }
+
+namespace {
+
+// LimitTable::patch_*: the limit positions of the block as weights on the net (the last level's
+// rows through each position rule), fitted by a polynomial in (u, v). The tangent masks' own
+// directions turn with each vertex's ring, so the positions are what is fitted.
+void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last) {
+  LimitTable& lim = t.limit;
+  const uint32_t n = lim.net_size;
+  const SubdivisionRule rule = catmark ? SubdivisionRule::CatmullClark : SubdivisionRule::Loop;
+  int s = 0;
+  while (block_size(rule, s) < static_cast<int>(t.block.size())) ++s;
+  if (!t.block_in_order || block_size(rule, s) != static_cast<int>(t.block.size())) return;  // not one face
+  for (int32_t stencil : lim.stencil)
+    if (stencil >= 0) return;  // a dart's position: not a regular patch
+  std::vector<std::array<uint8_t, 2>> powers;
+  for (int a = 0; a <= 4; ++a)
+    for (int b = 0; b <= 4; ++b)
+      if (catmark ? a <= 3 && b <= 3 : a + b <= 4) powers.push_back({uint8_t(a), uint8_t(b)});
+  const int segments = 1 << s, m = static_cast<int>(powers.size());
+  const size_t entries = t.block.size();
+  Eigen::MatrixXd basis(entries, m), positions(entries, n);
+  for (int j = 0; j <= segments; ++j)
+    for (int i = 0; i + (catmark ? 0 : j) <= segments; ++i) {
+      const int e = block_index(rule, s, i, j);
+      for (int k = 0; k < m; ++k)
+        basis(e, k) = std::pow(double(i) / segments, powers[k][0]) * std::pow(double(j) / segments, powers[k][1]);
+      const VertexRule& r = lim.position[e];
+      NetRows p(1, n);
+      p.add(0, r.wv, last, r.centre);
+      if (r.wc != 0) p.add(0, r.wc, last, r.p0), p.add(0, r.wc, last, r.p1);
+      for (uint32_t k = 0; k < r.num_e; ++k) p.add(0, r.we, last, lim.ring[r.ring + k]);
+      for (uint32_t k = 0; k < r.num_f; ++k) p.add(0, r.wf, last, lim.ring[r.ring + r.num_e + k]);
+      for (uint32_t w = 0; w < n; ++w) positions(e, w) = p.row(0)[w];
+    }
+  if (static_cast<int>(entries) < m) return;
+  const Eigen::MatrixXd c = basis.colPivHouseholderQr().solve(positions);
+  if ((basis * c - positions).cwiseAbs().maxCoeff() > 1e-9 * positions.cwiseAbs().maxCoeff()) return;
+  // A fit can pass where the block has no more points than monomials (Loop at depth 2): the
+  // polynomial's normals must also be the masks' (net_tangents) on random control points.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::MatrixXd points(n, 3);
+    for (uint32_t w = 0; w < n; ++w)
+      for (int x = 0; x < 3; ++x) points(w, x) = coordinate(random);
+    const Eigen::MatrixXd coefficients = c * points;  // monomial x xyz
+    for (int j = 0; j <= segments; ++j)
+      for (int i = 0; i + (catmark ? 0 : j) <= segments; ++i) {
+        const double u = double(i) / segments, v = double(j) / segments;
+        Eigen::Vector3d du = Eigen::Vector3d::Zero(), dv = Eigen::Vector3d::Zero(), a = du, b = du;
+        for (int k = 0; k < m; ++k) {
+          const int pa = powers[k][0], pb = powers[k][1];
+          if (pa > 0) du += pa * std::pow(u, pa - 1) * std::pow(v, pb) * coefficients.row(k).transpose();
+          if (pb > 0) dv += pb * std::pow(u, pa) * std::pow(v, pb - 1) * coefficients.row(k).transpose();
+        }
+        const float* w = lim.net_tangents.data() + size_t(block_index(rule, s, i, j)) * 2 * n;
+        for (uint32_t q = 0; q < n; ++q) a += double(w[q]) * points.row(q).transpose(), b += double(w[n + q]) * points.row(q).transpose();
+        const Eigen::Vector3d ours = du.cross(dv), theirs = a.cross(b);
+        const double dot = ours.dot(theirs);
+        if (dot <= 0 || dot * dot < (1 - 1e-9) * ours.squaredNorm() * theirs.squaredNorm()) return;
+      }
+  }
+  lim.patch_segments = segments;
+  lim.patch_triangle = !catmark;
+  lim.patch_powers = powers;
+  lim.patch_weights.resize(size_t(m) * n);
+  for (int k = 0; k < m; ++k)
+    for (uint32_t w = 0; w < n; ++w) lim.patch_weights[size_t(k) * n + w] = static_cast<float>(c(k, w));
+}
+
+}  // namespace
 
 const RegularTangents& regular_tangents(bool catmark) {
   // Sdc's regular tangent masks (centre, ring, opposite vertices), which kernel.cpp's

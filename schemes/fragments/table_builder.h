@@ -119,9 +119,6 @@ class TableBuilder {
 
   void add_limit_position(const Far::TopologyLevel& last, int v, LimitTable& lim) const;
 
-  // LimitTable::bicubic_*, where the shape is one regular quad with a regular 1-ring
-  // (bicubic_tangents.cpp).
-  void add_bicubic_tangents(ShapeTables& t) const;
 
   // Tangents of v on `side` (side_of), `face` a face of that side.
   void add_limit_tangents(const Far::TopologyLevel& last, int v, int side, int face, LimitTable& lim) const;

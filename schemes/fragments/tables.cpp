@@ -70,7 +70,6 @@ ShapeTables TableBuilder<S>::build() {
   }
   make_limit(t);
   add_net_tangents(t, kCatmark);
-  if constexpr (kCatmark) add_bicubic_tangents(t);
   return t;
 }
 

@@ -10,6 +10,7 @@
 // different orders in which two fragments meet a point's neighbours give the same float sums.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -77,13 +78,23 @@ struct LimitTable {
   // precision at any depth; from the last level's points they lose a bit a level (README.md).
   uint32_t net_size = 0;
   std::vector<float> net_tangents;
-  // A Catmull-Clark facet patch whose face and 1-ring are regular is a bicubic B-spline patch: its
-  // tangents at grid point (i, j) are sum B'_a(u_i) B_b(v_j) P_ab and sum B_a(u_i) B'_b(v_j) P_ab,
-  // a quarter of the work of net_tangents, which they equal (checked in prepare). Where present:
-  // the 16 level-0 slots of P_ab at [4 a + b], and per grid index k the basis at k / 2^depth,
-  // B_0..B_3 then B'_0..B'_3. Entries are in block order.
-  std::vector<uint32_t> bicubic_slots;
-  std::vector<float> bicubic_basis;
+  // Per tangent entry: its vertex is a control vertex's (level 0's, refined on). A fragment whose
+  // shape it has alone (the CPU's one-lane kernel) reads only these entries' net tangents, where a
+  // low-valence ring shrinks fastest; the rest it takes from a second refinement of its net
+  // relative to its first control point, which holds float's precision as well without reading
+  // 2 x net_size weights a vertex from memory (kernel.h).
+  std::vector<char> at_control_vertex;
+  // Where a one-face block's limit is one polynomial in (u, v) (a regular patch: bicubic for
+  // Catmull-Clark, of total degree 4 for Loop), its monomials u^a v^b (patch_powers) with their
+  // coefficients as weights on the net (patch_weights, monomials x net_size), fitted to the limit
+  // positions in prepare and kept where they reproduce them to 1e-9: the tangents are its
+  // derivatives d/du and d/dv (ptex orientation), evaluated row by row with Horner's rule, a
+  // fraction of net_tangents' work. Row j of `patch_segments` holds vertices (i, j), i = 0 .. s
+  // (Loop: s - j).
+  int patch_segments = 0;
+  bool patch_triangle = false;
+  std::vector<std::array<uint8_t, 2>> patch_powers;
+  std::vector<float> patch_weights;
 };
 
 struct ShapeTables {
