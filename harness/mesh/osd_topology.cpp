@@ -5,6 +5,7 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 
 #include <mutex>
+#include <vector>
 
 #include "harness/core/errors.h"
 
@@ -123,6 +124,18 @@ ControlMesh refined_level(const Far::TopologyRefiner& refiner, const ControlMesh
     if (s > 0.0f) out.corners.push_back({v, s});
   }
   return out;
+}
+
+bool far_tangent_masks_exact(const Far::TopologyLevel& l, int v, SubdivisionRule rule, bool infinite_only) {
+  Far::ConstIndexArray ve = l.GetVertexEdges(v);
+  const int faces = l.GetVertexFaces(v).size(), edges = ve.size(), side = rule == SubdivisionRule::Loop ? 3 : 2;
+  std::vector<int> sharp;
+  for (int i = 0; i < edges; ++i)
+    if (infinite_only ? l.IsEdgeInfSharp(ve[i]) : l.GetEdgeSharpness(ve[i]) > 0) sharp.push_back(i);
+  const bool corner = infinite_only ? l.IsVertexInfSharp(v) : l.GetVertexSharpness(v) > 0;
+  if (corner || sharp.size() > 2) return l.IsVertexBoundary(v) && faces == 1;
+  if (sharp.size() == 2) return l.IsVertexBoundary(v) ? faces == side : faces == 2 * side && sharp[1] - sharp[0] == side;
+  return sharp.empty() && edges >= 3;  // smooth; a dart (one sharp edge) is not
 }
 
 }  // namespace sdb

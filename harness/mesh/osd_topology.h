@@ -29,6 +29,16 @@ OpenSubdiv::Sdc::Options sdc_options(const ControlMesh& mesh);
 // Throws InputError with OpenSubdiv's own message when it refuses the topology.
 std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_refiner(const ControlMesh& mesh, SubdivisionRule rule);
 
+// Whether Far's limit tangent masks (Sdc's ComputeVertexLimitMask, PrimvarRefiner::Limit) are
+// the exact limit at vertex v: a smooth vertex of valence 3 or more, a crease with the regular
+// number of faces on each side (Catmull-Clark 2, Loop 3; at a boundary, that many in all), a
+// boundary corner of one face. Elsewhere (darts, valence 2, cone points, creases and corners of
+// other valences) they approximate it. Sharpness decides the rule: every sharp edge counts on a
+// level where it no longer decays; `infinite_only` counts only infinitely sharp edges and corners
+// (a base level whose semi-sharpness refinement will spend).
+bool far_tangent_masks_exact(const OpenSubdiv::Far::TopologyLevel& level, int v, SubdivisionRule rule,
+                             bool infinite_only = false);
+
 // The refiner's level `level` as a ControlMesh (creases, corners and holes carried over), with
 // positions interpolated by PrimvarRefiner. The refiner must have been refined uniformly to it.
 ControlMesh refined_level(const OpenSubdiv::Far::TopologyRefiner& refiner, const ControlMesh& base, int level);

@@ -51,19 +51,7 @@ double mean_edge_length(const ControlMesh& m, const std::vector<int>& off, int f
 // degrees from the limit, which the refined ring converges to (schemes/fragments/README.md).
 std::vector<char> inexact_corner_normals(const Far::TopologyLevel& l, SubdivisionRule rule) {
   std::vector<char> inexact(l.GetNumVertices(), 0);
-  const int side = rule == SubdivisionRule::Loop ? 3 : 2;
-  for (int v = 0; v < l.GetNumVertices(); ++v) {
-    Far::ConstIndexArray ve = l.GetVertexEdges(v);
-    const int faces = l.GetVertexFaces(v).size(), edges = ve.size();
-    std::vector<int> sharp;
-    for (int i = 0; i < edges; ++i)
-      if (l.IsEdgeInfSharp(ve[i])) sharp.push_back(i);
-    bool exact;
-    if (l.IsVertexInfSharp(v) || sharp.size() > 2) exact = l.IsVertexBoundary(v) && faces == 1;
-    else if (sharp.size() == 2) exact = l.IsVertexBoundary(v) ? faces == side : faces == 2 * side && sharp[1] - sharp[0] == side;
-    else exact = sharp.empty() && edges >= 3;
-    inexact[v] = !exact;
-  }
+  for (int v = 0; v < l.GetNumVertices(); ++v) inexact[v] = !far_tangent_masks_exact(l, v, rule, true);
   return inexact;
 }
 

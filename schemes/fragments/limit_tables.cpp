@@ -164,28 +164,6 @@ void TableBuilder<S>::add_limit_position(const Far::TopologyLevel& last, int v, 
                                      fw, {fref.begin(), fref.begin() + fw.size()}, lim.ring, "limit"));
 }
 
-// Far's limit masks are the exact limit at smooth vertices of valence 3 and more, at creases with
-// the regular number of faces on each side (Catmull-Clark 2, Loop 3; at a boundary, that many in
-// all) and at a boundary corner of one face. Its crease and corner position masks are exact at
-// any valence (the crease curve does not depend on it), its tangents there are not.
-template <Sdc::SchemeType S>
-bool TableBuilder<S>::far_tangents_are_exact(const Far::TopologyLevel& last, int v) const {
-  const int faces = last.GetVertexFaces(v).size(), edges = last.GetVertexEdges(v).size(), side = kCatmark ? 2 : 3;
-  switch (last.GetVertexRule(v)) {
-    case Sdc::Crease::RULE_SMOOTH: return edges >= 3;
-    case Sdc::Crease::RULE_CREASE: {
-      if (last.IsVertexBoundary(v)) return faces == side;
-      if (faces != 2 * side) return false;
-      int sharp[2] = {-1, -1};
-      for (int i = 0, k = 0; i < edges && k < 2; ++i)
-        if (last.GetEdgeSharpness(last.GetVertexEdges(v)[i]) > 0) sharp[k++] = i;
-      return sharp[1] - sharp[0] == side;
-    }
-    case Sdc::Crease::RULE_CORNER: return last.IsVertexBoundary(v) && faces == 1;
-    default: return false;
-  }
-}
-
 // The ring's rules repeat from this level on: no sharpness left that decays.
 template <Sdc::SchemeType S>
 bool TableBuilder<S>::stationary(const Far::TopologyLevel& last, int v) const {
@@ -199,7 +177,7 @@ bool TableBuilder<S>::stationary(const Far::TopologyLevel& last, int v) const {
 template <Sdc::SchemeType S>
 bool TableBuilder<S>::add_exact_limit_tangents(const Far::TopologyLevel& last, int v, int face,
                                                 std::map<uint32_t, std::pair<float, float>>& tangent) const {
-  if (far_tangents_are_exact(last, v) || !stationary(last, v)) return false;
+  if (far_tangent_masks_exact(last, v, rule_) || !stationary(last, v)) return false;
   Far::ConstIndexArray vf = last.GetVertexFaces(v);
   const int slot = static_cast<int>(std::find(vf.begin(), vf.end(), face) - vf.begin());
   const RingTangents t = ring_limit_tangents(last, refiner_->GetSchemeOptions(), kCatmark, v, slot);

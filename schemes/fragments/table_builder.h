@@ -123,7 +123,6 @@ class TableBuilder {
   // Tangents of v on `side` (side_of), `face` a face of that side.
   void add_limit_tangents(const Far::TopologyLevel& last, int v, int side, int face, LimitTable& lim) const;
 
-  bool far_tangents_are_exact(const Far::TopologyLevel& last, int v) const;
   bool stationary(const Far::TopologyLevel& last, int v) const;
   bool add_exact_limit_tangents(const Far::TopologyLevel& last, int v, int face,
                                 std::map<uint32_t, std::pair<float, float>>& tangent) const;

@@ -73,26 +73,11 @@ struct OsdLevel {
 // (darts, valence 2, creases and corners at extraordinary valence) they approximate, by up to
 // 0.9% of the diagonal at depth 2 on the corpus (README.md).
 bool far_limit_is_exact(const Far::TopologyLevel& l, int v, SubdivisionRule rule) {
-  using Rule = OpenSubdiv::Sdc::Crease::Rule;
-  const int faces = l.GetVertexFaces(v).size(), edges = l.GetVertexEdges(v).size();
   // Sharpness left at the last level: Far's masks take it as infinite.
   if (l.IsVertexSemiSharp(v)) return false;
   for (int e : l.GetVertexEdges(v))
     if (l.IsEdgeSemiSharp(e)) return false;
-  const int side = rule == SubdivisionRule::Loop ? 3 : 2;
-  switch (l.GetVertexRule(v)) {
-    case Rule::RULE_SMOOTH: return edges >= 3;
-    case Rule::RULE_CREASE: {
-      if (l.IsVertexBoundary(v)) return faces == side;
-      if (faces != 2 * side) return false;
-      int sharp[2] = {-1, -1};
-      for (int i = 0, k = 0; i < edges && k < 2; ++i)
-        if (l.GetEdgeSharpness(l.GetVertexEdges(v)[i]) > 0) sharp[k++] = i;
-      return sharp[1] - sharp[0] == side;
-    }
-    case Rule::RULE_CORNER: return l.IsVertexBoundary(v) && faces == 1;
-    default: return false;
-  }
+  return far_tangent_masks_exact(l, v, rule);
 }
 
 // The fragments' limit positions are exact at every vertex where Far's masks are, and at darts

@@ -21,7 +21,6 @@ using namespace sdb;
 namespace {
 
 namespace Far = OpenSubdiv::Far;
-using Rule = OpenSubdiv::Sdc::Crease::Rule;
 using Vec = std::array<double, 3>;
 using DoublePoint = PrimvarPointT<double>;
 using fragments::ring_limit_tangents;
@@ -38,25 +37,12 @@ double degrees(const Vec& a, const Vec& b) {
          180 / M_PI;
 }
 
-// Far's own masks are exact here (limit_tables.cpp's far_tangents_are_exact), or sharpness still
-// decays (the ring's rules do not repeat yet).
+// Far's own masks are exact here, or sharpness still decays (the ring's rules do not repeat yet).
 bool ordinary(const Far::TopologyLevel& l, int v, bool loop) {
   if (l.IsVertexSemiSharp(v)) return true;
   for (int e : l.GetVertexEdges(v))
     if (l.IsEdgeSemiSharp(e)) return true;
-  const int faces = l.GetVertexFaces(v).size(), edges = l.GetVertexEdges(v).size(), side = loop ? 3 : 2;
-  switch (l.GetVertexRule(v)) {
-    case Rule::RULE_SMOOTH: return edges >= 3;
-    case Rule::RULE_CREASE: {
-      if (l.IsVertexBoundary(v)) return faces == side;
-      int sharp[2] = {-1, -1};
-      for (int i = 0, k = 0; i < edges && k < 2; ++i)
-        if (l.GetEdgeSharpness(l.GetVertexEdges(v)[i]) > 0) sharp[k++] = i;
-      return faces == 2 * side && sharp[1] - sharp[0] == side;
-    }
-    case Rule::RULE_CORNER: return l.IsVertexBoundary(v) && faces == 1;
-    default: return false;
-  }
+  return far_tangent_masks_exact(l, v, loop ? SubdivisionRule::Loop : SubdivisionRule::CatmullClark);
 }
 
 struct Ring {
