@@ -80,6 +80,17 @@ TEST(Manifest, BuiltinsAndParametrisedNamesLoad) {
   EXPECT_THROW(load_mesh("no-such-mesh"), InputError);
 }
 
+// tests/fuzz: random-4000000-100 ran for hours (the rotations are quadratic in the quads).
+TEST(Generators, RandomQuadsAreCappedWhereTheirTimeIsBounded) {
+  EXPECT_EQ(num_faces(load_mesh("random-5000-10")), 5000);
+  try {
+    load_mesh("random-5001-100");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("random-5001-100: 5001 quads: at most 5000", 0), 0u) << e.what();
+  }
+}
+
 // A 60,000-character name overflowed the stack in libstdc++'s regex (found with tests/fuzz's
 // mesh-name target): a name that long is no generator name, and load_mesh says no such mesh.
 TEST(Manifest, LongNamesAreNoGeneratorNames) {

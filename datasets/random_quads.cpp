@@ -72,6 +72,13 @@ bool rotate(QuadMesh& m, int f1, int f2, uint64_t edge, int variant) {
 }  // namespace
 
 ControlMesh random_quads(int quads, double share, uint64_t seed) {
+  // Every rotation tried rebuilds the edge map and recounts the whole mesh, up to 20 x quads
+  // times: quadratic. The papers' stand-ins have at most 1,292 quads; at 5,000 the worst share
+  // (100%) takes seconds, at 20,000 minutes and at 4 M forever (found by tests/fuzz's mesh-name target).
+  constexpr int kMostQuads = 5000;
+  if (quads > kMostQuads)
+    throw InputError("random-quads", std::to_string(quads) + " quads: at most " + std::to_string(kMostQuads) +
+                                         " (the edge rotations take time quadratic in the quads)");
   int rows = 0;
   for (int r = static_cast<int>(std::sqrt(double(quads))); r >= 3; --r)
     if (quads % r == 0) { rows = r; break; }
