@@ -80,6 +80,27 @@ TEST(Manifest, BuiltinsAndParametrisedNamesLoad) {
   EXPECT_THROW(load_mesh("no-such-mesh"), InputError);
 }
 
+// tests/fuzz: random-4000000-100 ran for hours (the rotations are quadratic in the quads).
+TEST(Generators, RandomQuadsAreCappedWhereTheirTimeIsBounded) {
+  EXPECT_EQ(num_faces(load_mesh("random-1300-50")), 1300);
+  try {
+    load_mesh("random-1302-100");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("random-1302-100: 1302 quads: at most 1300", 0), 0u) << e.what();
+  }
+}
+
+// A 60,000-character name overflowed the stack in libstdc++'s regex (found with tests/fuzz's
+// mesh-name target): a name that long is no generator name, and load_mesh says no such mesh.
+TEST(Manifest, LongNamesAreNoGeneratorNames) {
+  const std::string name = "torus-" + std::string(60000, '1') + "x3";
+  EXPECT_FALSE(generated_mesh(name).has_value());
+  EXPECT_THROW(load_mesh(name), InputError);
+  EXPECT_EQ(num_faces(*generated_mesh("torus-3x4")), 12);
+  EXPECT_FALSE(generated_mesh("crane/spot_control").has_value());
+}
+
 // Every OBJ, OFF and PLY file of the shared corpus loads (non-manifold ones are reported, not refused).
 TEST(Manifest, EveryCorpusFileLoads) {
   if (!corpus_dir()) GTEST_SKIP() << "shared corpus not found beside the checkout";

@@ -72,7 +72,10 @@ struct NameParser {
   const std::string& name;
   std::smatch m;
 
-  bool match(const char* pattern) { return std::regex_match(name, m, std::regex(pattern)); }
+  // libstdc++'s regex recurses once per character: a 60,000-character name overflowed the stack.
+  // No generator name is longer than this (its numbers are at most 10 digits each).
+  static constexpr size_t kLongestName = 64;
+  bool match(const char* pattern) { return name.size() <= kLongestName && std::regex_match(name, m, std::regex(pattern)); }
   long number(int k) const {
     long v = 0;
     const std::string s = m[k].str();
@@ -178,14 +181,18 @@ std::optional<fs::path> corpus_file(const std::string& name) {
 
 bool corpus_has(const std::string& name) { return corpus_file(name).has_value(); }
 
-ControlMesh load_mesh(const std::string& name) {
+std::optional<ControlMesh> generated_mesh(const std::string& name) {
   for (const auto& b : named_meshes())
     if (name == b.name) {
       ControlMesh m = b.make();
       m.name = b.name;
       return m;
     }
-  if (auto m = parametrised(name)) return *m;
+  return parametrised(name);
+}
+
+ControlMesh load_mesh(const std::string& name) {
+  if (auto m = generated_mesh(name)) return *m;
   std::error_code ec;
   if (fs::is_regular_file(name, ec)) return read_mesh(name);
   if (auto file = corpus_file(name)) {

@@ -26,6 +26,11 @@ std::vector<MeshEntry> list_meshes();
 // corpus name, or a path to a file.
 ControlMesh load_mesh(const std::string& name);
 
+// The names load_mesh resolves without a file: a built-in name or a parametrised generator name
+// (those of registered providers included). The mesh; nullopt for a name of another form;
+// InputError, naming `name`, for a generator name it refuses (too small, past 4 M faces, ...).
+std::optional<ControlMesh> generated_mesh(const std::string& name);
+
 std::optional<std::string> corpus_dir();
 
 // Whether the corpus is present and holds NAME (as load_mesh resolves it), without reading it.

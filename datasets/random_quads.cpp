@@ -72,6 +72,14 @@ bool rotate(QuadMesh& m, int f1, int f2, uint64_t edge, int variant) {
 }  // namespace
 
 ControlMesh random_quads(int quads, double share, uint64_t seed) {
+  // Every rotation tried rebuilds the edge map and recounts the whole mesh, up to 20 x quads
+  // times: quadratic, and a share the rotations cannot reach uses every try (random-1806-1: 10 s,
+  // random-4000000-100: forever; found by tests/fuzz's mesh-name target). Faster rotations would
+  // pick other edges and change the stand-ins; the largest of them, the frog, has 1,292 quads.
+  constexpr int kMostQuads = 1300;
+  if (quads > kMostQuads)
+    throw InputError("random-quads", std::to_string(quads) + " quads: at most " + std::to_string(kMostQuads) +
+                                         " (the edge rotations take time quadratic in the quads)");
   int rows = 0;
   for (int r = static_cast<int>(std::sqrt(double(quads))); r >= 3; --r)
     if (quads % r == 0) { rows = r; break; }

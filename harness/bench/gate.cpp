@@ -78,6 +78,27 @@ bool GateReport::failed() const {
   return !problems.empty() || std::any_of(entries.begin(), entries.end(), [](const GateEntry& e) { return e.regression; });
 }
 
+namespace {
+
+// A significance level outside (0, 1) or a negative threshold would judge every change (or none)
+// without saying so: found by tests/fuzz (alpha 1.01 was taken).
+void require_judgeable(double alpha, double threshold, const std::string& path) {
+  if (!(alpha > 0 && alpha < 1)) throw InputError(path, "alpha must lie between 0 and 1, not " + std::to_string(alpha));
+  if (!(threshold >= 0) || !std::isfinite(threshold))
+    throw InputError(path, "a threshold must be a relative change of 0 or more, not " + std::to_string(threshold));
+}
+
+// A whole number of 1 or more (a float such as 1e300 into an int is undefined behaviour).
+int repetitions(const nlohmann::json& j, int fallback, const std::string& path) {
+  if (!j.contains("min_repetitions")) return fallback;
+  const nlohmann::json& v = j["min_repetitions"];
+  if (!v.is_number_integer() || v < 1 || v > 1000000)
+    throw InputError(path, "min_repetitions must be a whole number from 1 to 1000000, not " + v.dump());
+  return v.get<int>();
+}
+
+}  // namespace
+
 GateConfig read_gate_config(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a gate configuration");
@@ -88,8 +109,9 @@ GateConfig read_gate_config(const std::string& path) {
     nlohmann::json j;
     in >> j;
     c.alpha = j.value("alpha", c.alpha);
-    c.min_repetitions = j.value("min_repetitions", c.min_repetitions);
+    c.min_repetitions = repetitions(j, c.min_repetitions, path);
     c.default_threshold = j.value("default_threshold", c.default_threshold);
+    require_judgeable(c.alpha, c.default_threshold, path);
     for (const auto& t : j.value("thresholds", nlohmann::json::array())) {
       const std::string pattern = t.at("match").get<std::string>();
       try {
@@ -98,6 +120,7 @@ GateConfig read_gate_config(const std::string& path) {
         throw InputError(path, "threshold pattern '" + pattern + "' is not a regular expression: " + e.what());
       }
       c.thresholds.emplace_back(pattern, t.at("threshold").get<double>());
+      require_judgeable(c.alpha, c.thresholds.back().second, path);
     }
     for (const auto& w : j.value("workload", nlohmann::json::array())) {
       try {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <filesystem>
 #include <cmath>
+#include <cstdint>
 
 #include "harness/bench/run_spec.h"
 #include "harness/core/errors.h"
@@ -29,9 +30,26 @@ double number(const json& j, const char* key, double fallback) {
   return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
 }
 
-long integer(const json& j, const char* key, long fallback) {
+// A count or index: a whole number that fits T, never a conversion out of range (undefined for a
+// float such as 1e300 into an int; found by tests/fuzz). Missing or null: the fallback.
+template <class T>
+T whole(const json& j, const char* key, T fallback) {
   if (!j.contains(key) || j[key].is_null()) return fallback;
-  return j[key].get<long>();
+  const json& v = j[key];
+  using limits = std::numeric_limits<T>;
+  bool fits = false;
+  if (v.is_number_unsigned()) fits = v.get<uint64_t>() <= uint64_t(limits::max());
+  else if (v.is_number_integer()) {
+    const int64_t i = v.get<int64_t>();
+    fits = i < 0 ? limits::is_signed && i >= int64_t(limits::min()) : uint64_t(i) <= uint64_t(limits::max());
+  } else if (v.is_number_float()) {
+    const double d = v.get<double>();
+    fits = std::trunc(d) == d && d >= double(limits::min()) && d < std::ldexp(1.0, limits::digits);
+  } else {
+    throw json::type_error::create(302, std::string("'") + key + "' must be a number, not " + v.type_name(), &j);
+  }
+  if (!fits) throw json::other_error::create(501, std::string("'") + key + "' is not a whole number within range: " + v.dump(), &j);
+  return v.is_number_float() ? static_cast<T>(v.get<double>()) : v.get<T>();
 }
 
 }  // namespace
@@ -39,7 +57,7 @@ long integer(const json& j, const char* key, long fallback) {
 void from_json(const json& j, TimeStats& t) {
   if (j.is_null()) return;  // no timing: reps 0
   t.median = number(j, "median", NAN), t.min = number(j, "min", NAN), t.max = number(j, "max", NAN);
-  t.reps = static_cast<int>(integer(j, "reps", 0));
+  t.reps = whole(j, "reps", 0);
   if (j.contains("samples") && !j["samples"].is_null())
     for (const json& v : j["samples"]) t.samples.push_back(v.is_null() ? NAN : v.get<double>());
 }
@@ -129,21 +147,22 @@ void from_json(const json& j, RunRow& r) {
     r.bound.normal_deg = j["deviation_bound"].value("normal_deg", -1.0);
   }
   r.mesh = j.at("mesh");
-  r.mesh_faces = j.value("mesh_faces", 0), r.mesh_vertices = j.value("mesh_vertices", 0);
+  r.mesh_faces = whole(j, "mesh_faces", 0), r.mesh_vertices = whole(j, "mesh_vertices", 0);
   r.extraordinary_fraction = number(j, "extraordinary_fraction", 0.0);
-  r.level = j.at("level"), r.tessellation = j.value("tessellation", 0);
-  r.triangles = integer(j, "triangles", 0L), r.vertices = integer(j, "vertices", 0L);
+  (void)j.at("level");  // required: throws when missing
+  r.level = whole(j, "level", 0), r.tessellation = whole(j, "tessellation", 0);
+  r.triangles = whole(j, "triangles", 0L), r.vertices = whole(j, "vertices", 0L);
   r.time_ms = j.value("time_ms", json()).get<TimeStats>();
   if (j.contains("gpu_time_ms")) r.gpu_time_ms = j["gpu_time_ms"].get<TimeStats>();
   r.upload_ms = number(j, "upload_ms", 0.0), r.readback_ms = number(j, "readback_ms", 0.0);
   if (j.contains("gpu_passes"))
     for (const auto& p : j["gpu_passes"]) r.gpu_passes.push_back({p.at("label"), p.at("ms")});
   r.triangle_rate_mtris = number(j, "triangle_rate_mtris", 0.0);
-  r.bytes_out = integer(j, "bytes_out", 0L);
+  r.bytes_out = whole(j, "bytes_out", 0L);
   r.bandwidth_fraction = number(j, "bandwidth_fraction", 0.0);
   if (j.contains("watertight")) {
     const json& w = j["watertight"];
-    r.watertight = {w.value("open_edges", -1L), w.value("rays", 0L), w.value("ray_cracks", -1L), w.value("seed", uint64_t(0))};
+    r.watertight = {whole(w, "open_edges", -1L), whole(w, "rays", 0L), whole(w, "ray_cracks", -1L), whole(w, "seed", uint64_t(0))};
   }
   if (j.contains("deviation") && !j["deviation"].is_null()) {
     const json& d = j["deviation"];
@@ -175,7 +194,7 @@ void to_json(json& j, const MachineInfo& m) {
        {"write_bandwidth_mt_gbs", m.write_bandwidth_mt_gbs}, {"gpu_write_bandwidth_gbs", m.gpu_write_bandwidth_gbs}};
 }
 void from_json(const json& j, MachineInfo& m) {
-  m.cpu_model = j.value("cpu_model", ""), m.cores = j.value("cores", 0), m.memory_gib = number(j, "memory_gib", 0.0);
+  m.cpu_model = j.value("cpu_model", ""), m.cores = whole(j, "cores", 0), m.memory_gib = number(j, "memory_gib", 0.0);
   m.vulkan_device = j.value("vulkan_device", ""), m.vulkan_driver = j.value("vulkan_driver", "");
   m.vulkan_api = j.value("vulkan_api", "");
   m.opengl_renderer = j.value("opengl_renderer", ""), m.opengl_version = j.value("opengl_version", "");
@@ -232,20 +251,20 @@ ResultsFile read_results(const std::string& path) {
   json j;
   try {
     in >> j;
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number past double's range
     throw InputError(path, std::string("malformed JSON: ") + e.what());
   }
   if (!j.is_object() || !j.contains("schema") || !j["schema"].is_number_integer())
     throw InputError(path, "not a subdivbench results file (no integer 'schema')");
-  if (j["schema"].get<int>() != kResultsSchema)
-    throw InputError(path, "unknown results schema " + std::to_string(j["schema"].get<int>()) + " (this build reads " +
+  if (j["schema"] != kResultsSchema)
+    throw InputError(path, "unknown results schema " + j["schema"].dump() + " (this build reads " +
                                std::to_string(kResultsSchema) + ")");
   ResultsFile r;
   try {
     r.schema = j["schema"];
     r.machine = j.value("machine", json::object()).get<MachineInfo>();
     r.created = j.value("created", "");
-    r.rounds = j.value("rounds", 0);
+    r.rounds = whole(j, "rounds", 0);
     r.runs = j.at("runs").get<std::vector<RunRow>>();
   } catch (const json::exception& e) {
     throw InputError(path, std::string("malformed results: ") + e.what());

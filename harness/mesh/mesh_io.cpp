@@ -40,9 +40,11 @@ ControlMesh read_mesh(const std::string& path) {
   ControlMesh mesh;
   if (ext == ".obj") {
     mesh = parse_obj(read_text(path), path);
-  } else if (ext == ".off" || ext == ".ply") {
+  } else if (ext == ".off") {
     const std::string data = read_text(path);
-    mesh = ext == ".off" && !is_binary_off(data) ? parse_off(data, path) : read_openmesh_file(path, data);
+    mesh = is_binary_off(data) ? parse_binary_off(data, path) : parse_off(data, path);
+  } else if (ext == ".ply") {
+    mesh = read_openmesh_file(path, read_text(path));
   } else {
     throw InputError(path, "unknown mesh format '" + ext + "' (expected .obj, .off or .ply)");
   }
@@ -74,7 +76,8 @@ void check_mesh_data(const ControlMesh& m) {
     for (int k = 0; k < n; ++k) {
       const int v = m.face_vertices[off[f] + k];
       if (v < 0 || v >= nv)
-        throw InputError(face_location(m, f), "vertex index " + std::to_string(v + base) + " out of range (mesh has " +
+        // long: an OBJ index of 2^31 is stored as INT32_MAX and quoted 1-based (UBSan in tests/fuzz).
+        throw InputError(face_location(m, f), "vertex index " + std::to_string(long(v) + base) + " out of range (mesh has " +
                                                   std::to_string(nv) + " vertices)");
     }
   }

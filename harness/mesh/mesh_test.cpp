@@ -241,3 +241,83 @@ TEST(ReadMesh, TagIndicesNeverWrapIntoAnotherVertex) {
   EXPECT_THROW(parse_obj(cube + "t crease 9223372036854775807/1/0 0 1 2.0\n", "o.obj"), InputError);
   EXPECT_THROW(parse_obj(cube + "f 1 2 -9223372036854775808\n", "m.obj"), InputError);
 }
+
+namespace {
+
+// Binary OFF in OpenMesh's layout: little-endian int32 counts, float32 xyz, int32 size + indices.
+std::string binary_off(int32_t nv, int32_t nf, const std::vector<std::vector<int32_t>>& faces, int vertices_written) {
+  std::string s = "OFF BINARY\n";
+  auto put = [&](auto x) { s.append(reinterpret_cast<const char*>(&x), 4); };
+  put(nv), put(nf), put(int32_t(0));
+  for (int v = 0; v < vertices_written; ++v) put(float(v)), put(float(v % 2)), put(float(v / 2));
+  for (const auto& f : faces) {
+    put(int32_t(f.size()));
+    for (int32_t i : f) put(i);
+  }
+  return s;
+}
+
+std::string binary_off_error(const std::string& data) {
+  try {
+    parse_binary_off(data, "b.off");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ReadMesh, BinaryOffReadsOpenMeshLayout) {
+  ASSERT_TRUE(is_binary_off(binary_off(4, 2, {}, 0)));
+  const ControlMesh m = parse_binary_off(binary_off(4, 2, {{0, 1, 2}, {0, 2, 3}}, 4), "b.off");
+  EXPECT_EQ(num_vertices(m), 4);
+  EXPECT_EQ(m.face_sizes, (std::vector<int>{3, 3}));
+  EXPECT_EQ(m.face_vertices, (std::vector<int>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(m.positions[3], (Point3{3, 1, 1}));
+}
+
+// The fuzzer's first finding: OpenMesh reserved memory for whatever the header announced.
+TEST(ReadMesh, BinaryOffCountsAreHeldToTheFileSize) {
+  EXPECT_NE(binary_off_error(binary_off(2000000000, 2, {{0, 1, 2}}, 4)).find("more than the file's"), std::string::npos);
+  EXPECT_NE(binary_off_error(binary_off(4, 3, {{0, 1, 2}, {0, 2, 3}}, 4)).find("announces 4 vertices and 3 faces"),
+            std::string::npos);
+  EXPECT_NE(binary_off_error(binary_off(4, 1, {{0, 1, 2000000000}}, 4)).find("face 0: vertex index 2000000000 out of range"),
+            std::string::npos);
+  EXPECT_NE(binary_off_error(binary_off(4, 1, {{0, 1}}, 4) + std::string(8, '\0')).find("face 0 has 2 vertices"),
+            std::string::npos);
+  // "BINARY" inside another token is not the binary keyword: the ASCII reader refuses the count.
+  const std::string lying = "OFF\t777777777777777733BINARY\t\x13";
+  EXPECT_FALSE(is_binary_off(lying));
+  EXPECT_THROW(parse_off(lying, "x.off"), InputError);
+}
+
+// tests/fuzz: an OBJ index of 2^31 is out of range; quoting it 1-based overflowed an int.
+TEST(ObjReader, IndexAtIntLimitIsQuotedAsWritten) {
+  EXPECT_NE(obj_error(std::string(kQuad) + "f 1 2 2147483648\n").find("vertex index 2147483648 out of range"),
+            std::string::npos);
+}
+
+// tests/fuzz: OFF counts whose sum overflows a long were compared after adding them.
+TEST(ReadMesh, OffCountsThatOverflowTheirSumAreRefused) {
+  try {
+    parse_off("OFF 8888000000000000000 2122324063000000000\n0 0 0\n", "big.off");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("header announces 8888000000000000000 vertices"), std::string::npos) << e.what();
+  }
+}
+
+// tests/fuzz: OpenMesh loops forever on a PLY format line whose version is not a number.
+TEST(ReadMesh, PlyVersionOtherThanOneIsRefusedBeforeOpenMesh) {
+  const fs::path p = fs::temp_directory_path() / "sdb_mesh_test_version.ply";
+  std::ofstream(p) << "ply\nformat binary_little_endian o\x01" "0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  try {
+    read_mesh(p.string());
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":2: unknown PLY version"), std::string::npos) << e.what();
+  }
+  fs::remove(p);
+}

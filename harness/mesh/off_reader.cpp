@@ -55,10 +55,12 @@ OffHeader read_header(const std::vector<Line>& lines, const std::string& path) {
   }
   h.nv = n[0], h.nf = n[1], h.first_element = counts_line + 1;
   const long have = static_cast<long>(lines.size() - h.first_element);
-  if (have != h.nv + h.nf)
+  // Each count held to the lines alone first, so that their sum cannot overflow (tests/fuzz).
+  const bool more_announced = h.nv > have || h.nf > have || h.nv + h.nf > have;
+  if (more_announced || h.nv + h.nf != have)
     throw InputError(path, "header announces " + std::to_string(h.nv) + " vertices and " + std::to_string(h.nf) +
                                " faces, file has " + std::to_string(have) + " data lines" +
-                               (have > h.nv + h.nf ? " (more than announced)" : ""));
+                               (more_announced ? "" : " (more than announced)"));
   return h;
 }
 
@@ -75,11 +77,6 @@ void read_face(const LineParser& p, std::string_view line, long nv, ControlMesh&
 }
 
 }  // namespace
-
-bool is_binary_off(std::string_view text) {
-  const std::string_view first = text.substr(0, text.find('\n'));
-  return first.find("OFF") != std::string_view::npos && first.find("BINARY") != std::string_view::npos;
-}
 
 ControlMesh parse_off(std::string_view text, const std::string& path) {
   const auto lines = data_lines(text);

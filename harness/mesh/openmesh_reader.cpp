@@ -1,4 +1,4 @@
-// Binary OFF and PLY through OpenMesh's readers. OpenMesh's ImporterT repairs non-manifold input by
+// PLY through OpenMesh's reader. OpenMesh's ImporterT repairs non-manifold input by
 // duplicating vertices; we intercept faces before that happens and keep the file's data exactly,
 // so non-manifold input is reported instead of silently changed. PLY is checked first
 // (ply_check.cpp), so OpenMesh only ever sees a file whose header tells the truth.
@@ -45,9 +45,8 @@ void silence_openmesh() {
 
 ControlMesh read_openmesh_file(const std::string& path, std::string_view data) {
   silence_openmesh();
-  const bool ply = path.size() > 4 && (path.substr(path.size() - 4) == ".ply" || path.substr(path.size() - 4) == ".PLY");
-  PlyLayout layout;
-  if (ply) layout = check_ply(data, path);
+  // Checked whatever the extension's case (a ".Ply" once went to OpenMesh unchecked).
+  PlyLayout layout = check_ply(data, path);
 
   OmMesh om;
   RawImporter importer(om);
@@ -63,13 +62,11 @@ ControlMesh read_openmesh_file(const std::string& path, std::string_view data) {
   }
   m.face_sizes = std::move(importer.face_sizes);
   m.face_vertices = std::move(importer.face_vertices);
-  if (ply) {
-    if (static_cast<long>(m.positions.size()) != layout.vertices || static_cast<long>(m.face_sizes.size()) != layout.faces)
-      throw InputError(path, "OpenMesh read " + std::to_string(m.positions.size()) + " vertices and " +
-                                 std::to_string(m.face_sizes.size()) + " faces, the header announces " +
-                                 std::to_string(layout.vertices) + " and " + std::to_string(layout.faces));
-    m.face_lines = std::move(layout.face_lines);
-  }
+  if (static_cast<long>(m.positions.size()) != layout.vertices || static_cast<long>(m.face_sizes.size()) != layout.faces)
+    throw InputError(path, "OpenMesh read " + std::to_string(m.positions.size()) + " vertices and " +
+                               std::to_string(m.face_sizes.size()) + " faces, the header announces " +
+                               std::to_string(layout.vertices) + " and " + std::to_string(layout.faces));
+  m.face_lines = std::move(layout.face_lines);
   check_mesh_data(m);
   return m;
 }

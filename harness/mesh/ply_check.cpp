@@ -87,6 +87,8 @@ Header read_header(std::string_view data, const std::string& path) {
       else if (tok[1] == "binary_little_endian") h.format = Format::BinaryLittle;
       else if (tok[1] == "binary_big_endian") h.format = Format::BinaryBig;
       else p.fail("unknown PLY format " + text::quoted(tok[1]));
+      // OpenMesh reads the version as a number and loops forever on anything else (tests/fuzz).
+      if (tok[2] != "1.0") p.fail("unknown PLY version " + text::quoted(tok[2]) + " (1.0 is the only one)");
       have_format = true;
     } else if (tok[0] == "element") {
       if (tok.size() != 3) p.fail("malformed element line");

@@ -1,5 +1,6 @@
 #include "schemes/geometry-image/analytic.h"
 
+#include <charconv>
 #include <regex>
 
 #include "harness/core/errors.h"
@@ -26,11 +27,20 @@ GeometryImage analytic_image(AnalyticShape shape, int n) {
 }
 
 std::optional<ControlMesh> analytic_mesh_from_name(const std::string& name) {
+  // libstdc++'s regex recurses once per character (a 60,000-character name overflowed the stack);
+  // no name of this form is longer.
+  constexpr size_t kLongestName = 64;
   std::smatch m;
-  if (!std::regex_match(name, m, std::regex(R"(gim-(sphere|ellipsoid)-(\d+))"))) return std::nullopt;
-  const int n = std::stoi(m[2].str());
-  if (n < 5 || n % 2 == 0 || n > 4097)
-    throw InputError(name, "a geometry image needs an odd size between 5 and 4097, not " + m[2].str());
+  if (name.size() > kLongestName || !std::regex_match(name, m, std::regex(R"(gim-(sphere|ellipsoid)-(\d+))")))
+    return std::nullopt;
+  // (n - 1)^2 faces: 2001 is the largest odd size within the 4 M faces any generated mesh may have.
+  constexpr int kLargestSize = 2001;
+  const std::string digits = m[2].str();
+  int n = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+  if (ec != std::errc() || end != digits.data() + digits.size() || n < 5 || n % 2 == 0 || n > kLargestSize)
+    throw InputError(name, "a geometry image needs an odd size between 5 and " + std::to_string(kLargestSize) +
+                               " (at most 4 M faces), not " + digits.substr(0, 20) + (digits.size() > 20 ? "..." : ""));
   const AnalyticShape shape = m[1].str() == "sphere" ? AnalyticShape::Sphere : AnalyticShape::Ellipsoid;
   return closed_mesh(analytic_image(shape, n), name, "builtin:" + name);
 }

@@ -60,6 +60,7 @@ def files():
     f["index_over.obj"] = TRI_V + "f 1 2 9223372036854775808\n"
     f["index_wrap.obj"] = TRI_V + "f 1 2 4294967297\n"
     f["index_big.obj"] = TRI_V + "f 1 2 2147483649\n"
+    f["index_intmax.obj"] = TRI_V + "f 1 2 2147483648\n"  # tests/fuzz: quoting it overflowed an int
     f["v2.obj"] = "v 0 0\n" + TRI_V + "f 1 2 3\n"
     f["vnan.obj"] = TRI_V + "v nan 0 0\nf 1 2 4\n"
     f["vinf.obj"] = TRI_V + "v 0 -inf 0\nf 1 2 4\n"
@@ -137,6 +138,14 @@ def files():
     f["crlf.off"] = ("OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F).replace("\n", "\r\n")
     f["counts_inline.off"] = "OFF 8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F
     f["binary_lying.off"] = b"OFF BINARY\n" + struct.pack(">3i", 2000000000, 2000000000, 0) + b"\0" * 16
+    cube_bin = (b"OFF BINARY\n" + struct.pack("<3i", 8, 6, 0) + b"".join(struct.pack("<3f", *v) for v in CUBE_PTS) +
+                b"".join(struct.pack("<5i", 4, *q) for q in CUBE_QUADS))
+    f["cube_bin.off"] = cube_bin
+    f["bin_truncated.off"] = cube_bin[:-6]
+    f["bin_noff.off"] = b"N" + cube_bin
+    f["bin_keyword.off"] = b"OFF\t777777777777777733BINARY\t\x13"  # tests/fuzz's first finding
+    f["counts_overflow.off"] = "OFF 8888000000000000000 2122324063000000000\n0 0 0\n"  # tests/fuzz
+    f["version.ply"] = ply_ascii(8, 6, PLY_V, PLY_F).replace("ascii 1.0", "ascii o")  # tests/fuzz: OpenMesh hung
     # PLY
     f["cube.ply"] = ply_ascii(8, 6, PLY_V, PLY_F)
     f["cube_bin.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS)
@@ -177,6 +186,11 @@ def files():
     f["gate_shell.json"] = json.dumps({"workload": ["osd-uniform/cpu/cube' ; touch SHELL_RAN ; echo '/2"]})
     f["gate_badname.json"] = json.dumps({"workload": ["not-a-run-name"]})
     f["gate_ok.json"] = json.dumps({"alpha": 0.01, "min_repetitions": 3, "default_threshold": 0.1})
+    # tests/fuzz's findings: values the gate cannot judge with, numbers past int or double
+    f["gate_alpha.json"] = json.dumps({"alpha": 1.01})
+    f["gate_reps_float.json"] = '{"min_repetitions": 1e300}'
+    f["level_float.json"] = results([{"scheme": "osd-bfr", "backend": "cpu", "mesh": "cube", "level": 1e300}])
+    f["number_overflow.json"] = '{"schema": 1, "runs": [], "created": 22E517456166666665}'
     f["callgrind_bad.json"] = "{\"x\": 1}"
     return f
 

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "harness/mesh/facts.h"
+#include "schemes/geometry-image/analytic.h"
 #include "schemes/geometry-image/closed_mesh.h"
 #include "schemes/geometry-image/octahedral_map.h"
 #include "schemes/geometry-image/tests/test_support.h"
@@ -164,4 +165,13 @@ TEST(AnalyticImage, ManifestNamesGiveG0) {
   EXPECT_TRUE(image_from_closed_mesh(e));
   EXPECT_THROW(load_mesh("gim-sphere-32"), InputError);
   EXPECT_THROW(load_mesh("gim-sphere-3"), InputError);
+}
+
+// Found with tests/fuzz's mesh-name target: a size past int was std::stoi's out_of_range (exit 3),
+// sizes past 4 M faces were generated, and a long name overflowed the regex's recursion.
+TEST(AnalyticImage, NamesAreCheckedBeforeAnythingIsGenerated) {
+  EXPECT_THROW(load_mesh("gim-sphere-11111111111111111111"), InputError);
+  EXPECT_THROW(load_mesh("gim-sphere-2003"), InputError);
+  EXPECT_EQ(num_faces(*analytic_mesh_from_name("gim-sphere-5")), 16);
+  EXPECT_FALSE(analytic_mesh_from_name("gim-sphere-" + std::string(60000, '1')).has_value());
 }
