@@ -237,9 +237,11 @@ void patch_normals(const LimitTable& t, const Lanes<W>* net, Lanes<W>* normal) {
   const int s = t.patch_segments, m = static_cast<int>(t.patch_powers.size());
   Lanes<W> c[25];
   for (int k = 0; k < m; ++k) {
-    c[k] = {};
+    // Summed in a local: through c[k] every step waited on the previous one's store.
+    Lanes<W> sum{};
     const float* w = t.patch_weights.data() + size_t(k) * n;
-    for (uint32_t slot = 1; slot < n; ++slot) add_scaled(c[k], w[slot], net[slot]);
+    for (uint32_t slot = 1; slot < n; ++slot) add_scaled(sum, w[slot], net[slot]);
+    c[k] = sum;
   }
   for (int j = 0; j <= s; ++j) {
     const float v = float(j) / float(s);
