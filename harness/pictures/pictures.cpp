@@ -100,9 +100,17 @@ struct SchemeChoice {
   std::string spelled;
 };
 
+// In the order given, each once: the same name twice would draw the same files twice.
+std::vector<std::string> once_each(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const std::string& n : names)
+    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+  return out;
+}
+
 std::vector<SchemeChoice> resolve_schemes(const std::vector<std::string>& spelled) {
   std::vector<SchemeChoice> out;
-  for (const std::string& s : spelled.empty() ? default_schemes() : spelled) {
+  for (const std::string& s : once_each(spelled.empty() ? default_schemes() : spelled)) {
     SchemeChoice c{resolve_scheme(s), s};
     if (!has_cpu(c.resolved.scheme->info()))
       throw InputError(c.resolved.spec, "has no cpu backend; pictures draw the cpu backend's tessellation");
@@ -215,7 +223,9 @@ class MeshPictures {
       const auto& reference =
           measure_.reference(t.reference ? t.reference : s.accepted, s.scheme->resolved.scheme->info().reference);
       const std::vector<float> deviation = deviation_over_diagonal(t, reference);
-      const float max = *std::max_element(deviation.begin(), deviation.end());
+      float max = 0;  // of the finite values: a NaN takes the map's low end, as viridis() says
+      for (float d : deviation)
+        if (std::isfinite(d)) max = std::max(max, d);
       std::vector<Point3> colours(deviation.size());
       for (size_t i = 0; i < deviation.size(); ++i) colours[i] = viridis(max > 0 ? deviation[i] / max : 0.0f);
       s.deviation.deviation_range = {0.0, double(max)};
@@ -282,8 +292,11 @@ int picture_level(const Scheme& scheme, const ControlMesh& accepted, const Param
 
 PictureManifest write_pictures(const PictureRequest& request, const std::string& out_dir,
                                const PictureCallback& on_picture) {
+  if (request.width < 16 || request.height < 16 || request.width > 4096 || request.height > 4096)
+    throw InputError("pictures", "a picture of " + std::to_string(request.width) + " x " + std::to_string(request.height) +
+                                     " pixels: each side must be 16 to 4096");
   const std::vector<SchemeChoice> schemes = resolve_schemes(request.schemes);
-  const std::vector<std::string> meshes = request.meshes.empty() ? default_meshes() : request.meshes;
+  const std::vector<std::string> meshes = once_each(request.meshes.empty() ? default_meshes() : request.meshes);
   MeasureContext measure{MachineInfo{}};
   for (const std::string& mesh : meshes) measure.mesh(mesh);  // InputError for a bad name, before anything is written
   const fs::path dir = make_picture_dir(out_dir);

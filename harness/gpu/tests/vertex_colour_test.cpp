@@ -2,6 +2,7 @@
 // vertex is drawn, scaled by the same headlight shading as a single-colour picture.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -99,6 +100,26 @@ TEST_F(VertexColourTest, SupersamplingKeepsTheSizeAndSmoothsTheSilhouette) {
     return n;
   };
   EXPECT_GT(grey_pixels(smooth), grey_pixels(plain) + 50);
+}
+
+TEST_F(VertexColourTest, FramePointsFillsThePictureUpToItsMargin) {
+  const Tessellation sphere = unit_sphere(48, 96);
+  PictureOptions options;
+  options.width = 200, options.height = 100, options.supersample = 1;
+  options.camera = frame_points(sphere.positions, 2.0f, {0.3f, 0.2f, 1.0f}, 0.05f);
+  const Image image = render_image(ctx(), sphere, std::vector<Point3>(sphere.positions.size(), Point3{0, 0, 0}), options);
+  uint32_t top = image.height, bottom = 0, left = image.width, right = 0;
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      if (!is_white(image.pixel(x, y))) {
+        top = std::min(top, y), bottom = std::max(bottom, y);
+        left = std::min(left, x), right = std::max(right, x);
+      }
+  // The height binds (aspect 2): 5 pixels free above and below, the sphere centred across.
+  EXPECT_NEAR(top, 5, 2);
+  EXPECT_NEAR(bottom, 94, 2);
+  EXPECT_NEAR(int(left) + int(right), 199, 3);
+  EXPECT_NEAR(right - left, bottom - top, 3);
 }
 
 TEST_F(VertexColourTest, ColourCountMustMatchTheVertices) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -15,6 +16,7 @@
 #include "harness/gpu/testing.h"
 #include "harness/mesh/acceptance.h"
 #include "harness/pictures/colour_map.h"
+#include "harness/pictures/framing.h"
 #include "harness/pictures/pictures.h"
 
 namespace sdb::pictures {
@@ -94,6 +96,29 @@ TEST(PictureLevel, OutputNearTwoHundredThousandTriangles) {
   EXPECT_EQ(picture_level(fragments, accept_mesh(cube, fragments.info()), {}), 7);
 }
 
+// A box 8 long in x, 1 by 1 across, as twelve triangles.
+Tessellation long_box() {
+  Tessellation t;
+  for (int i = 0; i < 8; ++i) t.positions.push_back({i & 1 ? 8.0f : 0.0f, i & 2 ? 1.0f : 0.0f, i & 4 ? 1.0f : 0.0f});
+  t.normals = t.positions;  // not read
+  t.triangles = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  return t;
+}
+
+TEST(Framing, ALongShapeIsSeenFromItsSide) {
+  const Point3 d = view_direction(long_box());
+  // Across the long axis, from above the horizon: its long faces show, not its square ends.
+  EXPECT_LT(std::abs(d[0]), 0.3f);
+  EXPECT_GT(std::abs(d[2]), 0.8f);
+  EXPECT_GT(d[1], 0.3f);
+  // A cube shows as much from every side: the renderer's default view stays.
+  Tessellation cube = long_box();
+  for (Point3& p : cube.positions) p[0] /= 8;
+  const Point3 c = view_direction(cube);
+  EXPECT_NEAR(c[0] / c[2], 0.55, 1e-3);
+  EXPECT_NEAR(c[1] / c[2], 0.45, 1e-3);
+}
+
 TEST(WritePictures, BadRequestsThrowBeforeWritingAnything) {
   const fs::path dir = fresh_dir("bad");
   PictureRequest request;
@@ -104,6 +129,9 @@ TEST(WritePictures, BadRequestsThrowBeforeWritingAnything) {
   EXPECT_THROW(write_pictures(request, dir.string()), InputError);
   request.schemes = {"fragments-cc"};
   request.meshes = {"no-such-mesh"};
+  EXPECT_THROW(write_pictures(request, dir.string()), InputError);
+  request.meshes = {"cube"};
+  request.width = 0;
   EXPECT_THROW(write_pictures(request, dir.string()), InputError);
   EXPECT_FALSE(fs::exists(dir));
 }
