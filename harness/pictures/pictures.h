@@ -54,8 +54,9 @@ struct PictureManifest {
 // draw the same surface (geometry-image-permask beside geometry-image).
 std::vector<std::string> default_schemes();
 
-// A real corpus mesh when the corpus is present (Spot's control mesh, else a built-in), the frog
-// stand-in (the c-patch paper's model) and the icosphere (for the Loop scheme).
+// Spot's control mesh when the corpus is present (a real mesh; else the pole5 built-in, closed,
+// genus 0, with extraordinary vertices), the frog stand-in (the c-patch paper's model) and the
+// icosphere (for the Loop scheme).
 std::vector<std::string> default_meshes();
 
 // The level (depth or rate) whose estimated output is nearest, by ratio, to about 170 k triangles

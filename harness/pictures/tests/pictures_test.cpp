@@ -217,5 +217,19 @@ TEST_F(WritePicturesOnDevice, AFailedPictureIsRecordedAndTheOthersDrawn) {
   }
 }
 
+TEST_F(WritePicturesOnDevice, ASchemeRefusingTheMeshInPrepareLeavesANoteNotAFailure) {
+  const fs::path dir = fresh_dir("refused");
+  PictureRequest request;
+  request.schemes = {"cpatch-2pass"};
+  request.meshes = {"gim-ellipsoid-31"};  // passes acceptance; c-patches refuse its valence-2 vertices
+  request.level = 3;
+  request.width = 64, request.height = 48;
+  const PictureManifest m = write_pictures(request, dir.string());
+  EXPECT_TRUE(m.pictures.empty());
+  ASSERT_EQ(m.notes.size(), 1u);
+  EXPECT_NE(m.notes[0].find("valence 2"), std::string::npos) << m.notes[0];
+  EXPECT_EQ(read_json(dir / "pictures" / "pictures.json")["pictures"].size(), 0u);
+}
+
 }  // namespace
 }  // namespace sdb::pictures
