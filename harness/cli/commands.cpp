@@ -165,6 +165,7 @@ Verbs register_commands(CLI::App& app) {
   add_mesh_verbs(app, verbs);
   add_run_verbs(app, verbs);
   add_gate_verbs(app, verbs);
+  add_picture_verbs(app, verbs);
   return verbs;
 }
 
