@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -27,15 +28,15 @@ std::string registry_schemes() {
   return list;
 }
 
-// "3 files, shards 0, 1, 2 of 3"; says which shards are missing, so a partial sweep is not read
-// as the whole.
+// "merged from 3 files (shards of 3, all present)"; names the missing shards, so a partial sweep
+// is not read as the whole.
 std::string merged_from(const std::vector<ResultsFile>& files) {
-  if (files.size() < 2) return "";
   std::set<int> have;
   int count = 0;
   for (const auto& f : files)
     if (f.shard) have.insert(f.shard->index), count = std::max(count, f.shard->count);
-  std::string words = "merged from " + std::to_string(files.size()) + " files";
+  if (files.size() < 2 && count < 2) return "";
+  std::string words = "merged from " + std::to_string(files.size()) + (files.size() == 1 ? " file" : " files");
   if (count == 0) return words;
   std::string missing;
   for (int i = 0; i < count; ++i)
@@ -71,6 +72,8 @@ struct WorkFolder {
 
 void write_report(const std::vector<std::string>& inputs, const std::string& out_dir, const ReportOptions& options) {
   if (inputs.empty()) throw InputError("report", "no results file given");
+  if (options.history && !options.papers.empty())
+    throw InputError(options.papers.front(), "--paper belongs in a comparison report, not in --history");
   // Every input is read and checked here, before anything is written: a bad one is named in one
   // line and leaves an earlier report as it was.
   std::vector<ResultsFile> read;

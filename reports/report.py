@@ -55,6 +55,7 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
     body = [
         "<section id='summary'><h2>Summary</h2>",
         f"<p class='lede{' bad' if invalid else ''}'>{H.e(validity)}</p>",
+        (f"<p class='lede bad'>Part of a sweep only: {H.e(merged_from)}.</p>" if "MISSING" in merged_from else ""),
         "<h3>Fastest per mesh</h3>", H.sentences(fast),
         "<h3>Where each scheme wins and loses against its peer</h3>", H.sentences(verdicts, results.schemes),
         f"<h3>Matrix: meshes &times; schemes, per backend</h3><p class='reading'>{READING}</p>",
@@ -82,7 +83,7 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
 def md_cell(cell):
     if not cell.ok:
         return cell.row["status"]
-    ratio = "–"
+    ratio = "anchor" if not cell.peer else "no peer row"
     if cell.ratio is not None:
         if cell.paired:
             lo, hi, n = cell.ratio_range()

@@ -80,7 +80,13 @@ class History:
                 self._row.setdefault(name, r)
 
     def benchmarks(self):
-        return sorted(self._series, key=lambda n: (self.schemes.key(spec_of(self._row[n])), n))
+        """Those the gate would call slower somewhere first (the CI user's question), then the rest,
+        each group in the registry's order."""
+        return sorted(self._series, key=lambda n: (not self.moved(n, "slower"), self.schemes.key(spec_of(self._row[n])), n))
+
+    def moved(self, name, verdict):
+        """The indices of the files where the benchmark moved so (from the file before)."""
+        return [i for i in range(1, len(self.files)) if (self.change(name, i) or (0, ""))[1] == verdict]
 
     def series(self, name):
         return self._series[name]
@@ -139,9 +145,15 @@ def verdict_lines(history):
         for name in history.benchmarks():
             ch = history.change(name, i)
             if ch and ch[1] in moved:
-                p = f", p {ch[2]:.3f}" if ch[2] is not None else ""
+                p = p_words(ch[2])
                 moved[ch[1]].append(f"{name} {ch[0]:+.0%}{p}")
         said = [f"{k}: " + "; ".join(v) for k, v in moved.items() if v]
         lines.append((history.labels[i], ("; ".join(said) if said else "no change beyond the gate's thresholds")
                       + f" (against {history.labels[i - 1]})."))
     return lines
+
+
+def p_words(p):
+    if p is None:
+        return ""
+    return ", p < 0.001" if p < 0.001 else f", p {p:.3f}"

@@ -6,6 +6,7 @@ import os
 import re
 
 from report_data import bound_state, finite, fmt, spec_of, timing, watertight_state
+from report_history import p_words
 
 e = html.escape
 SCRIPT_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "report_tables.js")
@@ -379,7 +380,7 @@ def history_table(history):
             ch = history.change(name, i)
             if ch:
                 change, verdict, p = ch
-                p_text = f", p {p:.3f}" if p is not None else ""
+                p_text = p_words(p)
                 out.append(f"<td class='num {verdict}' data-v='{span.median!r}' title='{verdict}{p_text}'>"
                            f"{span.median:.3g} <span class='range'>{change:+.0%}</span></td>")
             else:

@@ -213,7 +213,12 @@ def history_plot(history, plot_dir):
             ax.errorbar([x for x, _ in pts], [s.median for _, s in pts],
                         yerr=[[s.median - s.low for _, s in pts], [s.high - s.median for _, s in pts]],
                         color=colour, marker="o", ms=4, capsize=3, lw=1.3)
-        ax.set_title(name, fontsize=8)
+        slower, faster = history.moved(name, "slower"), history.moved(name, "faster")
+        for i, colour_mark in [(i, "#d32f2f") for i in slower] + [(i, "#2e8b57") for i in faster]:
+            ax.plot([xs[i]], [series[i].median], marker="o", ms=11, mfc="none", mec=colour_mark, mew=2)
+        flag = " - SLOWER" if slower else " - faster" if faster else ""
+        ax.set_title(name + flag, fontsize=8, color="#d32f2f" if slower else "#2e8b57" if faster else "black",
+                     fontweight="bold" if flag else "normal")
         ax.set_ylabel(f"time / {history.normaliser(name)}", fontsize=7)
         ax.grid(True, alpha=0.3)
         ax.tick_params(labelsize=7)

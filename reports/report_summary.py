@@ -99,7 +99,7 @@ def validation_words(results, bad):
                 + "; none is past its scheme's deviation bound.")
     names = [f"{spec_of(r)}/{r['backend']}/{r['mesh']}/{r['level']} ({why(r)})" for r in bad[:8]]
     more = f" and {len(bad) - 8} more" if len(bad) > 8 else ""
-    return f"{len(bad)} of {len(checked)} rows are not valid: " + "; ".join(names) + more + "."
+    return f"Not valid: {len(bad)} of the {len(checked)} rows that ran: " + "; ".join(names) + more + "."
 
 
 def why(r):

@@ -81,6 +81,11 @@ TEST(Report, MergesShardsOfOneSweep) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = slurp(out / "report.html");
   EXPECT_NE(html.find("merged from 2 files (shards of 2, all present)"), std::string::npos);
+  // One shard alone is not the whole sweep, and the report says so.
+  const fs::path part = fresh_folder("one-shard");
+  ASSERT_EQ(run_cli(report_args({kData / "shards" / "shard0.json"}, part)).exit_code, 0);
+  EXPECT_NE(slurp(part / "report.html").find("Part of a sweep only: merged from 1 file (shards of 2; MISSING: 1)"),
+            std::string::npos);
 }
 
 TEST(Report, HistoryOverThreeCommitsRenders) {
