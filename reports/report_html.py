@@ -38,8 +38,10 @@ table.validation td{padding:2px 4px} .chip{display:inline-block;min-width:1.6em;
 .chip.na{background:#eee;color:#999}
 figure{margin:0 0 1.5em} figcaption{font-size:12px;color:#555;max-width:900px} img.plot{max-width:100%}
 .pictures-row{display:flex;flex-wrap:wrap;gap:14px;margin-bottom:1em}
-.picture{border:1px solid #ddd;padding:6px;background:#fff} .picture .pair{display:flex;gap:4px}
+.picture{border:1px solid #ddd;padding:6px;background:#fff;flex:0 0 auto} .picture .pair{display:flex;gap:4px}
+.picture figcaption{max-width:446px}
 .picture img{width:220px;height:auto;background:#000}
+.picture-error{width:220px;font-size:12px;color:#c0392b;padding:4px;white-space:normal}
 .colour-bar img{max-width:420px}
 .pictures-unavailable{background:#fff4e5;border-left:4px solid #f58231;padding:.6em 1em}
 .paper table td,.paper table th{text-align:right} .paper table td:first-child{text-align:left}
@@ -201,8 +203,7 @@ def pictures_section(manifest, manifest_path):
     for mesh, by_run in groups.items():
         out.append(f"<h3>{e(mesh)}</h3><div class='pictures-row'>")
         for (scheme, backend, level), kinds in by_run.items():
-            imgs = "".join(f"<img class='picture-{kind}' alt='{e(scheme)} {kind}' src='{png_uri(os.path.join(folder, kinds[kind]['file']))}'>"
-                           for kind in ("shaded", "deviation") if kind in kinds)
+            imgs = "".join(picture_img(kinds[kind], folder) for kind in ("shaded", "deviation") if kind in kinds)
             any_pic = next(iter(kinds.values()))
             rng = kinds.get("deviation", {}).get("deviation_range")
             rng_text = f", deviation {rng[0]:.2g}&ndash;{rng[1]:.2g}" if rng and len(rng) == 2 else ""
@@ -210,6 +211,13 @@ def pictures_section(manifest, manifest_path):
                        f"{e(backend)}, level {level}, {any_pic.get('triangles', 0):,} triangles{rng_text}</figcaption></figure>")
         out.append("</div>")
     return "\n".join(out)
+
+
+def picture_img(p, folder):
+    if not p.get("file"):
+        return f"<div class='picture-error'>{e(p['kind'])} picture not made: {e(p.get('error', 'no file'))}</div>"
+    return (f"<img class='picture-{e(p['kind'])}' alt='{e(p['scheme'])} {e(p['kind'])}' "
+            f"src='{png_uri(os.path.join(folder, p['file']))}'>")
 
 
 def markdown_to_html(text, folder):

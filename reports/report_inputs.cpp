@@ -41,6 +41,8 @@ void check_picture(const nlohmann::json& p, const fs::path& folder, const std::s
     if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
       throw InputError(manifest, "deviation_range is not two numbers: " + r.dump());
   }
+  // A picture that could not be made has its error instead of a file; the report shows the error.
+  if (!p.contains("file") && p.contains("error") && p["error"].is_string()) return;
   check_picture_file(p.value("file", nlohmann::json()), folder, manifest);
 }
 

@@ -55,6 +55,7 @@ TEST(Report, SummaryComesFirstWithPairedAndSinglePassRatios) {
   // The done-when sentence: per mesh, the fastest scheme per backend and its ratio to its peer.
   EXPECT_TRUE(std::regex_search(html, std::regex("on cpu [a-z0-9:=-]+ is fastest \\([0-9.]+ M triangles/s")));
   EXPECT_NE(html.find("class='picture-shaded'"), std::string::npos);
+  EXPECT_NE(html.find("shaded picture not made: vkQueueSubmit: VK_ERROR_DEVICE_LOST"), std::string::npos);
   EXPECT_NE(html.find("class='paper'"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos) << "nothing may be fetched";
   EXPECT_EQ(html.find("https://"), std::string::npos) << "nothing may be fetched";

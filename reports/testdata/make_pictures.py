@@ -44,6 +44,10 @@ def main():
         common = {"scheme": scheme, "mesh": mesh, "level": level, "backend": "vulkan", "triangles": tris}
         pictures.append(dict(common, kind="shaded", file=base + "-shaded.png"))
         pictures.append(dict(common, kind="deviation", file=base + "-deviation.png", deviation_range=[0.0, 1e-5 * (k + 1)]))
+    # A picture the renderer could not make is an entry with its error and no file (interfaces B).
+    for kind in ("shaded", "deviation"):
+        pictures.append({"scheme": "fragments-cc", "mesh": "quadsphere", "level": 3, "backend": "vulkan",
+                         "triangles": 12288, "kind": kind, "error": "vkQueueSubmit: VK_ERROR_DEVICE_LOST (planted in the fixture)"})
     bar = plt.get_cmap("viridis")(np.tile(np.linspace(0, 1, 256), (16, 1)))[:, :, :3]
     write("colour-bar.png", bar)
     manifest = {"schema": 1, "available": True, "reason": "", "device": "llvmpipe (LLVM 15.0.6, 256 bits)",
