@@ -22,7 +22,7 @@ READING = ("Each cell is the run at the level nearest 1 M output triangles (the 
            "it): triangle rate in M triangles/s; its ratio to the scheme's peer (above 1: faster than the peer), "
            "the median of paired rounds with their range and count where the run paired it, else marked single "
            "pass (each row measured once with other work around it: read it as a hint, not a figure); "
-           "&#10003; closed = no open edge and no ray crack; p95 = the 95th percentile of the distance from the "
+           "the rate is the paired rounds' median where the run paired the cell; &#10003; closed = no open edge and no ray crack; p95 = the 95th percentile of the distance from the "
            "limit surface in % of the local face size. The fastest per mesh and backend is outlined.")
 
 
