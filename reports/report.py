@@ -10,6 +10,7 @@ writes into a temporary folder it moves into place only when this script succeed
 import argparse
 import json
 import os
+import re
 import sys
 
 import report_html as H
@@ -124,7 +125,7 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
 
 
 def md_row_cells(r, results):
-    import re
+    """The Every-row table's cells as the HTML has them, for the Markdown."""
     cells = re.findall(r"<td[^>]*>(.*?)</td>", H.row_html(r, results))
     return [c.replace("|", "/") for c in cells]
 
