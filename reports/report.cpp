@@ -1,35 +1,123 @@
 #include "reports/report.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <set>
 
 #include "harness/bench/process.h"
 #include "harness/bench/results.h"
+#include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "reports/report_inputs.h"
+
+namespace fs = std::filesystem;
 
 namespace sdb {
+namespace {
 
-void write_report(const std::vector<std::string>& inputs, const std::string& out_dir) {
-  namespace fs = std::filesystem;
-  fs::create_directories(out_dir);
-  // The script reads what this build writes: every input is read here (refusing a bad one, or an
-  // unknown schema, with its name) and written again whole, every field present, NaN as null.
-  std::vector<ResultsFile> read;
-  for (const auto& in : inputs) read.push_back(read_results(in));  // all read before anything is written
-  const fs::path staging = fs::path(out_dir) / ".report-inputs";
-  fs::create_directories(staging);
-  std::vector<std::string> staged;
-  for (size_t i = 0; i < read.size(); ++i) {
-    staged.push_back((staging / (std::to_string(i) + ".json")).string());
-    write_results(read[i], staged.back());
+// The registry's schemes in its order, as name=role: each scheme's colour in every plot and every
+// report follows from it, not from which rows a file happens to hold.
+std::string registry_schemes() {
+  std::string list;
+  for (const auto& s : all_schemes())
+    list += (list.empty() ? "" : ",") + s->info().name + "=" + std::string(to_string(s->info().role));
+  return list;
+}
+
+// "merged from 3 files (shards of 3, all present)"; names the missing shards, so a partial sweep
+// is not read as the whole.
+std::string merged_from(const std::vector<ResultsFile>& files) {
+  std::set<int> have;
+  int count = 0;
+  for (const auto& f : files)
+    if (f.shard) have.insert(f.shard->index), count = std::max(count, f.shard->count);
+  if (files.size() < 2 && count < 2) return "";
+  std::string words = "merged from " + std::to_string(files.size()) + (files.size() == 1 ? " file" : " files");
+  if (count == 0) return words;
+  std::string missing;
+  for (int i = 0; i < count; ++i)
+    if (!have.count(i)) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
+  return words + " (shards of " + std::to_string(count) + (missing.empty() ? ", all present)" : "; MISSING: " + missing + ")");
+}
+
+// A folder of our own inside out_dir (on the same file system, so the final moves are renames).
+fs::path make_work_folder(const fs::path& out_dir) {
+  std::string pattern = (out_dir / ".report-XXXXXX").string();
+  if (!mkdtemp(pattern.data())) throw InputError(out_dir.string(), "cannot create a folder to write the report in");
+  return pattern;
+}
+
+// Moves plots/, report.md and report.html from `from` into `out_dir`, the HTML last: its presence
+// with a new time means the set is complete. An earlier plots/ is moved aside into `trash`.
+void move_into_place(const fs::path& from, const fs::path& out_dir, const fs::path& trash) {
+  if (fs::exists(out_dir / "plots")) fs::rename(out_dir / "plots", trash / "plots");
+  fs::rename(from / "plots", out_dir / "plots");
+  fs::rename(from / "report.md", out_dir / "report.md");
+  fs::rename(from / "report.html", out_dir / "report.html");
+}
+
+struct WorkFolder {
+  fs::path path;
+  ~WorkFolder() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
   }
+};
+
+}  // namespace
+
+void write_report(const std::vector<std::string>& inputs, const std::string& out_dir, const ReportOptions& options) {
+  if (inputs.empty()) throw InputError("report", "no results file given");
+  if (options.history && !options.papers.empty())
+    throw InputError(options.papers.front(), "--paper belongs in a comparison report, not in --history");
+  // Every input is read and checked here, before anything is written: a bad one is named in one
+  // line and leaves an earlier report as it was.
+  std::vector<ResultsFile> read;
+  for (const auto& in : inputs) read.push_back(read_results(in));
+  std::vector<ResultsFile> staged_files;
+  if (options.history) staged_files = read;
+  else staged_files.push_back(merge_results(read, inputs, {options.allow_mixed}));
+  std::optional<std::string> pictures;
+  if (!options.history) pictures = find_pictures_manifest(out_dir, inputs.front());
+  if (pictures) check_pictures_manifest(*pictures);
+  check_paper_tables(options.papers);
+
+  prepare_output_folder(out_dir);
+  const WorkFolder work{make_work_folder(out_dir)};
+  // The script reads what this build writes: the inputs written again whole (every field present,
+  // NaN as null, shards merged).
+  std::vector<std::string> staged;
+  for (size_t i = 0; i < staged_files.size(); ++i) {
+    staged.push_back((work.path / (std::to_string(i) + ".json")).string());
+    write_results(staged_files[i], staged.back());
+  }
+  const fs::path written = work.path / "report";
   // Debian's interpreter: python3-matplotlib lives there, not in a user's pyenv. An argument
   // vector, not a shell line: file names are data.
-  std::vector<std::string> argv = {"/usr/bin/python3", SDB_SOURCE_DIR "/reports/report.py", "--out", out_dir, "--"};
+  std::vector<std::string> argv = {"/usr/bin/python3", SDB_SOURCE_DIR "/reports/report.py", "--out", written.string(),
+                                   "--schemes", registry_schemes()};
+  if (options.history) {
+    argv.insert(argv.end(), {"--history", "--gate-config", SDB_SOURCE_DIR "/ci/gate.json", "--names"});
+    argv.insert(argv.end(), inputs.begin(), inputs.end());
+  } else {
+    argv.insert(argv.end(), {"--merged-from", merged_from(read)});
+  }
+  if (pictures) argv.insert(argv.end(), {"--pictures", *pictures});
+  for (const auto& p : options.papers) argv.insert(argv.end(), {"--paper", p});
+  argv.push_back("--");
   argv.insert(argv.end(), staged.begin(), staged.end());
   const ProcessResult r = run_process(argv);
-  std::error_code ec;
-  fs::remove_all(staging, ec);
-  if (r.exit_code != 0) throw InputError(out_dir, "report generation failed (reports/report.py, " + r.describe() + ")");
+  if (r.exit_code != 0)
+    throw InputError(out_dir, "report generation failed (reports/report.py, " + r.describe() + "); an earlier report is left as it was");
+  try {
+    move_into_place(written, out_dir, work.path);
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(out_dir, std::string("cannot move the report into place: ") + e.what());
+  }
 }
 
 }  // namespace sdb

@@ -1,221 +1,180 @@
 #!/usr/bin/python3
-"""Writes report.md and a self-contained report.html from one or more results.json files.
+"""Writes report.md and a self-contained report.html from results files, for a reader with a minute:
+the summary first (per mesh the fastest scheme per backend and its ratio to its peer, paired where
+the run paired it), then validation at a glance, plots, pictures, the papers' tables and every row.
+With --history, the files are one per commit and the report is the gate's view across them.
 
-Plots are made with matplotlib (Debian's python3-matplotlib) and embedded in the HTML as
-base64 PNG; the Markdown links the same PNGs from DIR/plots/.
+Run by `subdivbench report` (reports/report.cpp), which has read and validated every input and
+writes into a temporary folder it moves into place only when this script succeeded.
 """
 import argparse
-import base64
-import html
-import io
 import json
 import os
+import re
 import sys
-from collections import defaultdict
 
-import matplotlib
+import report_html as H
+from report_data import Results, load_results, fmt, spec_of
+from report_history import History, read_gate_config, verdict_lines
+from report_plots import cost_growth, deviation_distributions, history_plot, rate_grid
+from report_summary import fastest, fastest_lines, matrix, scheme_lines, validation_grid, validation_sentence
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-SCHEMA = 1
-
-
-def load(paths):
-    machine, created, rows = None, None, []
-    for p in paths:
-        with open(p) as f:
-            data = json.load(f)
-        if data.get("schema") != SCHEMA:
-            sys.exit(f"report: {p}: unknown results schema {data.get('schema')} (this report reads {SCHEMA})")
-        machine = machine or data.get("machine", {})
-        created = created or data.get("created", "")
-        rows.extend(nan_for_null(r) for r in data.get("runs", []))
-    return machine, created, rows
+READING = ("Each cell is the run at the level nearest 1 M output triangles (the paired level where the run paired "
+           "it): triangle rate in M triangles/s; its ratio to the scheme's peer (above 1: faster than the peer), "
+           "the median of paired rounds with their range and count where the run paired it, else marked single "
+           "pass (each row measured once with other work around it: read it as a hint, not a figure); "
+           "the rate is the paired rounds' median where the run paired the cell; &#10003; closed = no open edge and no ray crack; p95 = the 95th percentile of the distance from the "
+           "limit surface in % of the local face size. The fastest per mesh and backend is outlined.")
 
 
-def nan_for_null(row):
-    """JSON has no NaN: the harness writes it as null. Read back as NaN so arithmetic and plots
-    treat it as a missing figure rather than failing."""
-    def fix(v):
-        if isinstance(v, dict):
-            return {k: fix(x) for k, x in v.items()}
-        if isinstance(v, list):
-            return [fix(x) for x in v]
-        return float("nan") if v is None else v
-    keep_null = {"deviation", "gpu_time_ms", "peer_backend", "deviation_bound"}
-    return {k: (v if v is None and k in keep_null else fix(v)) for k, v in row.items()}
+def comparison(args, plot_dir):
+    data = load_results(args.inputs[0])
+    results = Results(data, args.scheme_order)
+    m = matrix(results)
+    fast = fastest_lines(results, m)
+    verdicts = scheme_lines(results, m)
+    invalid, validity = validation_sentence(results)
+    grid = validation_grid(results)
+    plots = [p for p in (rate_grid(results, plot_dir), cost_growth(results, plot_dir),
+                         deviation_distributions(results, plot_dir)) if p]
+    manifest = None
+    if args.pictures:
+        with open(args.pictures) as f:
+            manifest = json.load(f)
+    papers = []
+    for path in args.paper:
+        with open(path) as f:
+            papers.append((path, f.read()))
+    write_comparison_html(os.path.join(args.out, "report.html"), results, m, fast, verdicts, (invalid, validity), grid,
+                          plots, manifest, args.pictures, papers, args.merged_from)
+    write_comparison_md(os.path.join(args.out, "report.md"), results, m, fast, verdicts, validity, plots, manifest, papers)
 
 
-def peer_rates(rows):
-    """Triangle rate per (scheme, mesh, backend, tessellation) of the ok rows."""
-    return {(r["scheme"], r["mesh"], r["backend"], r["tessellation"]): r["triangle_rate_mtris"]
-            for r in rows if r["status"] == "ok"}
-
-
-def peer_of(r, rates):
-    """The row's peer (the scheme's SchemeInfo, recorded in the row) and its rate at the same mesh and
-    tessellation on the row's peer backend; (name, None) when that row is not in the file."""
-    peer, backend = r.get("peer") or "", r.get("peer_backend") or ""
-    if not peer or not backend:
-        return None, None
-    return f"{peer} ({backend})", rates.get((peer, r["mesh"], backend, r["tessellation"]))
-
-
-def time_of(r):
-    t = r.get("gpu_time_ms") or r["time_ms"]
-    return t["median"]
-
-
-def fmt(x, digits=3):
-    if x is None:
-        return "–"
-    if isinstance(x, (int,)) and not isinstance(x, bool):
-        return f"{x:,}"
-    return f"{x:.{digits}g}"
-
-
-COLUMNS = ["scheme", "backend", "mesh", "level", "tess", "triangles", "median ms", "Mtri/s", "× peer", "peer",
-           "bw %", "open edges", "cracks / rays", "dev max %", "dev p95 %", "normal max °", "Hausdorff", "status"]
-
-
-def table_rows(rows, rates):
-    out = []
-    for r in rows:
-        dev = r.get("deviation") or {}
-        wt = r.get("watertight", {})
-        peer, peer_rate = peer_of(r, rates)
-        ratio = r["triangle_rate_mtris"] / peer_rate if peer_rate and r["status"] == "ok" else None
-        cracks = f"{wt.get('ray_cracks')} / {wt.get('rays'):,}" if wt.get("ray_cracks", -1) >= 0 else "–"
-        status = r["status"] + (f": {r['message']}" if r.get("message") else "")
-        out.append([r.get("spec") or r["scheme"], r["backend"], r["mesh"], str(r["level"]), str(r["tessellation"]), fmt(r["triangles"]),
-                    fmt(time_of(r)) if r["status"] != "unsupported" else "–", fmt(r["triangle_rate_mtris"]),
-                    fmt(ratio), peer or "–", fmt(100 * r.get("bandwidth_fraction", 0)),
-                    fmt(wt.get("open_edges")) if wt.get("open_edges", -1) >= 0 else "–", cracks,
-                    fmt(dev.get("pos_max_pct")), fmt(dev.get("pos_p95_pct")), fmt(dev.get("normal_max_deg")),
-                    fmt(dev.get("hausdorff_rel")) if dev.get("hausdorff_rel", -1) >= 0 else "–", status])
-    return out
-
-
-def rate_plots(rows, plot_dir):
-    """One plot per mesh: triangle rate against tessellation (segments per edge), a line per scheme/backend."""
-    by_mesh = defaultdict(lambda: defaultdict(list))
-    for r in rows:
-        if r["status"] == "ok" and r["triangle_rate_mtris"] > 0:
-            by_mesh[r["mesh"]][(r["scheme"], r["backend"])].append((r["tessellation"], r["triangle_rate_mtris"]))
-    plots = []
-    for mesh, lines in sorted(by_mesh.items()):
-        fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
-        for (scheme, backend), pts in sorted(lines.items()):
-            pts.sort()
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=f"{scheme} ({backend})")
-        ax.set_xscale("log", base=2)
-        ax.set_yscale("log")
-        ax.set_xlabel("segments per base-face edge (depth k: 2^k, rate N: N-1)")
-        ax.set_ylabel("triangle rate (M tri/s)")
-        ax.set_title(f"{mesh}: triangle rate")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        name = "rate_" + mesh.replace("/", "_") + ".png"
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png")
-        plt.close(fig)
-        with open(os.path.join(plot_dir, name), "wb") as f:
-            f.write(buf.getvalue())
-        plots.append((mesh, name, base64.b64encode(buf.getvalue()).decode()))
-    return plots
-
-
-def deviation_plot(rows, plot_dir):
-    pts = [(f"{r['scheme']}/{r['backend']}/{r['mesh']}/{r['level']}", r["deviation"]["pos_max_pct"],
-            r["deviation"]["pos_p95_pct"]) for r in rows if r.get("deviation") and r["deviation"].get("pos_max_pct") is not None]
-    if not pts:
-        return None
-    pts = pts[:60]
-    fig, ax = plt.subplots(figsize=(8, max(3, 0.18 * len(pts))), dpi=100)
-    y = range(len(pts))
-    ax.barh(list(y), [max(p[1], 1e-9) for p in pts], label="max", alpha=0.6)
-    ax.barh(list(y), [max(p[2], 1e-9) for p in pts], label="95th percentile", alpha=0.8)
-    ax.set_yticks(list(y))
-    ax.set_yticklabels([p[0] for p in pts], fontsize=6)
-    ax.set_xscale("log")
-    ax.set_xlabel("distance to the limit at the same SurfaceCoord (% of local face size)")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png")
-    plt.close(fig)
-    with open(os.path.join(plot_dir, "deviation.png"), "wb") as f:
-        f.write(buf.getvalue())
-    return "deviation.png", base64.b64encode(buf.getvalue()).decode()
-
-
-def machine_lines(machine, created):
-    m = machine or {}
-    return [f"Created {created}",
-            f"CPU: {m.get('cpu_model', '?')}, {m.get('cores', '?')} cores, {m.get('memory_gib', 0):.0f} GiB",
-            f"Write bandwidth: {m.get('write_bandwidth_gbs', 0):.1f} GB/s one thread, "
-            f"{m.get('write_bandwidth_mt_gbs', 0):.1f} GB/s all threads",
-            f"Vulkan: {m.get('vulkan_device') or 'none'} {m.get('vulkan_driver', '')} {m.get('vulkan_api', '')}".rstrip(),
-            f"Build: {m.get('compiler', '?')}, {m.get('build_type', '?')}, commit {m.get('git_commit', '?')}"]
-
-
-def write_markdown(path, machine, created, table, plots, dev):
+def write_comparison_html(path, results, m, fast, verdicts, validation, grid, plots, manifest, manifest_path, papers,
+                          merged_from):
+    invalid, validity = validation
+    body = [
+        "<section id='summary'><h2>Summary</h2>",
+        f"<p class='lede{' bad' if invalid else ''}'>{H.e(validity)}</p>",
+        (f"<p class='lede bad'>Part of a sweep only: {H.e(merged_from)}.</p>" if "MISSING" in merged_from else ""),
+        "<h3>Fastest per mesh</h3>", H.sentences(fast),
+        "<h3>Where each scheme wins and loses against its peer</h3>", H.sentences(verdicts, results.schemes),
+        f"<h3>Matrix: meshes &times; schemes, per backend</h3><p class='reading'>{READING}</p>",
+        f"<div id='summary-matrix'>{H.summary_matrix(results, m, fastest)}</div></section>",
+        "<section id='validation'><h2>Validation</h2>",
+        "<p>One chip per level: <span class='chip good'>ok</span> closed (or open input) with no crack and within the "
+        "scheme's deviation bound on every backend; <span class='chip bad'>bad</span> an open edge, a crack, the bound "
+        "exceeded or a failure on some backend; <span class='chip grey'>?</span> not checked; "
+        "<span class='chip na'>n/a</span> not run (unsupported). Hover a chip for the figures.</p>",
+        H.validation_matrix(grid, results.meshes(), results.schemes), "</section>",
+        "<section id='plots'><h2>Plots</h2>", *[H.figure(p) for p in plots], "</section>",
+        "<section id='pictures'><h2>Pictures</h2>", H.pictures_section(manifest, manifest_path), "</section>",
+        "<section id='papers'><h2>Paper tables</h2>", H.paper_section(papers, results.machine), "</section>",
+        "<section id='paired'><h2>Paired cells</h2>", H.paired_table(results), "</section>",
+        "<section id='rows'><h2>Every row</h2>",
+        "<p>Ratios here are single pass (each row once); sort by a header, filter by scheme, backend and mesh.</p>",
+        H.rows_table(results), "</section>"]
+    nav = [("summary", "Summary"), ("validation", "Validation"), ("plots", "Plots"), ("pictures", "Pictures"),
+           ("papers", "Paper tables"), ("paired", "Paired cells"), ("rows", "Every row")]
     with open(path, "w") as f:
-        f.write("# subdivbench report\n\n")
-        for line in machine_lines(machine, created):
-            f.write(f"- {line}\n")
-        f.write("\nTimes are medians over repetitions; vulkan rows use GPU timestamp time. `× peer` is the "
-                "triangle rate over the row's peer's (the scheme's declared peer, on the backend named) on the "
-                "same mesh and tessellation in this run, measured once each, not paired; "
-                "`bw %` is the output bytes per second over the machine's write bandwidth.\n\n")
-        f.write("## Runs\n\n| " + " | ".join(COLUMNS) + " |\n|" + "---|" * len(COLUMNS) + "\n")
-        for row in table:
-            f.write("| " + " | ".join(c.replace("|", "/") for c in row) + " |\n")
-        f.write("\n## Triangle rate\n\n")
-        for mesh, name, _ in plots:
-            f.write(f"![{mesh}](plots/{name})\n\n")
-        if dev:
-            f.write(f"## Deviation from the OpenSubdiv limit\n\n![deviation](plots/{dev[0]})\n")
+        f.write(H.page("subdivbench report", H.machine_words(results.machine, results.created, H.e(merged_from)),
+                       nav, "\n".join(body)))
 
 
-def write_html(path, machine, created, table, plots, dev):
-    e = html.escape
-    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>subdivbench report</title><style>",
-             "body{font-family:sans-serif;margin:2em;} table{border-collapse:collapse;font-size:12px;}",
-             "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right;} td:nth-child(-n+3){text-align:left;}",
-             ".failed{background:#fdd;} img{max-width:100%;} .plots img{width:640px;}</style></head><body>",
-             "<h1>subdivbench report</h1><ul>"]
-    parts += [f"<li>{e(line)}</li>" for line in machine_lines(machine, created)]
-    parts.append("</ul><h2>Triangle rate</h2><div class='plots'>")
-    for mesh, _, b64 in plots:
-        parts.append(f"<img alt='{e(mesh)}' src='data:image/png;base64,{b64}'>")
-    parts.append("</div>")
-    if dev:
-        parts.append(f"<h2>Deviation from the OpenSubdiv limit</h2><img alt='deviation' src='data:image/png;base64,{dev[1]}'>")
-    parts.append("<h2>Runs</h2><table><tr>" + "".join(f"<th>{e(c)}</th>" for c in COLUMNS) + "</tr>")
-    for row in table:
-        cls = " class='failed'" if row[-1].startswith("failed") else ""
-        parts.append(f"<tr{cls}>" + "".join(f"<td>{e(c)}</td>" for c in row) + "</tr>")
-    parts.append("</table></body></html>")
+def md_cell(cell):
+    if not cell.ok:
+        return cell.row["status"]
+    ratio = "anchor" if not cell.peer else "no peer row"
+    if cell.ratio is not None:
+        if cell.paired:
+            lo, hi, n = cell.ratio_range()
+            ratio = f"{cell.ratio:.2f}x ({lo:.2f}-{hi:.2f}, {n} rounds)"
+        else:
+            ratio = f"{cell.ratio:.2f}x single pass"
+    return f"{fmt(cell.rate)} Mtri/s, {ratio}"
+
+
+def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manifest, papers):
+    out = ["# subdivbench report", "", H.machine_words(results.machine, results.created).replace("<code>", "`")
+           .replace("</code>", "`"), "", "## Summary", "", validity, "", "### Fastest per mesh", ""]
+    for mesh, parts in fast:
+        out += [f"- **{mesh}**"] + [f"  - {p}" for p in parts]
+    out += ["", "### Where each scheme wins and loses against its peer", ""]
+    out += [f"- **{spec}**: {text}" for spec, text in verdicts]
+    for backend, per_mesh in m.items():
+        specs = [s for s in results.specs(backend) if any(s in c for c in per_mesh.values())]
+        out += ["", f"### {backend}", "", "| mesh | " + " | ".join(specs) + " |", "|---" * (len(specs) + 1) + "|"]
+        for mesh, cells in per_mesh.items():
+            best = fastest(cells)
+            out.append(f"| {mesh} | " + " | ".join(
+                (f"**{md_cell(cells[s])}**" if s == best else md_cell(cells[s])) if s in cells else "" for s in specs) + " |")
+    out += ["", "## Plots", ""] + [f"![{p.title}](plots/{p.name})\n\n{p.caption}\n" for p in plots]
+    out += ["## Pictures", ""]
+    if manifest and manifest.get("available"):
+        out.append(f"{len(manifest.get('pictures', []))} pictures in pictures/ (see report.html).")
+    else:
+        out.append("No pictures: " + ((manifest or {}).get("reason") or "the run wrote no pictures/pictures.json") + ".")
+    out += ["", "## Paper tables", ""]
+    for p, text in papers:
+        out += [text.replace("\n#", "\n###"), ""]
+    out += ["## Every row", "", "| " + " | ".join(c[0] for c in H.ROW_COLUMNS) + " |", "|---" * len(H.ROW_COLUMNS) + "|"]
+    for r in sorted(results.rows, key=lambda r: (results.schemes.key(spec_of(r)), r["backend"], r["mesh"], r["level"])):
+        out.append("| " + " | ".join(H.html.unescape(c) for c in md_row_cells(r, results)) + " |")
     with open(path, "w") as f:
-        f.write("\n".join(parts))
+        f.write("\n".join(out) + "\n")
+
+
+def md_row_cells(r, results):
+    """The Every-row table's cells as the HTML has them, for the Markdown."""
+    cells = re.findall(r"<td[^>]*>(.*?)</td>", H.row_html(r, results))
+    return [c.replace("|", "/") for c in cells]
+
+
+def history(args, plot_dir):
+    files = [(name, load_results(path)) for name, path in zip(args.names or args.inputs, args.inputs)]
+    h = History(files, args.scheme_order, read_gate_config(args.gate_config))
+    plot = history_plot(h, plot_dir)
+    first = files[-1][1]
+    body = ["<section id='history'><h2>Gated benchmarks per commit</h2>",
+            f"<p class='lede'>{len(files)} results files, oldest first: {H.e(', '.join(h.labels))}. Each benchmark's "
+            "time is divided by its normaliser's in the same round (its peer's, as the gate does; the write probe's for "
+            "the anchors), so a busy machine cancels out; a cell is marked where the change from the previous commit "
+            "is beyond the gate's threshold and its U test calls it significant.</p>",
+            H.sentences(verdict_lines(h)), H.figure(plot), H.history_table(h), "</section>"]
+    with open(os.path.join(args.out, "report.html"), "w") as f:
+        f.write(H.page("subdivbench history", H.machine_words(first.get("machine"), first.get("created", "")),
+                       [("history", "History")], "\n".join(body)))
+    md = ["# subdivbench history", "", f"Commits, oldest first: {', '.join(h.labels)}", ""]
+    md += [f"- **{label}**: {text}" for label, text in verdict_lines(h)] + [""]
+    if plot:
+        md += [f"![{plot.title}](plots/{plot.name})", ""]
+    md += ["| benchmark | normalised by | " + " | ".join(h.labels) + " |", "|---" * (len(h.labels) + 2) + "|"]
+    for name in h.benchmarks():
+        cells = []
+        for i, s in enumerate(h.series(name)):
+            ch = h.change(name, i)
+            cells.append("–" if not s else f"{s.median:.3g}" + (f" ({ch[0]:+.0%}, {ch[1]})" if ch else ""))
+        md.append(f"| {name} | {h.normaliser(name)} | " + " | ".join(cells) + " |")
+    with open(os.path.join(args.out, "report.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--out", required=True)
+    ap.add_argument("--out", required=True, help="folder for report.md, report.html and plots/")
+    ap.add_argument("--history", action="store_true", help="the inputs are one results file per commit, oldest first")
+    ap.add_argument("--schemes", default="", help="the registry's schemes in its order, as name=role,... (the colours)")
+    ap.add_argument("--pictures", default="", help="pictures/pictures.json")
+    ap.add_argument("--paper", action="append", default=[], help="a paper table's Markdown (repeatable)")
+    ap.add_argument("--gate-config", default="", help="ci/gate.json: the history's thresholds")
+    ap.add_argument("--names", nargs="*", help="the inputs' names as the user gave them (history)")
+    ap.add_argument("--merged-from", default="", help="which files (shards) the one input was merged from")
     ap.add_argument("inputs", nargs="+")
     args = ap.parse_args()
-    machine, created, rows = load(args.inputs)
+    args.scheme_order = [tuple(s.split("=", 1)) if "=" in s else (s, "") for s in args.schemes.split(",") if s]
     plot_dir = os.path.join(args.out, "plots")
     os.makedirs(plot_dir, exist_ok=True)
-    table = table_rows(rows, peer_rates(rows))
-    plots = rate_plots(rows, plot_dir)
-    dev = deviation_plot(rows, plot_dir)
-    write_markdown(os.path.join(args.out, "report.md"), machine, created, table, plots, dev)
-    write_html(os.path.join(args.out, "report.html"), machine, created, table, plots, dev)
+    (history if args.history else comparison)(args, plot_dir)
 
 
 if __name__ == "__main__":

@@ -204,6 +204,49 @@ void from_json(const json& j, MachineInfo& m) {
   m.gpu_write_bandwidth_gbs = number(j, "gpu_write_bandwidth_gbs", 0.0);
 }
 
+namespace {
+
+json paired_json(const PairedCell& c) {
+  return {{"mesh", c.mesh},
+          {"scheme", c.row.scheme},
+          {"backend", to_string(c.row.backend)},
+          {"level", c.row.level},
+          {"triangles", c.row.triangles},
+          {"peer",
+           {{"scheme", c.peer.scheme}, {"backend", to_string(c.peer.backend)}, {"level", c.peer.level}, {"triangles", c.peer.triangles}}},
+          {"rounds", c.rounds},
+          {"rate_ratio",
+           {{"median", c.rate_ratio_median}, {"min", c.rate_ratio_min}, {"max", c.rate_ratio_max}, {"per_round", c.rate_ratio_per_round}}},
+          {"time_ms", {{"median", c.time_ms_median}}},
+          {"peer_time_ms", {{"median", c.peer_time_ms_median}}}};
+}
+
+PairedCell paired_from(const json& j) {
+  PairedCell c;
+  c.mesh = j.at("mesh");
+  c.row = {j.at("scheme"), backend_from(j, "backend"), whole(j, "level", 0), whole(j, "triangles", 0L)};
+  const json& p = j.at("peer");
+  c.peer = {p.at("scheme"), backend_from(p, "backend"), whole(p, "level", 0), whole(p, "triangles", 0L)};
+  c.rounds = whole(j, "rounds", 0);
+  const json& r = j.at("rate_ratio");
+  c.rate_ratio_median = number(r, "median", NAN), c.rate_ratio_min = number(r, "min", NAN), c.rate_ratio_max = number(r, "max", NAN);
+  if (r.contains("per_round") && !r["per_round"].is_null())
+    for (const json& v : r["per_round"]) c.rate_ratio_per_round.push_back(v.is_null() ? NAN : v.get<double>());
+  c.time_ms_median = j.contains("time_ms") ? number(j["time_ms"], "median", NAN) : NAN;
+  c.peer_time_ms_median = j.contains("peer_time_ms") ? number(j["peer_time_ms"], "median", NAN) : NAN;
+  return c;
+}
+
+std::optional<ShardInfo> shard_from(const json& j) {
+  if (!j.contains("shard") || j["shard"].is_null()) return std::nullopt;
+  const ShardInfo s{whole(j["shard"], "index", -1), whole(j["shard"], "count", 0)};
+  if (s.count < 1 || s.index < 0 || s.index >= s.count)
+    throw json::other_error::create(501, "'shard' must have 0 <= index < count: " + j["shard"].dump(), &j);
+  return s;
+}
+
+}  // namespace
+
 void prepare_output_folder(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -225,7 +268,12 @@ std::string row_json(const RunRow& row, int indent) {
 }
 
 void write_results(const ResultsFile& r, const std::string& path) {
-  const json j = {{"schema", r.schema}, {"machine", r.machine}, {"created", r.created}, {"rounds", r.rounds}, {"runs", r.runs}};
+  json j = {{"schema", r.schema}, {"machine", r.machine}, {"created", r.created}, {"rounds", r.rounds}, {"runs", r.runs}};
+  if (r.shard) j["shard"] = {{"index", r.shard->index}, {"count", r.shard->count}};
+  if (!r.paired.empty()) {
+    j["paired"] = json::array();
+    for (const PairedCell& c : r.paired) j["paired"].push_back(paired_json(c));
+  }
   const std::string tmp = path + ".partial";
   {
     std::ofstream out(tmp);
@@ -266,6 +314,9 @@ ResultsFile read_results(const std::string& path) {
     r.created = j.value("created", "");
     r.rounds = whole(j, "rounds", 0);
     r.runs = j.at("runs").get<std::vector<RunRow>>();
+    r.shard = shard_from(j);
+    if (j.contains("paired") && !j["paired"].is_null())
+      for (const json& c : j["paired"]) r.paired.push_back(paired_from(c));
   } catch (const json::exception& e) {
     throw InputError(path, std::string("malformed results: ") + e.what());
   }

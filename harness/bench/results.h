@@ -78,6 +78,33 @@ struct MachineInfo {
   double gpu_write_bandwidth_gbs = 0;  // the Vulkan device: a buffer fill timed by timestamps
 };
 
+// Which part of a sharded selection a file holds (`run --shard I/N`): the rows whose sorted
+// position p has p % count == index.
+struct ShardInfo {
+  int index = 0;  // 0-based
+  int count = 1;
+};
+
+// One side of a paired summary cell: a row of the same run, named by its parts.
+struct PairedSide {
+  std::string scheme;  // the spec, as in rows
+  Backend backend = Backend::Cpu;
+  int level = 0;
+  long triangles = 0;
+};
+
+// A summary cell measured in paired rounds: the scheme's row and its peer's, interleaved, so that
+// both see the same machine state in each round and their ratio is not one row's noise.
+struct PairedCell {
+  std::string mesh;
+  PairedSide row, peer;
+  int rounds = 0;
+  // Per round: (row triangles / row time) / (peer triangles / peer time); > 1: the scheme is faster.
+  std::vector<double> rate_ratio_per_round;
+  double rate_ratio_median = 0, rate_ratio_min = 0, rate_ratio_max = 0;
+  double time_ms_median = 0, peer_time_ms_median = 0;
+};
+
 struct ResultsFile {
   int schema = kResultsSchema;
   // > 0: written by `bench --rounds`; sample r of every row was measured in round r.
@@ -85,6 +112,8 @@ struct ResultsFile {
   MachineInfo machine;
   std::string created;  // ISO 8601, UTC
   std::vector<RunRow> runs;
+  std::optional<ShardInfo> shard;  // written by `run --shard I/N`
+  std::vector<PairedCell> paired;  // absent in the file when empty
 };
 
 std::string row_json(const RunRow& row, int indent = 2);  // indent < 0: one line

@@ -136,12 +136,10 @@ int paper(const GateOptions& opts) {
   throw InputError(opts.paper_id, "no such paper table (see `subdivbench paper list`)");
 }
 
-int report(const GateOptions& opts) {
-  if (opts.inputs.empty()) throw InputError("report", "--in FILE is required");
-  prepare_output_folder(opts.out.empty() ? "." : opts.out);
-  write_report(opts.inputs, opts.out.empty() ? "." : opts.out);
-  std::printf("wrote %s and %s\n", (fs::path(opts.out) / "report.md").string().c_str(),
-              (fs::path(opts.out) / "report.html").string().c_str());
+int report(const std::vector<std::string>& inputs, const std::string& out, const ReportOptions& options) {
+  const std::string dir = out.empty() ? "." : out;
+  write_report(inputs, dir, options);
+  std::printf("wrote %s and %s\n", (fs::path(dir) / "report.md").string().c_str(), (fs::path(dir) / "report.html").string().c_str());
   return 0;
 }
 
@@ -177,10 +175,22 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   gt->add_flag("--record", opts->record, "with --callgrind: write the counts to --baseline");
   verbs["gate"] = [opts] { return gate(*opts); };
 
+  struct ReportRequest {
+    std::vector<std::string> inputs;
+    std::string out;
+    ReportOptions options;
+  };
+  auto report_request = std::make_shared<ReportRequest>();
   auto* r = app.add_subcommand("report", "Write report.md and report.html from results files");
-  r->add_option("--in", opts->inputs, "results.json (repeatable)")->required();
-  r->add_option("--out", opts->out, "output folder");
-  verbs["report"] = [opts] { return report(*opts); };
+  r->add_option("--in", report_request->inputs,
+                "results.json (repeatable): the shards of one sweep, merged; with --history, one per commit")
+      ->required();
+  r->add_option("--out", report_request->out, "output folder");
+  r->add_option("--paper", report_request->options.papers, "a paper table's Markdown, from `subdivbench paper ID` (repeatable)");
+  r->add_flag("--history", report_request->options.history,
+              "the --in files are one per commit, oldest first: draw each gated benchmark's normalised time per commit");
+  r->add_flag("--allow-mixed", report_request->options.allow_mixed, "merge files from different commits or machines");
+  verbs["report"] = [report_request] { return report(report_request->inputs, report_request->out, report_request->options); };
 
   auto* p = app.add_subcommand("paper", "A paper's table, the paper's figures and ours side by side");
   p->add_option("id", opts->paper_id, "table id, or `list`");

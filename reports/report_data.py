@@ -1,0 +1,277 @@
+"""What the report reads from results files, and the figures it derives from them.
+
+Inputs were read and validated by `subdivbench report` (reports/report.cpp) and written again
+whole, so every field is present; JSON's null where a number belongs means "not measured".
+"""
+import json
+import math
+from collections import defaultdict
+
+SCHEMA = 1
+# The summary's common output size: each cell is the row whose output is nearest this.
+COMMON_TRIANGLES = 1_000_000
+CALIBRATION = "calibration"  # harness/bench/measure.h kCalibrationScheme
+BACKEND_ORDER = ["cpu", "cpu-mt", "vulkan", "opengl"]
+
+# One colour per scheme, the same in every plot and every report: the registry's methods (the
+# papers' schemes, what a reader looks for) take the strongest colours in the registry's order,
+# then its peers, then anything else; saturated colours only, no two alike.
+PALETTE = ["#d62728", "#ff7f0e", "#8c564b", "#2ca02c", "#17becf", "#9467bd", "#e377c2", "#bcbd22",
+           "#1f77b4", "#000075", "#7f7f7f", "#3b3b3b", "#808000", "#469990", "#4363d8", "#f032e6",
+           "#9a6324", "#b8860b", "#800000", "#00a86b", "#6a3d9a", "#ff1493", "#556b2f", "#008b8b"]
+BACKEND_STYLE = {"cpu": ("o", "-"), "cpu-mt": ("s", "--"), "vulkan": ("^", ":"), "opengl": ("D", "-.")}
+
+
+def load_results(path):
+    with open(path) as f:
+        data = json.load(f)
+    if data.get("schema") != SCHEMA:
+        raise ValueError(f"{path}: unknown results schema {data.get('schema')} (this report reads {SCHEMA})")
+    data["runs"] = [nan_for_null(r) for r in data.get("runs", [])]
+    return data
+
+
+def nan_for_null(row):
+    """JSON has no NaN: the harness writes it as null. Read back as NaN so arithmetic and plots
+    treat it as a missing figure rather than failing."""
+    def fix(v):
+        if isinstance(v, dict):
+            return {k: fix(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [fix(x) for x in v]
+        return float("nan") if v is None else v
+    keep_null = {"deviation", "gpu_time_ms", "peer_backend", "deviation_bound"}
+    return {k: (v if v is None and k in keep_null else fix(v)) for k, v in row.items()}
+
+
+def finite(x):
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def spec_of(r):
+    return r.get("spec") or r["scheme"]
+
+
+def timing(r):
+    """Vulkan rows are timed by GPU timestamps, the others by the wall clock (as the gate does)."""
+    return r.get("gpu_time_ms") or r["time_ms"]
+
+
+def backend_key(b):
+    return (BACKEND_ORDER.index(b) if b in BACKEND_ORDER else len(BACKEND_ORDER), b)
+
+
+class Schemes:
+    """The registry's order (peers, then methods, then test schemes) and a colour per scheme.
+
+    registry: [(name, role)] as `subdivbench report` passes it (--schemes name=role,...)."""
+
+    def __init__(self, registry, rows):
+        self.order = [name for name, _ in registry]
+        self.role = dict(registry)
+        for r in rows:
+            self.role.setdefault(r["scheme"], r.get("role", ""))
+        for name in sorted({r["scheme"] for r in rows} - set(self.order)):
+            self.order.append(name)
+        ranked = ([n for n in self.order if self.role.get(n) == "method"] + [n for n in self.order if self.role.get(n) == "peer"]
+                  + [n for n in self.order if self.role.get(n) not in ("method", "peer")])
+        self.colour = {name: PALETTE[i % len(PALETTE)] for i, name in enumerate(ranked)}
+
+    def key(self, spec):
+        base = spec.split(":")[0]
+        return (self.order.index(base) if base in self.order else len(self.order), spec)
+
+    def colour_of(self, spec):
+        return self.colour.get(spec.split(":")[0], "#333333")
+
+    def is_paper_scheme(self, spec):
+        return self.role.get(spec.split(":")[0]) == "method"
+
+
+class Results:
+    """One (merged) results file: its rows indexed the ways the report looks them up."""
+
+    def __init__(self, data, registry_order):
+        self.machine = data.get("machine", {})
+        self.created = data.get("created", "")
+        self.rounds = data.get("rounds", 0)
+        self.shard = data.get("shard")
+        self.rows = [r for r in data["runs"] if r["scheme"] != CALIBRATION]
+        self.paired = data.get("paired") or []
+        self.schemes = Schemes(registry_order, self.rows)
+        self._by_tess = {}
+        for r in self.rows:
+            if r["status"] == "ok":
+                self._by_tess[(spec_of(r), r["mesh"], r["backend"], r["tessellation"])] = r
+        self._paired = {(p["scheme"], p["mesh"], p["backend"]): p for p in self.paired}
+
+    def meshes(self):
+        return sorted({r["mesh"] for r in self.rows})
+
+    def backends(self):
+        return sorted({r["backend"] for r in self.rows}, key=backend_key)
+
+    def specs(self, backend=None):
+        return sorted({spec_of(r) for r in self.rows if backend is None or r["backend"] == backend}, key=self.schemes.key)
+
+    def peer_row(self, r):
+        """The row's peer (its scheme's SchemeInfo::peer, recorded in the row) at the same mesh and
+        tessellation on the row's peer backend, or None."""
+        if not r.get("peer") or not r.get("peer_backend"):
+            return None
+        return self._by_tess.get((r["peer"], r["mesh"], r["peer_backend"], r["tessellation"]))
+
+    def paired_cell(self, spec, mesh, backend):
+        return self._paired.get((spec, mesh, backend))
+
+    def summary_cell(self, spec, mesh, backend):
+        """The row the summary shows for (scheme, mesh, backend): the paired one when the run paired
+        this cell, else the ok row with output nearest COMMON_TRIANGLES (else any row, to show its
+        status)."""
+        rows = [r for r in self.rows if spec_of(r) == spec and r["mesh"] == mesh and r["backend"] == backend]
+        if not rows:
+            return None
+        p = self.paired_cell(spec, mesh, backend)
+        if p:
+            for r in rows:
+                if r["level"] == p["level"]:
+                    return Cell(r, self, p)
+        ok = [r for r in rows if r["status"] == "ok" and r["triangles"] > 0] or rows
+        return Cell(min(ok, key=lambda r: abs(math.log(max(r["triangles"], 1) / COMMON_TRIANGLES))), self, None)
+
+
+class Cell:
+    """A summary cell: a row, and its ratio to its peer, paired or single pass."""
+
+    def __init__(self, row, results, paired):
+        self.row = row
+        self.paired = paired
+        self.peer = None
+        self.ratio = None
+        if paired:
+            rr = paired["rate_ratio"]
+            self.ratio = rr.get("median")
+            self.peer = f"{paired['peer']['scheme']} ({paired['peer']['backend']})"
+        elif row["status"] == "ok":
+            peer = results.peer_row(row)
+            if peer and peer["triangle_rate_mtris"] > 0 and finite(row["triangle_rate_mtris"]):
+                self.ratio = row["triangle_rate_mtris"] / peer["triangle_rate_mtris"]
+                self.peer = f"{spec_of(peer)} ({peer['backend']})"
+            elif row.get("peer"):
+                self.peer = f"{row['peer']} ({row.get('peer_backend') or '?'})"
+
+    @property
+    def ok(self):
+        return self.row["status"] == "ok"
+
+    @property
+    def rate(self):
+        """M triangles/s: from the paired rounds' median time where the run paired the cell (the
+        single pass can read 40% off), else the row's."""
+        if not self.ok:
+            return None
+        if self.paired:
+            t = (self.paired.get("time_ms") or {}).get("median")
+            if finite(t) and t > 0 and self.paired.get("triangles", 0) > 0:
+                return self.paired["triangles"] / t / 1e3
+        return self.row["triangle_rate_mtris"]
+
+    def ratio_range(self):
+        if not self.paired:
+            return None
+        rr = self.paired["rate_ratio"]
+        return rr.get("min"), rr.get("max"), self.paired.get("rounds", len(rr.get("per_round", [])))
+
+    def verdict(self):
+        """'win', 'lose' or 'even' against the peer; None without a ratio. A paired cell wins only
+        when every round did (its range lies above 1), a single pass when its one ratio is above 1."""
+        if not finite(self.ratio):
+            return None
+        if self.paired:
+            lo, hi, _ = self.ratio_range()
+            if finite(lo) and lo > 1:
+                return "win"
+            if finite(hi) and hi < 1:
+                return "lose"
+            return "even"
+        return "win" if self.ratio > 1 else "lose"
+
+    def ratio_words(self):
+        """The ratio as the summary states it: '1.92x osd-bfr (cpu), median of 9 paired rounds, 1.71-2.04x'."""
+        if not finite(self.ratio):
+            return "no peer row to compare with" if self.peer else "no peer: it is the anchor"
+        if self.paired:
+            lo, hi, n = self.ratio_range()
+            return f"{self.ratio:.2f}x {self.peer}, median of {n} paired rounds, range {lo:.2f}-{hi:.2f}x"
+        return f"{self.ratio:.2f}x {self.peer}, single pass"
+
+
+def watertight_state(r):
+    """('closed' | 'open' | 'leaky' | 'unchecked', words)."""
+    wt = r.get("watertight", {})
+    open_edges, cracks, rays = wt.get("open_edges", -1), wt.get("ray_cracks", -1), wt.get("rays", 0)
+    if r["status"] == "unsupported":
+        return "unchecked", "not run"
+    if cracks is None or not finite(cracks) or cracks < 0:
+        if finite(open_edges) and open_edges >= 0:
+            return "open", f"open input ({int(open_edges)} boundary edges; no ray test)"
+        return "unchecked", "not checked"
+    if cracks > 0 or (finite(open_edges) and open_edges > 0):
+        return "leaky", f"{int(max(open_edges, 0))} open edges, {int(cracks)} cracks in {int(rays):,} rays"
+    return "closed", f"closed: 0 open edges, 0 cracks in {int(rays):,} rays"
+
+
+def bound_state(r):
+    """('kept' | 'past' | 'none' | 'unmeasured', words): the deviation against the scheme's bound."""
+    bound = r.get("deviation_bound") or {}
+    dev = r.get("deviation") or {}
+    pos_bound, normal_bound = bound.get("pos_rel_diag", -1), bound.get("normal_deg", -1)
+    if (not finite(pos_bound) or pos_bound < 0) and (not finite(normal_bound) or normal_bound < 0):
+        return "none", "no bound declared"
+    pos, normal = dev.get("pos_max_rel_diag"), dev.get("normal_max_deg")
+    if not finite(pos) and not finite(normal):
+        return "unmeasured", "deviation not measured"
+    past = []
+    if finite(pos_bound) and pos_bound >= 0 and finite(pos) and pos > pos_bound:
+        past.append(f"position {pos:.3g} of the diagonal > {pos_bound:.3g}")
+    if finite(normal_bound) and normal_bound >= 0 and finite(normal) and normal > normal_bound:
+        past.append(f"normal {normal:.3g} deg > {normal_bound:.3g}")
+    if past:
+        return "past", "past the bound: " + "; ".join(past)
+    return "kept", f"within the bound (position {fmt(pos)} <= {fmt(pos_bound)} of the diagonal)"
+
+
+def validation_state(r):
+    """The validation matrix's colour: 'good', 'bad', 'grey' (not checked or not run)."""
+    if r["status"] == "unsupported":
+        return "na"
+    wt, _ = watertight_state(r)
+    bd, _ = bound_state(r)
+    if r["status"] == "failed" or wt == "leaky" or bd == "past":
+        return "bad"
+    if wt in ("closed", "open") and bd in ("kept", "none", "unmeasured"):
+        return "good"
+    return "grey"
+
+
+def fmt(x, digits=3):
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "–"
+    if isinstance(x, int) and not isinstance(x, bool):
+        return f"{x:,}"
+    return f"{x:.{digits}g}"
+
+
+def median(values):
+    v = sorted(values)
+    n = len(v)
+    if n == 0:
+        return float("nan")
+    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+
+def group(rows, key):
+    out = defaultdict(list)
+    for r in rows:
+        out[key(r)].append(r)
+    return out

@@ -1,0 +1,165 @@
+// `subdivbench report` end to end on the fixtures under reports/testdata: what the summary says,
+// the history view, and bad input (one line naming the file, exit 2, an earlier report intact).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "tests/cli_helpers.h"
+
+namespace fs = std::filesystem;
+using sdb::test::run_cli;
+using sdb::test::slurp;
+
+namespace {
+
+const fs::path kData = fs::path(SDB_SOURCE_DIR) / "reports" / "testdata";
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path dir = fs::path(SDB_BINARY_DIR) / "report-test" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string report_args(const std::vector<fs::path>& inputs, const fs::path& out, const std::string& extra = "") {
+  std::string args = "report";
+  for (const auto& in : inputs) args += " --in " + in.string();
+  return args + " --out " + out.string() + " " + extra;
+}
+
+int lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+bool has_work_folder(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().rfind(".report-", 0) == 0) return true;
+  return false;
+}
+
+TEST(Report, SummaryComesFirstWithPairedAndSinglePassRatios) {
+  const fs::path out = fresh_folder("summary");
+  const auto r = run_cli(report_args({kData / "sample" / "results.json"}, out, "--paper " + (kData / "paper" / "table.md").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html");
+  const size_t summary = html.find("id='summary'"), rows = html.find("id='all-rows'");
+  ASSERT_NE(summary, std::string::npos);
+  ASSERT_NE(rows, std::string::npos);
+  EXPECT_LT(summary, html.find("id='plots'"));
+  EXPECT_LT(summary, rows);
+  EXPECT_NE(html.find("id='summary-matrix-cpu'"), std::string::npos);
+  // A paired cell prints its rounds and range; an unpaired one says it is a single pass.
+  EXPECT_TRUE(std::regex_search(html, std::regex("[0-9.]+&ndash;[0-9.]+, 5 rounds"))) << "paired range missing";
+  EXPECT_NE(html.find("single pass"), std::string::npos);
+  // The done-when sentence: per mesh, the fastest scheme per backend and its ratio to its peer.
+  EXPECT_TRUE(std::regex_search(html, std::regex("on cpu [a-z0-9:=-]+ is fastest \\([0-9.]+ M triangles/s")));
+  EXPECT_NE(html.find("class='picture-shaded'"), std::string::npos);
+  EXPECT_NE(html.find("shaded picture not made: vkQueueSubmit: VK_ERROR_DEVICE_LOST"), std::string::npos);
+  EXPECT_NE(html.find("class='paper'"), std::string::npos);
+  EXPECT_EQ(html.find("http://"), std::string::npos) << "nothing may be fetched";
+  EXPECT_EQ(html.find("https://"), std::string::npos) << "nothing may be fetched";
+  EXPECT_TRUE(fs::exists(out / "plots" / "cost_growth.png"));
+  const std::string md = slurp(out / "report.md");
+  EXPECT_NE(md.find("### Fastest per mesh"), std::string::npos);
+  // A paired cell's rate is the paired rounds' (the fixture's geometry-image on quadsphere: 10 M
+  // triangles/s there, 29.6 in its single pass).
+  EXPECT_NE(md.find("| 10 Mtri/s, 14.19x (14.02-16.35, 5 rounds) |"), std::string::npos) << md;
+  EXPECT_FALSE(has_work_folder(out));
+}
+
+TEST(Report, SaysWhyThereAreNoPictures) {
+  const fs::path out = fresh_folder("no-pictures");
+  fs::create_directories(out / "pictures");
+  std::ofstream(out / "pictures" / "pictures.json")
+      << R"json({"schema": 1, "available": false, "reason": "no Vulkan device (no ICD found)", "pictures": []})json";
+  const auto r = run_cli(report_args({kData / "sample" / "results.json"}, out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html");
+  EXPECT_NE(html.find("No pictures: no Vulkan device (no ICD found)."), std::string::npos);
+  EXPECT_EQ(html.find("class='picture-shaded'"), std::string::npos);
+}
+
+TEST(Report, MergesShardsOfOneSweep) {
+  const fs::path out = fresh_folder("shards");
+  const auto r = run_cli(report_args({kData / "shards" / "shard0.json", kData / "shards" / "shard1.json"}, out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html");
+  EXPECT_NE(html.find("merged from 2 files (shards of 2, all present)"), std::string::npos);
+  // One shard alone is not the whole sweep, and the report says so.
+  const fs::path part = fresh_folder("one-shard");
+  ASSERT_EQ(run_cli(report_args({kData / "shards" / "shard0.json"}, part)).exit_code, 0);
+  EXPECT_NE(slurp(part / "report.html").find("Part of a sweep only: merged from 1 file (shards of 2; MISSING: 1)"),
+            std::string::npos);
+}
+
+TEST(Report, HistoryOverThreeCommitsRenders) {
+  const fs::path out = fresh_folder("history");
+  const fs::path h = kData / "history";
+  const auto r = run_cli(report_args({h / "a.json", h / "b.json", h / "c.json"}, out, "--history"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html");
+  for (const char* commit : {"aaaaaaa", "bbbbbbb", "ccccccc"}) EXPECT_NE(html.find(commit), std::string::npos) << commit;
+  EXPECT_TRUE(fs::exists(out / "plots" / "history.png"));
+  // c.json planted cpatch-2pass 60% slower against its peer, round by round: the gate's verdict.
+  EXPECT_TRUE(std::regex_search(html, std::regex("<td class='num slower'[^>]*>[0-9.]+ <span class='range'>\\+[56][0-9]%")))
+      << "the planted slowdown is not marked";
+  const std::string md = slurp(out / "report.md");
+  EXPECT_NE(md.find("| cpatch-2pass/cpu/frog-standin/9 | osd-bfr, paired |"), std::string::npos) << md;
+}
+
+// A good report first; then the bad input must leave it exactly as it was.
+struct BadInput {
+  std::string name;
+  std::vector<fs::path> inputs;
+  fs::path named;  // the file the one line must name
+  std::string extra = "";
+};
+
+void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
+
+class ReportRefuses : public testing::TestWithParam<BadInput> {};
+
+TEST_P(ReportRefuses, OneLineNamingTheFileAndTheEarlierReportUntouched) {
+  const BadInput& bad = GetParam();
+  const fs::path out = fresh_folder("bad-" + bad.name);
+  ASSERT_EQ(run_cli(report_args({kData / "sample" / "results.json"}, out)).exit_code, 0);
+  const std::string before = slurp(out / "report.html"), plots_before = slurp(out / "plots" / "rate.png");
+  const auto time_before = fs::last_write_time(out / "report.html");
+
+  const auto r = run_cli(report_args(bad.inputs, out, bad.extra));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(bad.named.string()), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(out / "report.html"), before);
+  EXPECT_EQ(fs::last_write_time(out / "report.html"), time_before);
+  EXPECT_EQ(slurp(out / "plots" / "rate.png"), plots_before);
+  EXPECT_FALSE(has_work_folder(out));
+}
+
+const fs::path kBad = kData / "bad";
+INSTANTIATE_TEST_SUITE_P(
+    BadInputs, ReportRefuses,
+    testing::Values(
+        BadInput{"other-schema", {kData / "sample" / "results.json", kBad / "other-schema.json"}, kBad / "other-schema.json"},
+        BadInput{"truncated", {kBad / "truncated.json"}, kBad / "truncated.json"},
+        BadInput{"other-commit", {kData / "shards" / "shard0.json", kBad / "shard1-other-commit.json"},
+                 kBad / "shard1-other-commit.json"},
+        BadInput{"same-shard-twice", {kData / "shards" / "shard0.json", kBad / "shard0-again.json"}, kBad / "shard0-again.json"},
+        BadInput{"missing-paper", {kData / "sample" / "results.json"}, kBad / "no-such-table.md",
+                 "--paper " + (kBad / "no-such-table.md").string()},
+        BadInput{"bad-pictures", {kBad / "pictures-malformed" / "results.json"}, kBad / "pictures-malformed" / "pictures" / "pictures.json"},
+        BadInput{"picture-outside", {kBad / "pictures-escape" / "results.json"}, kBad / "pictures-escape" / "pictures" / "pictures.json"}),
+    [](const testing::TestParamInfo<BadInput>& param) {
+      std::string n = param.param.name;
+      std::replace(n.begin(), n.end(), '-', '_');
+      return n;
+    });
+
+TEST(Report, AllowMixedMergesOtherCommits) {
+  const fs::path out = fresh_folder("mixed");
+  const auto r = run_cli(report_args({kData / "shards" / "shard0.json", kBad / "shard1-other-commit.json"}, out, "--allow-mixed"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+}  // namespace
