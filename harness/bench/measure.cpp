@@ -239,7 +239,7 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
     row.message += std::string(row.message.empty() ? "" : "; ") +
                    "no SurfaceCoords (the scheme does not say where a vertex lies): Hausdorff distance only";
   }
-  if (o.hausdorff) {
+  if (o.hausdorff && !(o.hausdorff_only_without_coords && !t.coords.empty())) {
     const DenseLimit& dense = ctx.dense_reference(ref_mesh, rule);
     row.deviation.hausdorff_rel = hausdorff(t, dense.surface, *dense.scene).max();
   }

@@ -44,6 +44,10 @@ struct MeasureOptions {
   bool time = true;          // false: record the one validated execution instead of benchmarking
   bool validate = true;
   bool hausdorff = true;
+  // With hausdorff: only on rows without SurfaceCoords, where it is the one deviation figure (the
+  // quick set: the per-vertex deviation is there, and the dense reference's queries cost more
+  // than the rest of a row's validation).
+  bool hausdorff_only_without_coords = false;
   long rays = 100000;  // random lines; as many again aimed at base-face borders
   uint64_t seed = 1;
   int threads = 0;  // cpu-mt

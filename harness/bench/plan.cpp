@@ -105,6 +105,10 @@ MeasureOptions measure_options(const RunSelection& r) {
   m.rays = r.rays;
   m.seed = r.seed;
   m.validate = r.validate;
+  // The quick set: a first look in minutes. Its rows are single-pass figures either way (the
+  // paired rounds give the ratios), so shorter repetitions lose little.
+  m.hausdorff_only_without_coords = r.selection.quick;
+  if (r.selection.quick) m.min_time_s = kQuickMinTime;
   m.refusals_as_rows = !(r.selection.schemes.size() == 1 && r.selection.meshes.size() == 1);
   return m;
 }

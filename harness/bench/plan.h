@@ -67,6 +67,7 @@ std::vector<QuickMesh> quick_meshes();
 // whose output is nearest (in ratio) kQuickHigh triangles, then of the rest the one nearest
 // kQuickLow. Fewer when the scheme has fewer levels.
 inline constexpr long kQuickHigh = 1'000'000, kQuickLow = 100'000;
+inline constexpr double kQuickMinTime = 0.02;  // seconds per timed repetition (default 0.05)
 std::vector<int> quick_levels(const std::vector<std::pair<int, long>>& level_triangles);
 
 // The meshes of the default set: the union of the meshes the schemes ask for

@@ -27,6 +27,7 @@ namespace sdb::cli {
 namespace {
 
 constexpr int kQuickReps = 3, kQuickRounds = 3;
+constexpr long kQuickRays = 10000;
 // Each benchmark's time in a paired round: long enough to average a few executions of the small
 // rows, short enough that a default run's cells cost seconds, not minutes.
 constexpr double kPairedMinTime = 0.03;
@@ -214,7 +215,8 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   r->add_flag("--no-validate", opts->no_validate, "time only");
   auto* quick = r->add_flag("--quick", opts->quick,
                             "the quick set: every scheme on a quad, a triangle and a real mesh at two levels each "
-                            "(about 100 k and 1 M triangles), 3 repetitions and 3 paired rounds unless given");
+                            "(about 100 k and 1 M triangles); 3 repetitions, 3 paired rounds and 10000 rays unless "
+                            "given, Hausdorff distances only where no per-vertex deviation is measured");
   quick->excludes(r->get_option("--all"))->excludes(r->get_option("--all-corpus"));
   r->add_option("--shard", opts->shard,
                 "run shard I of N (0 <= I < N) of the selection: the runs whose position among the sorted run names "
@@ -238,10 +240,12 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
               "measure every row in this process, for profilers and debuggers (default: in a worker process, "
               "so that a crash in a library fails its row and the run goes on)");
   const CLI::Option* reps = r->get_option("--reps");
-  verbs["run"] = [opts, selection, reps, rounds] {
+  const CLI::Option* rays = r->get_option("--rays");
+  verbs["run"] = [opts, selection, reps, rays, rounds] {
     const bool given = std::any_of(selection.begin(), selection.end(), [](const CLI::Option* o) { return o->count() > 0; });
     if (opts->quick && reps->count() == 0) opts->reps = kQuickReps;
     if (opts->quick && rounds->count() == 0) opts->rounds = kQuickRounds;
+    if (opts->quick && rays->count() == 0) opts->rays = kQuickRays;
     return run(*opts, given);
   };
 
