@@ -522,35 +522,28 @@ std::unique_ptr<LazyRun> calibration_run(Backend backend) {
   return lazy;
 }
 
-// Shows the rounds' progress: an item begins when its benchmark first asks for its evaluation in
-// a round, and ends when Google Benchmark reports it.
+// Shows the rounds' progress: a terminal's status line names each benchmark as it first asks for
+// its evaluation in a round; a round is one item.
 class ProgressReporter : public TeeReporter {
  public:
   ProgressReporter(benchmark::BenchmarkReporter* display, Progress* progress) : TeeReporter(display), progress_(progress) {}
-  void ReportRuns(const std::vector<Run>& runs) override {
-    TeeReporter::ReportRuns(runs);
-    if (!progress_) return;
-    for (const Run& r : runs)
-      if (r.run_type == Run::RT_Iteration) {
-        progress_->done(r.run_name.function_name + (r.error_occurred ? "  error: " + r.error_message : ""), r.error_occurred);
-        started_.clear();
-        break;
-      }
-  }
   void began(const std::string& name) {
     if (!progress_ || started_ == name) return;  // Google Benchmark calls a benchmark more than once
     started_ = name;
-    progress_->begin(name);
+    progress_->begin(round_ + ": " + name);
+  }
+  void round_begins(int round, int rounds) {
+    round_ = "round " + std::to_string(round + 1) + "/" + std::to_string(rounds);
+    started_.clear();
+  }
+  void round_ends(size_t benchmarks) {
+    if (progress_) progress_->done(round_, ": " + std::to_string(benchmarks) + " benchmarks timed", false);
   }
 
  private:
   Progress* progress_;
-  std::string started_;
+  std::string started_, round_;
 };
-
-}  // namespace
-
-namespace {
 
 std::vector<Backend> calibration_backends(const std::vector<RunSpec>& specs, const BenchRounds& how) {
   std::vector<Backend> backends;
@@ -561,10 +554,6 @@ std::vector<Backend> calibration_backends(const std::vector<RunSpec>& specs, con
 }
 
 }  // namespace
-
-size_t round_items(const std::vector<RunSpec>& specs, const BenchRounds& how) {
-  return (specs.size() + calibration_backends(specs, how).size()) * size_t(std::max(how.rounds, 0));
-}
 
 std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& o, MeasureContext& ctx,
                                benchmark::BenchmarkReporter* display, const BenchRounds& how) {
@@ -601,10 +590,12 @@ std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureO
     // its peer are measured close in time, so the gate can pair them.
     std::mt19937 shuffle(12345);
     for (int r = 0; r < rounds; ++r) {
+      tee.round_begins(r, rounds);
       std::shuffle(order.begin(), order.end(), shuffle);
       register_all(order, 1);
-      benchmark::RunSpecifiedBenchmarks(&tee);
+      const size_t timed = benchmark::RunSpecifiedBenchmarks(&tee);
       benchmark::ClearRegisteredBenchmarks();
+      tee.round_ends(timed);
     }
   }
   std::vector<RunRow> rows;

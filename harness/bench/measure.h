@@ -108,7 +108,7 @@ struct BenchRounds {
   int rounds = 0;
   double min_time_s = 0;     // > 0: each benchmark's time per round; 0: the flag's
   bool calibration = true;   // rounds: the write probe's rows beside the schemes' (the gate's unit)
-  Progress* progress = nullptr;  // rounds: one item per benchmark per round
+  Progress* progress = nullptr;  // rounds: one item per round
 };
 
 // Registers every spec with Google Benchmark (prepared lazily on first use) and runs them under
@@ -116,10 +116,6 @@ struct BenchRounds {
 // `display` (may be null) shows flag-mode runs.
 std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& options,
                                MeasureContext& context, benchmark::BenchmarkReporter* display, const BenchRounds& how = {});
-
-// The progress items of bench_runs in rounds: every spec and calibration row once per round
-// (a spec the scheme declines counts, though it is not timed).
-size_t round_items(const std::vector<RunSpec>& specs, const BenchRounds& how);
 
 // Sees every measure_run of this thread begin and end while it lives: how `paper` shows the
 // progress of tables that measure their cells with measure_run (only the table knows how many).

@@ -93,9 +93,7 @@ std::map<std::string, std::vector<RunSpec>> specs_by_mesh(const std::vector<Pair
 }  // namespace
 
 size_t paired_items(const std::vector<PairedPlanCell>& cells, int rounds) {
-  size_t n = 0;
-  for (const auto& [mesh, specs] : specs_by_mesh(cells)) n += specs.size();
-  return n * size_t(std::max(rounds, 0));
+  return specs_by_mesh(cells).size() * size_t(std::max(rounds, 0));
 }
 
 std::vector<PairedCell> measure_paired(const std::vector<PairedPlanCell>& cells, const PairedOptions& options,

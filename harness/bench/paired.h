@@ -41,7 +41,7 @@ std::vector<PairedCell> measure_paired(const std::vector<PairedPlanCell>& cells,
                                        MeasureContext& context, Progress* progress,
                                        const std::function<void(const std::string&)>& note);
 
-// Items measure_paired shows progress for: distinct rows per mesh times rounds.
+// Items measure_paired shows progress for: a round of a mesh's cells is one.
 size_t paired_items(const std::vector<PairedPlanCell>& cells, int rounds);
 
 }  // namespace sdb

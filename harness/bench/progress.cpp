@@ -76,16 +76,16 @@ void Progress::begin(const std::string& item) {
   if (terminal_) draw_status();
 }
 
-void Progress::done(const std::string& line, bool keep) {
+void Progress::done(const std::string& head, const std::string& tail, bool keep) {
   ++done_;
   current_.clear();
   if (!terminal_) {
-    out_ << counter() << "  " << line << "\n" << std::flush;
+    out_ << head << " " << counter() << tail << "\n" << std::flush;
     return;
   }
   if (keep) {
     clear_status();
-    out_ << line << "\n";
+    out_ << head << tail << "\n";
   }
   draw_status();
 }

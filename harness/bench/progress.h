@@ -33,9 +33,10 @@ class Progress {
 
   // An item starts: on a terminal the status line names it.
   void begin(const std::string& item);
-  // The item finished; `line` is its result. Plain output prints it with the count; a terminal
-  // prints it above the status line only when `keep` (a failure, a crack), and redraws the status.
-  void done(const std::string& line, bool keep);
+  // The item finished: `head` names it, `tail` is its result. Plain output prints one line, the
+  // count between head and tail (a log's lines still start with what they are about); a terminal
+  // prints head and tail above the status line only when `keep` (a failure, a crack).
+  void done(const std::string& head, const std::string& tail, bool keep);
   // A message that is not a row (a note, a warning): printed whole in either mode.
   void note(const std::string& line);
   // Leaves the terminal without a status line; idempotent.

@@ -33,14 +33,14 @@ TEST(Progress, PlainOutputIsOneLinePerRowWithCountAndEstimate) {
   Progress p(out, false, 4, t.clock());
   p.begin("a/cpu/cube/1");
   t.now += 10;
-  p.done("a/cpu/cube/1 ok", false);
+  p.done("a/cpu/cube/1", " ok", false);
   p.begin("b/cpu/cube/1");
   t.now += 20;
-  p.done("b/cpu/cube/1 FAILED", true);
+  p.done("b/cpu/cube/1", " FAILED", true);
   p.close();
   EXPECT_EQ(out.str(),
-            "[1/4]   10s elapsed, ETA   30s  a/cpu/cube/1 ok\n"
-            "[2/4]   30s elapsed, ETA   30s  b/cpu/cube/1 FAILED\n");
+            "a/cpu/cube/1 [1/4]   10s elapsed, ETA   30s ok\n"
+            "b/cpu/cube/1 [2/4]   30s elapsed, ETA   30s FAILED\n");
   EXPECT_EQ(out.str().find('\r'), std::string::npos);
   EXPECT_EQ(out.str().find('\033'), std::string::npos);
 }
@@ -52,10 +52,10 @@ TEST(Progress, TerminalRewritesOneStatusLineAndKeepsOnlyNotableRows) {
     Progress p(out, true, 3, t.clock(), 200);
     p.begin("a/cpu/cube/1");
     t.now += 5;
-    p.done("a/cpu/cube/1 ok", false);
+    p.done("a/cpu/cube/1", " ok", false);
     p.begin("b/cpu/cube/1");
     t.now += 5;
-    p.done("b/cpu/cube/1 cracks 3", true);
+    p.done("b/cpu/cube/1", " cracks 3", true);
   }  // the destructor clears the status line
   const std::string s = out.str();
   EXPECT_EQ(s,
@@ -95,9 +95,9 @@ TEST(Progress, EstimateFollowsThePaceSoFar) {
   Progress p(out, false, 10, t.clock());
   EXPECT_LT(p.eta(), 0);
   t.now += 4;
-  p.done("x", false);
+  p.done("x", "", false);
   t.now += 4;
-  p.done("y", false);
+  p.done("y", "", false);
   EXPECT_DOUBLE_EQ(p.elapsed(), 8);
   EXPECT_DOUBLE_EQ(p.eta(), 32);  // 4 s a row, 8 rows left
   EXPECT_EQ(p.finished(), 2u);
@@ -108,7 +108,7 @@ TEST(Progress, WithoutATotalCountsAndGivesNoEstimate) {
   std::ostringstream out;
   Progress p(out, false, 0, t.clock());
   t.now += 3;
-  p.done("cell", false);
-  EXPECT_EQ(out.str(), "[1] 3s elapsed  cell\n");
+  p.done("cell", "", false);
+  EXPECT_EQ(out.str(), "cell [1] 3s elapsed\n");
   EXPECT_LT(p.eta(), 0);
 }

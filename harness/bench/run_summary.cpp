@@ -43,10 +43,10 @@ std::vector<std::string> summary_lines(const RunSummary& s, const std::string& r
     lines.push_back("other failures (" + std::to_string(s.failures.size()) + " rows):");
     for (const std::string& f : s.failures) lines.push_back("  " + f);
   }
-  lines.push_back("results: " + results_json);
+  lines.push_back("wrote " + results_json);
   if (!report_dir.empty()) {
     const std::filesystem::path dir(report_dir);
-    lines.push_back("report:  " + (dir / "report.html").string() + " (and " + (dir / "report.md").string() + ")");
+    lines.push_back("wrote " + (dir / "report.html").string() + " (and " + (dir / "report.md").string() + ")");
   }
   return lines;
 }

@@ -40,12 +40,12 @@ TEST(RunSummary, CountsStatusesAndNamesCrackedRows) {
   const auto lines = summary_lines(s, "out/results.json", "out");
   EXPECT_EQ(lines.front(), "5 rows: 2 ok, 1 unsupported, 2 failed");
   EXPECT_NE(std::find(lines.begin(), lines.end(), "  c-patch/cpu/torus/4: 2 open edges, 5 ray cracks of 100 rays"), lines.end());
-  EXPECT_NE(std::find(lines.begin(), lines.end(), "results: out/results.json"), lines.end());
-  EXPECT_NE(std::find(lines.begin(), lines.end(), "report:  out/report.html (and out/report.md)"), lines.end());
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "wrote out/results.json"), lines.end());
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "wrote out/report.html (and out/report.md)"), lines.end());
 }
 
 TEST(RunSummary, SaysWhenEverythingIsWatertightAndNoReportWasWritten) {
   const auto lines = summary_lines(summarise({row("cube", RunStatus::Ok, 0, 0)}), "r.json", "");
   EXPECT_EQ(lines[1], "watertight: every closed input gave a closed surface without ray cracks");
-  EXPECT_EQ(lines.back(), "results: r.json");
+  EXPECT_EQ(lines.back(), "wrote r.json");
 }

@@ -66,8 +66,7 @@ int bench(const GateOptions& opts) {
   BenchRounds how{opts.rounds};
   std::optional<Progress> progress;
   if (opts.rounds > 0)
-    how.progress = &progress.emplace(std::cout, stdout_is_terminal(), round_items(plan.runs, how), Progress::steady_seconds,
-                                     terminal_columns());
+    how.progress = &progress.emplace(std::cout, stdout_is_terminal(), size_t(opts.rounds), Progress::steady_seconds, terminal_columns());
   results.runs = bench_runs(plan.runs, m, ctx, &console, how);
   if (progress) progress->close();
   if (opts.rounds > 0)
@@ -144,8 +143,9 @@ int paper(const GateOptions& opts) {
       // On standard error: the table on standard output stays what the paper verb writes.
       Progress progress(std::cerr, stderr_is_terminal(), 0, Progress::steady_seconds, terminal_columns());
       MeasureObserver observer([&](const RunSpec& spec) { progress.begin(spec.name()); },
-                               [&](const RunRow& row) { progress.done(row.name() + "  " + std::string(to_string(row.status)),
-                                                                      row.status == RunStatus::Failed); });
+                               [&](const RunRow& row) {
+                                 progress.done(row.name(), "  " + std::string(to_string(row.status)), row.status == RunStatus::Failed);
+                               });
       return t.run(options, std::cout);
     }
   throw InputError(opts.paper_id, "no such paper table (see `subdivbench paper list`)");

@@ -58,11 +58,17 @@ struct RunOptions {
   long worker_parent = 0;
 };
 
-std::string row_line(const RunRow& r) {
+// The row's name padded to a column, and its figures.
+std::string row_head(const RunRow& r) {
+  std::string head = r.name();
+  head.resize(std::max<size_t>(head.size(), 44), ' ');
+  return head;
+}
+
+std::string row_figures(const RunRow& r) {
   char buf[512];
-  std::string line = r.name();
-  line.resize(std::max<size_t>(line.size(), 44), ' ');
-  if (r.status == RunStatus::Unsupported) return line + " unsupported: " + r.message;
+  std::string line;
+  if (r.status == RunStatus::Unsupported) return " unsupported: " + r.message;
   std::snprintf(buf, sizeof buf, " %9ld tris %9.3f ms %8.2f Mtri/s bw %5.1f%%", r.triangles,
                 r.gpu_time_ms ? r.gpu_time_ms->median : r.time_ms.median, r.triangle_rate_mtris, 100 * r.bandwidth_fraction);
   line += buf;
@@ -78,7 +84,7 @@ std::string row_line(const RunRow& r) {
   return line;
 }
 
-void print_row(const RunRow& r) { std::printf("%s\n", row_line(r).c_str()); }
+void print_row(const RunRow& r) { std::printf("%s%s\n", row_head(r).c_str(), row_figures(r).c_str()); }
 
 MeasureOptions validate_options(const RunOptions& opts) {
   MeasureOptions m;
@@ -133,9 +139,9 @@ std::vector<PairedCell> paired_figures(RunSet& set, const ResultsFile& results, 
     return {};
   }
   const size_t items = paired_items(cells, opts.rounds);
-  std::printf("paired rounds: %zu summary cells (each scheme+backend at the level nearest %s triangles against its peer), "
-              "%d rounds, %zu timings\n",
-              cells.size(), "1 M", opts.rounds, items);
+  std::printf("paired rounds: %zu summary cells (each scheme+backend at the level nearest 1 M triangles against its peer), "
+              "%d rounds on each of %zu meshes\n",
+              cells.size(), opts.rounds, items / size_t(opts.rounds));
   std::fflush(stdout);
   Progress progress(std::cout, stdout_is_terminal(), items, Progress::steady_seconds, terminal_columns());
   auto note = [&](const std::string& line) { progress.note("note: " + line); };
@@ -165,7 +171,7 @@ int run(const RunOptions& opts, bool selection_given) {
   std::fflush(stdout);
   {
     Progress progress(std::cout, stdout_is_terminal(), set.remaining(), Progress::steady_seconds, terminal_columns());
-    set.measure_remaining([&](const RunRow& row) { progress.done(row_line(row), notable(row)); },
+    set.measure_remaining([&](const RunRow& row) { progress.done(row_head(row), row_figures(row), notable(row)); },
                           [&](const RunSpec& spec) { progress.begin(spec.name()); });
   }
   ResultsFile results = set.results();
