@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <regex>
 #include <set>
 
 #include "datasets/manifest.h"
@@ -84,6 +85,15 @@ std::vector<QuickMesh> quick_meshes() {
   // Sword stand-in (random quads, 38% extraordinary) in its place.
   const std::string real = corpus_dir() ? "crane/spot_control" : "sword-standin";
   return {{"quadsphere", SubdivisionRule::CatmullClark}, {"icosphere", SubdivisionRule::Loop}, {real, SubdivisionRule::CatmullClark}};
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  static const std::regex form(R"((\d{1,6})/(\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, form)) throw InputError("--shard " + text, "expected I/N, e.g. 0/4 (I counts from 0)");
+  const int index = std::stoi(m[1]), count = std::stoi(m[2]);
+  if (count < 1 || index >= count) throw InputError("--shard " + text, "needs 0 <= I < N");
+  return {index, count};
 }
 
 std::vector<RunSpec> shard_runs(const std::vector<RunSpec>& runs, int index, int count) {

@@ -50,6 +50,9 @@ std::vector<Backend> available_backends();
 // scheme and one mesh and the scheme refuses the mesh.
 Plan make_plan(const Selection& selection, MeasureContext& context);
 
+// `run --shard`'s "I/N" as {I, N}; InputError unless 0 <= I < N.
+std::pair<int, int> parse_shard(const std::string& text);
+
 // The runs of shard `index` of `count`: the runs whose name's position among the sorted distinct
 // names is index modulo count (every copy of a repeated run goes to the same shard).
 std::vector<RunSpec> shard_runs(const std::vector<RunSpec>& runs, int index, int count);

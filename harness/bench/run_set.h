@@ -26,6 +26,7 @@ class RunSet {
   static RunSet resume(const std::string& out, const std::optional<RunSelection>& selection, bool isolate);
 
   const Plan& plan() const { return plan_; }
+  const RunSelection& selection() const { return selection_; }  // the journal's, when resumed
   const MachineInfo& machine() const;
   size_t journalled() const { return journalled_; }  // rows in the journal when this run began
   bool dropped_torn_line() const { return dropped_torn_line_; }

@@ -13,6 +13,7 @@
 #include "harness/bench/plan.h"
 #include "harness/bench/results_merge.h"
 #include "harness/bench/run_set.h"
+#include "harness/core/errors.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;
@@ -83,6 +84,19 @@ TEST(ShardRuns, PartitionTheRunsWhateverTheirOrder) {
   }
   const std::vector<std::string> expected = names(runs);
   EXPECT_EQ(all, std::multiset<std::string>(expected.begin(), expected.end()));
+}
+
+TEST(ParseShard, IndexCountsFromZeroAndStaysBelowTheCount) {
+  EXPECT_EQ(parse_shard("0/3"), std::make_pair(0, 3));
+  EXPECT_EQ(parse_shard("2/3"), std::make_pair(2, 3));
+  for (const char* bad : {"3/3", "1/0", "-1/3", "a/3", "1/3/4", "", "1", "9999999/3"}) {
+    try {
+      parse_shard(bad);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("--shard " + std::string(bad), 0), 0u) << e.what();
+    }
+  }
 }
 
 TEST(ShardRuns, OneShardIsTheWhole) { EXPECT_EQ(names(shard_runs(some_runs(), 0, 1)), names(some_runs())); }

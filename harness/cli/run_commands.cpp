@@ -7,7 +7,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <tuple>
 
 #include "harness/bench/machine.h"
@@ -32,15 +31,6 @@ constexpr long kQuickRays = 10000;
 // rows, short enough that a default run's cells cost seconds, not minutes.
 constexpr double kPairedMinTime = 0.03;
 
-// "I/N" with 0 <= I < N.
-std::pair<int, int> parse_shard(const std::string& text) {
-  static const std::regex form(R"((\d{1,6})/(\d{1,6}))");
-  std::smatch m;
-  if (!std::regex_match(text, m, form)) throw InputError("--shard " + text, "expected I/N, e.g. 0/4 (I counts from 0)");
-  const int index = std::stoi(m[1]), count = std::stoi(m[2]);
-  if (count < 1 || index >= count) throw InputError("--shard " + text, "needs 0 <= I < N");
-  return {index, count};
-}
 
 struct RunOptions {
   std::vector<std::string> schemes, meshes, backends;
@@ -54,6 +44,7 @@ struct RunOptions {
   bool quick = false, no_paired = false;
   std::string shard;  // "I/N"
   int rounds = 5;     // paired rounds of the summary cells
+  bool rounds_given = false;
   int worker_channel = -1;
   long worker_parent = 0;
 };
@@ -175,7 +166,15 @@ int run(const RunOptions& opts, bool selection_given) {
                           [&](const RunSpec& spec) { progress.begin(spec.name()); });
   }
   ResultsFile results = set.results();
-  if (!opts.no_paired && opts.rounds > 0) results.paired = paired_figures(set, results, opts);
+  RunOptions paired = opts;  // a resumed quick run keeps the quick set's rounds
+  if (!opts.rounds_given && set.selection().selection.quick) paired.rounds = kQuickRounds;
+  // A shard lacks the rest of the selection: which level is nearest 1 M, and the peer's row, may
+  // lie in another shard, so its cells would be partial and the merged shards' contradictory.
+  if (set.selection().selection.shard_count > 1)
+    std::printf("paired rounds: none in a shard (its summary cells may lie in other shards); the merged report's "
+                "ratios are single-pass\n");
+  else if (!opts.no_paired)
+    results.paired = paired_figures(set, results, paired);
   RunSet::ReportWriter report;
   if (!opts.no_report) report = [](const std::string& results_json, const std::string& dir) { write_report({results_json}, dir); };
   set.publish(results, report);
@@ -250,7 +249,8 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   verbs["run"] = [opts, selection, reps, rays, rounds] {
     const bool given = std::any_of(selection.begin(), selection.end(), [](const CLI::Option* o) { return o->count() > 0; });
     if (opts->quick && reps->count() == 0) opts->reps = kQuickReps;
-    if (opts->quick && rounds->count() == 0) opts->rounds = kQuickRounds;
+    opts->rounds_given = rounds->count() > 0;
+    if (opts->quick && !opts->rounds_given) opts->rounds = kQuickRounds;
     if (opts->quick && rays->count() == 0) opts->rays = kQuickRays;
     return run(*opts, given);
   };
