@@ -166,15 +166,15 @@ int run(const RunOptions& opts, bool selection_given) {
                           [&](const RunSpec& spec) { progress.begin(spec.name()); });
   }
   ResultsFile results = set.results();
-  RunOptions paired = opts;  // a resumed quick run keeps the quick set's rounds
-  if (!opts.rounds_given && set.selection().selection.quick) paired.rounds = kQuickRounds;
+  RunOptions paired_opts = opts;  // a resumed quick run keeps the quick set's rounds
+  if (!opts.rounds_given && set.selection().selection.quick) paired_opts.rounds = kQuickRounds;
   // A shard lacks the rest of the selection: which level is nearest 1 M, and the peer's row, may
   // lie in another shard, so its cells would be partial and the merged shards' contradictory.
   if (set.selection().selection.shard_count > 1)
     std::printf("paired rounds: none in a shard (its summary cells may lie in other shards); the merged report's "
                 "ratios are single-pass\n");
   else if (!opts.no_paired)
-    results.paired = paired_figures(set, results, paired);
+    results.paired = paired_figures(set, results, paired_opts);
   RunSet::ReportWriter report;
   if (!opts.no_report) report = [](const std::string& results_json, const std::string& dir) { write_report({results_json}, dir); };
   set.publish(results, report);
