@@ -22,7 +22,8 @@ void to_json(json& j, const RunSelection& r) {
   j = {{"schemes", s.schemes},     {"meshes", s.meshes},         {"backends", s.backends},
        {"levels", s.levels},       {"all", s.all_meshes},        {"all_corpus", s.all_corpus},
        {"max_triangles", s.max_triangles}, {"headline", s.headline}, {"reps", r.reps},
-       {"rays", r.rays},           {"seed", r.seed},             {"validate", r.validate}};
+       {"rays", r.rays},           {"seed", r.seed},             {"validate", r.validate},
+       {"quick", s.quick},         {"shard", {s.shard_index, s.shard_count}}};
 }
 
 void from_json(const json& j, RunSelection& r) {
@@ -31,12 +32,17 @@ void from_json(const json& j, RunSelection& r) {
   j.at("levels").get_to(s.levels), j.at("all").get_to(s.all_meshes), j.at("all_corpus").get_to(s.all_corpus);
   j.at("max_triangles").get_to(s.max_triangles), j.at("headline").get_to(s.headline);
   j.at("reps").get_to(r.reps), j.at("rays").get_to(r.rays), j.at("seed").get_to(r.seed), j.at("validate").get_to(r.validate);
+  // Journals from before the quick set and shards have neither.
+  s.quick = j.value("quick", false);
+  const auto shard = j.value("shard", std::vector<int>{0, 1});
+  if (shard.size() != 2) throw json::other_error::create(501, "'shard' must be [index, count]", &j);
+  s.shard_index = shard[0], s.shard_count = shard[1];
 }
 
 std::string selection_difference(const RunSelection& journalled, const RunSelection& now) {
   const json a = journalled, b = now;
   for (const char* key : {"schemes", "meshes", "backends", "levels", "all", "all_corpus", "reps", "rays", "seed", "validate",
-                          "max_triangles", "headline"})
+                          "max_triangles", "headline", "quick", "shard"})
     if (a.at(key) != b.at(key)) return std::string(key) + ": journalled " + a.at(key).dump() + ", now " + b.at(key).dump();
   return "";
 }

@@ -15,6 +15,7 @@
 #include <regex>
 
 #include "datasets/manifest.h"
+#include "harness/bench/progress.h"
 #include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
@@ -238,7 +239,7 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
     row.message += std::string(row.message.empty() ? "" : "; ") +
                    "no SurfaceCoords (the scheme does not say where a vertex lies): Hausdorff distance only";
   }
-  if (o.hausdorff) {
+  if (o.hausdorff && !(o.hausdorff_only_without_coords && !t.coords.empty())) {
     const DenseLimit& dense = ctx.dense_reference(ref_mesh, rule);
     row.deviation.hausdorff_rel = hausdorff(t, dense.surface, *dense.scene).max();
   }
@@ -397,7 +398,33 @@ RunRow describe_spec(const RunSpec& spec, const MachineInfo& machine) {
   return policy_row(spec, resolve_scheme(spec.scheme), machine);
 }
 
+namespace {
+thread_local MeasureObserver* observer = nullptr;
+}  // namespace
+
+MeasureObserver::MeasureObserver(std::function<void(const RunSpec&)> b, std::function<void(const RunRow&)> e)
+    : began(std::move(b)), ended(std::move(e)), outer_(observer) {
+  observer = this;
+}
+MeasureObserver::~MeasureObserver() { observer = outer_; }
+
+namespace {
+
+RunRow measure_one(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx);
+
+}  // namespace
+
 RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
+  MeasureObserver* const seen_by = observer;
+  if (seen_by && seen_by->began) seen_by->began(spec);
+  RunRow row = measure_one(spec, o, ctx);
+  if (seen_by && seen_by->ended) seen_by->ended(row);
+  return row;
+}
+
+namespace {
+
+RunRow measure_one(const RunSpec& spec, const MeasureOptions& o, MeasureContext& ctx) {
   DescribedRun d = describe_run(spec, o, ctx);
   RunRow& row = d.row;
   if (row.status == RunStatus::Unsupported) return row;
@@ -444,8 +471,6 @@ RunRow measure_run(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   fill_timing(row, collector.samples[spec.name()], e, gpu, ctx.machine());
   return row;
 }
-
-namespace {
 
 // The calibration probe as a benchmark: a streaming store over 64 MiB, one thread on `cpu`, TBB's
 // threads on `cpu-mt`. Run once per round beside the schemes, it gives the gate a paired unit
@@ -497,31 +522,65 @@ std::unique_ptr<LazyRun> calibration_run(Backend backend) {
   return lazy;
 }
 
+// Shows the rounds' progress: a terminal's status line names each benchmark as it first asks for
+// its evaluation in a round; a round is one item.
+class ProgressReporter : public TeeReporter {
+ public:
+  ProgressReporter(benchmark::BenchmarkReporter* display, Progress* progress) : TeeReporter(display), progress_(progress) {}
+  void began(const std::string& name) {
+    if (!progress_ || started_ == name) return;  // Google Benchmark calls a benchmark more than once
+    started_ = name;
+    progress_->begin(round_ + ": " + name);
+  }
+  void round_begins(int round, int rounds) {
+    round_ = "round " + std::to_string(round + 1) + "/" + std::to_string(rounds);
+    started_.clear();
+  }
+  void round_ends(size_t benchmarks) {
+    if (progress_) progress_->done(round_, ": " + std::to_string(benchmarks) + " benchmarks timed", false);
+  }
+
+ private:
+  Progress* progress_;
+  std::string started_, round_;
+};
+
+std::vector<Backend> calibration_backends(const std::vector<RunSpec>& specs, const BenchRounds& how) {
+  std::vector<Backend> backends;
+  if (how.rounds > 0 && how.calibration)
+    for (Backend b : {Backend::Cpu, Backend::CpuMt})
+      if (std::any_of(specs.begin(), specs.end(), [b](const RunSpec& s) { return s.backend == b; })) backends.push_back(b);
+  return backends;
+}
+
 }  // namespace
 
 std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& o, MeasureContext& ctx,
-                               benchmark::BenchmarkReporter* display, int rounds) {
+                               benchmark::BenchmarkReporter* display, const BenchRounds& how) {
+  const int rounds = how.rounds;
   std::vector<std::unique_ptr<LazyRun>> runs;
   for (const RunSpec& spec : specs) {
     auto lazy = std::make_unique<LazyRun>();
     lazy->run = describe_run(spec, o, ctx);
     runs.push_back(std::move(lazy));
   }
-  if (rounds > 0)
-    for (Backend b : {Backend::Cpu, Backend::CpuMt})
-      if (std::any_of(specs.begin(), specs.end(), [b](const RunSpec& s) { return s.backend == b; }))
-        runs.push_back(calibration_run(b));
+  for (Backend b : calibration_backends(specs, how)) runs.push_back(calibration_run(b));
+  ProgressReporter tee(rounds > 0 ? nullptr : display, rounds > 0 ? how.progress : nullptr);
   auto register_all = [&](const std::vector<size_t>& order, int repetitions) {
     for (size_t i : order) {
       LazyRun* l = runs[i].get();
       if (l->run.row.status == RunStatus::Unsupported) continue;
-      auto* b = register_timing(l->run.row.name(), [l] { return l->get(); }, l->run.row.backend);
+      const std::string name = l->run.row.name();
+      auto* b = register_timing(name, [l, &tee, name] {
+        tee.began(name);
+        return l->get();
+      }, l->run.row.backend);
       if (repetitions > 0) b->Repetitions(repetitions);
+      if (how.min_time_s > 0) b->MinTime(how.min_time_s);
     }
   };
   std::vector<size_t> order(runs.size());
   std::iota(order.begin(), order.end(), size_t(0));
-  TeeReporter tee(rounds > 0 ? nullptr : display);
   if (rounds <= 0) {
     register_all(order, 0);  // repetitions and interleaving from Google Benchmark's flags
     benchmark::RunSpecifiedBenchmarks(&tee);
@@ -531,10 +590,12 @@ std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureO
     // its peer are measured close in time, so the gate can pair them.
     std::mt19937 shuffle(12345);
     for (int r = 0; r < rounds; ++r) {
+      tee.round_begins(r, rounds);
       std::shuffle(order.begin(), order.end(), shuffle);
       register_all(order, 1);
-      benchmark::RunSpecifiedBenchmarks(&tee);
+      const size_t timed = benchmark::RunSpecifiedBenchmarks(&tee);
       benchmark::ClearRegisteredBenchmarks();
+      tee.round_ends(timed);
     }
   }
   std::vector<RunRow> rows;

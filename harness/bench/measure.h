@@ -44,6 +44,10 @@ struct MeasureOptions {
   bool time = true;          // false: record the one validated execution instead of benchmarking
   bool validate = true;
   bool hausdorff = true;
+  // With hausdorff: only on rows without SurfaceCoords, where it is the one deviation figure (the
+  // quick set: the per-vertex deviation is there, and the dense reference's queries cost more
+  // than the rest of a row's validation).
+  bool hausdorff_only_without_coords = false;
   long rays = 100000;  // random lines; as many again aimed at base-face borders
   uint64_t seed = 1;
   int threads = 0;  // cpu-mt
@@ -94,13 +98,40 @@ RunRow describe_spec(const RunSpec& spec, const MachineInfo& machine);
 // crack on a closed input, a deviation past the scheme's declared bound).
 RunRow measure_run(const RunSpec& spec, const MeasureOptions& options, MeasureContext& context);
 
+class Progress;
+
+// How bench_runs measures: in Google Benchmark's way (its flags), or in paired rounds.
+struct BenchRounds {
+  // 0: repetitions and random interleaving from the flags. > 0: that many rounds, each running
+  // every benchmark once in a fresh random order, so that sample r of every row was measured in
+  // round r (the gate and run's paired figures pair them).
+  int rounds = 0;
+  double min_time_s = 0;     // > 0: each benchmark's time per round; 0: the flag's
+  bool calibration = true;   // rounds: the write probe's rows beside the schemes' (the gate's unit)
+  Progress* progress = nullptr;  // rounds: one item per round
+};
+
 // Registers every spec with Google Benchmark (prepared lazily on first use) and runs them under
-// the flags benchmark::Initialize parsed (filter, min time). rounds == 0: repetitions and random
-// interleaving from the flags too. rounds > 0: that many rounds, each running every benchmark
-// once in a fresh random order, so that sample r of every row was measured in round r (the
-// gate pairs them). Rows carry timing only; `display` (may be null) shows flag-mode runs.
+// the flags benchmark::Initialize parsed (filter, min time) and `how`. Rows carry timing only;
+// `display` (may be null) shows flag-mode runs.
 std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& options,
-                               MeasureContext& context, benchmark::BenchmarkReporter* display, int rounds = 0);
+                               MeasureContext& context, benchmark::BenchmarkReporter* display, const BenchRounds& how = {});
+
+// Sees every measure_run of this thread begin and end while it lives: how `paper` shows the
+// progress of tables that measure their cells with measure_run (only the table knows how many).
+class MeasureObserver {
+ public:
+  MeasureObserver(std::function<void(const RunSpec&)> began, std::function<void(const RunRow&)> ended);
+  ~MeasureObserver();
+  MeasureObserver(const MeasureObserver&) = delete;
+  MeasureObserver& operator=(const MeasureObserver&) = delete;
+
+  std::function<void(const RunSpec&)> began;
+  std::function<void(const RunRow&)> ended;
+
+ private:
+  MeasureObserver* outer_;
+};
 
 // Validation only (exact weld, rays, deviation, Hausdorff) of one evaluation's output.
 void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& reference_mesh,

@@ -1,6 +1,8 @@
 #include "harness/bench/plan.h"
 
 #include <algorithm>
+#include <cmath>
+#include <regex>
 #include <set>
 
 #include "datasets/manifest.h"
@@ -34,7 +36,78 @@ std::vector<RunSpec> headline_runs() {
   return runs;
 }
 
+// The levels a run of `r` on `accepted` and backend `b` takes: the selection's, or the scheme's
+// default levels within the output budget (the quick set: two of them, quick_levels).
+std::vector<int> levels_for(const Selection& sel, const ResolvedScheme& r, const ControlMesh& accepted, Backend b) {
+  if (!sel.levels.empty()) return sel.levels;
+  std::vector<std::pair<int, long>> within;
+  for (int level : r.scheme->info().default_levels) {
+    const long triangles = r.scheme->estimated_triangles(accepted, {b, level, 0, r.parameters});
+    if (triangles <= sel.max_triangles) within.emplace_back(level, triangles);
+  }
+  if (sel.quick) return quick_levels(within);
+  std::vector<int> levels;
+  for (const auto& [level, triangles] : within) levels.push_back(level);
+  return levels;
+}
+
+// The meshes a scheme runs on: the selection's, the quick set's of its rule, or the default set.
+std::vector<std::string> meshes_for(const Selection& sel, const SchemeInfo& info) {
+  if (!sel.meshes.empty()) return sel.meshes;
+  if (!sel.quick) return default_meshes(sel.all_meshes, sel.all_corpus);
+  std::vector<std::string> meshes;
+  for (const QuickMesh& m : quick_meshes())
+    if (m.rule == info.reference) meshes.push_back(m.name);
+  return meshes;
+}
+
+double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a, 1L)) / double(std::max(b, 1L)))); }
+
 }  // namespace
+
+std::vector<int> quick_levels(const std::vector<std::pair<int, long>>& level_triangles) {
+  std::vector<std::pair<int, long>> left = level_triangles;
+  std::vector<int> chosen;
+  for (long target : {kQuickHigh, kQuickLow}) {
+    if (left.empty()) break;
+    const auto nearest = std::min_element(left.begin(), left.end(), [&](const auto& a, const auto& b) {
+      return log_distance(a.second, target) < log_distance(b.second, target);
+    });
+    chosen.push_back(nearest->first);
+    left.erase(nearest);
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+std::vector<QuickMesh> quick_meshes() {
+  // The corpus's Spot: a real quad mesh, 81% of its quads extraordinary; without the corpus, the
+  // Sword stand-in (random quads, 38% extraordinary) in its place.
+  const std::string real = corpus_dir() ? "crane/spot_control" : "sword-standin";
+  return {{"quadsphere", SubdivisionRule::CatmullClark}, {"icosphere", SubdivisionRule::Loop}, {real, SubdivisionRule::CatmullClark}};
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  static const std::regex form(R"((\d{1,6})/(\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, form)) throw InputError("--shard " + text, "expected I/N, e.g. 0/4 (I counts from 0)");
+  const int index = std::stoi(m[1]), count = std::stoi(m[2]);
+  if (count < 1 || index >= count) throw InputError("--shard " + text, "needs 0 <= I < N");
+  return {index, count};
+}
+
+std::vector<RunSpec> shard_runs(const std::vector<RunSpec>& runs, int index, int count) {
+  std::vector<std::string> names;
+  for (const RunSpec& r : runs) names.push_back(r.name());
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  std::vector<RunSpec> kept;
+  for (const RunSpec& r : runs) {
+    const auto position = std::lower_bound(names.begin(), names.end(), r.name()) - names.begin();
+    if (position % count == index) kept.push_back(r);
+  }
+  return kept;
+}
 
 MeasureOptions measure_options(const RunSelection& r) {
   MeasureOptions m;
@@ -42,6 +115,10 @@ MeasureOptions measure_options(const RunSelection& r) {
   m.rays = r.rays;
   m.seed = r.seed;
   m.validate = r.validate;
+  // The quick set: a first look in minutes. Its rows are single-pass figures either way (the
+  // paired rounds give the ratios), so shorter repetitions lose little.
+  m.hausdorff_only_without_coords = r.selection.quick;
+  if (r.selection.quick) m.min_time_s = kQuickMinTime;
   m.refusals_as_rows = !(r.selection.schemes.size() == 1 && r.selection.meshes.size() == 1);
   return m;
 }
@@ -82,10 +159,9 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
   }
   const std::vector<Backend> available = available_backends();
   const bool explicit_pair = sel.schemes.size() == 1 && sel.meshes.size() == 1;
-  const std::vector<std::string> meshes = sel.meshes.empty() ? default_meshes(sel.all_meshes, sel.all_corpus) : sel.meshes;
   for (const ResolvedScheme& r : schemes) {
     const SchemeInfo& info = r.scheme->info();
-    for (const auto& mesh : meshes) {
+    for (const auto& mesh : meshes_for(sel, info)) {
       std::shared_ptr<const ControlMesh> accepted;
       try {
         accepted = ctx.accepted(mesh, *r.scheme);
@@ -100,15 +176,11 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
           plan.notes.push_back("skipped " + r.spec + " on " + std::string(to_string(b)) + ": backend unavailable");
           continue;
         }
-        for (int level : sel.levels.empty() ? info.default_levels : sel.levels) {
-          if (sel.levels.empty() && r.scheme->estimated_triangles(*accepted, {b, level, 0, r.parameters}) > sel.max_triangles)
-            continue;
-          plan.runs.push_back({r.spec, mesh, b, level});
-        }
+        for (int level : levels_for(sel, r, *accepted, b)) plan.runs.push_back({r.spec, mesh, b, level});
       }
     }
   }
-  if (sel.headline && sel.schemes.empty() && sel.meshes.empty() && sel.levels.empty())
+  if (sel.headline && !sel.quick && sel.schemes.empty() && sel.meshes.empty() && sel.levels.empty())
     for (const RunSpec& h : headline_runs())
       if (!contains(plan.runs, h)) {
         try {
@@ -118,6 +190,12 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
           // the mesh is absent (the corpus is not beside the checkout): no headline figure
         }
       }
+  if (sel.shard_count > 1) {
+    const size_t all = plan.runs.size();
+    plan.runs = shard_runs(plan.runs, sel.shard_index, sel.shard_count);
+    plan.notes.push_back("shard " + std::to_string(sel.shard_index) + "/" + std::to_string(sel.shard_count) + ": " +
+                         std::to_string(plan.runs.size()) + " of the selection's " + std::to_string(all) + " runs");
+  }
   return plan;
 }
 

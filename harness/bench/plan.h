@@ -16,6 +16,10 @@ struct Selection {
   bool all_corpus = false;  // with all_meshes: OpenSubdiv's regression shapes too
   long max_triangles = 1'000'000;  // default levels only: skip outputs larger than this
   bool headline = true;  // default set: also the schemes' headline runs (SchemeInfo::headline_runs)
+  bool quick = false;    // the quick set (quick_meshes, quick_levels) instead of the default set
+  // `run --shard I/N`: of the planned runs, sorted by name, those whose position p has
+  // p % shard_count == shard_index; the same 1/N whatever the order of the command line.
+  int shard_index = 0, shard_count = 1;
   bool operator==(const Selection&) const = default;
 };
 
@@ -45,6 +49,29 @@ std::vector<Backend> available_backends();
 // Throws InputError when the user names an unknown scheme or backend, or names exactly one
 // scheme and one mesh and the scheme refuses the mesh.
 Plan make_plan(const Selection& selection, MeasureContext& context);
+
+// `run --shard`'s "I/N" as {I, N}; InputError unless 0 <= I < N.
+std::pair<int, int> parse_shard(const std::string& text);
+
+// The runs of shard `index` of `count`: the runs whose name's position among the sorted distinct
+// names is index modulo count (every copy of a repeated run goes to the same shard).
+std::vector<RunSpec> shard_runs(const std::vector<RunSpec>& runs, int index, int count);
+
+// The quick set's meshes: a quad mesh and a triangle mesh (built-ins) and one real corpus mesh
+// (a built-in stand-in when the corpus is absent). A scheme runs on the ones of its own rule:
+// Loop schemes on the triangle mesh, Catmull-Clark schemes on the quad meshes.
+struct QuickMesh {
+  std::string name;
+  SubdivisionRule rule;
+};
+std::vector<QuickMesh> quick_meshes();
+
+// The quick set's two levels of a scheme on an accepted mesh: among its default levels, the one
+// whose output is nearest (in ratio) kQuickHigh triangles, then of the rest the one nearest
+// kQuickLow. Fewer when the scheme has fewer levels.
+inline constexpr long kQuickHigh = 1'000'000, kQuickLow = 100'000;
+inline constexpr double kQuickMinTime = 0.02;  // seconds per timed repetition (default 0.05)
+std::vector<int> quick_levels(const std::vector<std::pair<int, long>>& level_triangles);
 
 // The meshes of the default set: the union of the meshes the schemes ask for
 // (SchemeInfo::default_meshes: the papers' stand-ins, the real meshes the issues name, a few

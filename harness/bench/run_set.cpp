@@ -136,13 +136,14 @@ RunSet RunSet::resume(const std::string& out, const std::optional<RunSelection>&
   return set;
 }
 
-void RunSet::measure_remaining(const std::function<void(const RunRow&)>& on_row) {
+void RunSet::measure_remaining(const std::function<void(const RunRow&)>& on_row, const std::function<void(const RunSpec&)>& on_start) {
   const MeasureOptions options = measure_options(selection_);
   std::optional<RowWorker> worker;
   if (isolate_) worker.emplace(self_executable(), machine(), options);
   std::map<std::string, int> skip = done_;
   for (const RunSpec& spec : plan_.runs) {
     if (skip[spec.name()]-- > 0) continue;
+    if (on_start) on_start(spec);
     const RunRow row = worker ? worker->measure(spec) : measure_run(spec, options, *context_);
     journal_->append(row);
     ++done_[spec.name()];
@@ -150,7 +151,7 @@ void RunSet::measure_remaining(const std::function<void(const RunRow&)>& on_row)
   }
 }
 
-ResultsFile RunSet::publish(const ReportWriter& report) const {
+ResultsFile RunSet::results() const {
   const JournalContents journal = read_journal(journal_path());
   std::map<std::string, std::deque<RunRow>> by_name;
   for (const RunRow& r : journal.rows) by_name[r.name()].push_back(r);
@@ -163,9 +164,14 @@ ResultsFile RunSet::publish(const ReportWriter& report) const {
     results.runs.push_back(std::move(rows.front()));
     rows.pop_front();
   }
+  const Selection& sel = selection_.selection;
+  if (sel.shard_count > 1) results.shard = ShardInfo{sel.shard_index, sel.shard_count};
+  return results;
+}
+
+void RunSet::publish(const ResultsFile& results, const ReportWriter& report) const {
   require_something_ran(results);
   publish_results(results, out_, report);
-  return results;
 }
 
 void publish_results(const ResultsFile& results, const std::string& dir, const RunSet::ReportWriter& report) {

@@ -26,19 +26,26 @@ class RunSet {
   static RunSet resume(const std::string& out, const std::optional<RunSelection>& selection, bool isolate);
 
   const Plan& plan() const { return plan_; }
+  const RunSelection& selection() const { return selection_; }  // the journal's, when resumed
   const MachineInfo& machine() const;
   size_t journalled() const { return journalled_; }  // rows in the journal when this run began
   bool dropped_torn_line() const { return dropped_torn_line_; }
   size_t remaining() const { return plan_.runs.size() - journalled_; }
 
   // Measures the rows the journal lacks, in plan order; each is journalled before on_row sees it.
-  void measure_remaining(const std::function<void(const RunRow&)>& on_row);
+  // `on_start` (may be empty) sees each run as it begins.
+  void measure_remaining(const std::function<void(const RunRow&)>& on_row,
+                         const std::function<void(const RunSpec&)>& on_start = {});
 
-  // The results as the journal holds them, rows in plan order. Refused (InputError, nothing
-  // written) when nothing ran; otherwise results.json and, with `report`, the report are written
-  // into `out` as one set (publish_results).
+  // The results as the journal holds them, rows in plan order, with the selection's shard.
+  ResultsFile results() const;
+  // The context the rows were planned in (meshes loaded once), for measuring beside the rows.
+  MeasureContext& context() { return *context_; }
+
+  // Refused (InputError, nothing written) when nothing ran; otherwise results.json and, with
+  // `report`, the report are written into `out` as one set (publish_results).
   using ReportWriter = std::function<void(const std::string& results_json, const std::string& dir)>;
-  ResultsFile publish(const ReportWriter& report) const;
+  void publish(const ResultsFile& results, const ReportWriter& report) const;
 
   RunSet(RunSet&&) noexcept;
   ~RunSet();

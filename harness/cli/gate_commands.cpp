@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "harness/bench/callgrind.h"
 #include "harness/bench/gate.h"
@@ -13,6 +14,7 @@
 #include "harness/bench/measure.h"
 #include "harness/bench/plan.h"
 #include "harness/bench/process.h"
+#include "harness/bench/progress.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
@@ -59,7 +61,14 @@ int bench(const GateOptions& opts) {
   ResultsFile results;
   results.machine = ctx.machine();
   results.rounds = opts.rounds;
-  results.runs = bench_runs(plan.runs, m, ctx, &console, opts.rounds);
+  // Rounds run quietly until the end (one table); their progress is shown instead. Without rounds
+  // Google Benchmark's console prints each benchmark as it finishes.
+  BenchRounds how{opts.rounds};
+  std::optional<Progress> progress;
+  if (opts.rounds > 0)
+    how.progress = &progress.emplace(std::cout, stdout_is_terminal(), size_t(opts.rounds), Progress::steady_seconds, terminal_columns());
+  results.runs = bench_runs(plan.runs, m, ctx, &console, how);
+  if (progress) progress->close();
   if (opts.rounds > 0)
     for (const RunRow& r : results.runs)
       std::printf("%-44s median %9.4f ms  min %9.4f ms  over %d rounds\n", r.name().c_str(), r.time_ms.median,
@@ -131,6 +140,12 @@ int paper(const GateOptions& opts) {
       PaperTableOptions options;
       if (!opts.out.empty()) options.out_dir = opts.out;
       options.quick = opts.quick;
+      // On standard error: the table on standard output stays what the paper verb writes.
+      Progress progress(std::cerr, stderr_is_terminal(), 0, Progress::steady_seconds, terminal_columns());
+      MeasureObserver observer([&](const RunSpec& spec) { progress.begin(spec.name()); },
+                               [&](const RunRow& row) {
+                                 progress.done(row.name(), "  " + std::string(to_string(row.status)), row.status == RunStatus::Failed);
+                               });
       return t.run(options, std::cout);
     }
   throw InputError(opts.paper_id, "no such paper table (see `subdivbench paper list`)");

@@ -7,19 +7,30 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
+#include "harness/bench/paired.h"
 #include "harness/bench/plan.h"
+#include "harness/bench/progress.h"
 #include "harness/bench/results.h"
 #include "harness/bench/row_worker.h"
 #include "harness/bench/run_set.h"
+#include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
 #include "reports/report.h"
 
 namespace sdb::cli {
 namespace {
+
+constexpr int kQuickReps = 3, kQuickRounds = 3;
+constexpr long kQuickRays = 10000;
+// Each benchmark's time in a paired round: long enough to average a few executions of the small
+// rows, short enough that a default run's cells cost seconds, not minutes.
+constexpr double kPairedMinTime = 0.03;
+
 
 struct RunOptions {
   std::vector<std::string> schemes, meshes, backends;
@@ -30,25 +41,41 @@ struct RunOptions {
   uint64_t seed = 1;
   bool json = false, all_meshes = false, all_corpus = false, no_validate = false, no_report = false;
   bool in_process = false;
+  bool quick = false, no_paired = false;
+  std::string shard;  // "I/N"
+  int rounds = 5;     // paired rounds of the summary cells
+  bool rounds_given = false;
   int worker_channel = -1;
   long worker_parent = 0;
 };
 
-void print_row(const RunRow& r) {
-  std::printf("%-44s", r.name().c_str());
-  if (r.status == RunStatus::Unsupported) {
-    std::printf(" unsupported: %s\n", r.message.c_str());
-    return;
-  }
-  std::printf(" %9ld tris %9.3f ms %8.2f Mtri/s bw %5.1f%%", r.triangles,
-              r.gpu_time_ms ? r.gpu_time_ms->median : r.time_ms.median, r.triangle_rate_mtris, 100 * r.bandwidth_fraction);
-  if (r.watertight.open_edges >= 0) std::printf("  open %ld", r.watertight.open_edges);
-  if (r.watertight.ray_cracks >= 0) std::printf(" cracks %ld/%ld", r.watertight.ray_cracks, r.watertight.rays);
-  if (r.deviation.measured)
-    std::printf("  dev max %.3g%% p95 %.3g%% %.3gdeg", r.deviation.pos_max_pct, r.deviation.pos_p95_pct, r.deviation.normal_max_deg);
-  const bool ok = r.status == RunStatus::Ok;
-  std::printf("%s%s\n", ok ? "" : "  FAILED: ", ok ? "" : r.message.c_str());
+// The row's name padded to a column, and its figures.
+std::string row_head(const RunRow& r) {
+  std::string head = r.name();
+  head.resize(std::max<size_t>(head.size(), 44), ' ');
+  return head;
 }
+
+std::string row_figures(const RunRow& r) {
+  char buf[512];
+  std::string line;
+  if (r.status == RunStatus::Unsupported) return " unsupported: " + r.message;
+  std::snprintf(buf, sizeof buf, " %9ld tris %9.3f ms %8.2f Mtri/s bw %5.1f%%", r.triangles,
+                r.gpu_time_ms ? r.gpu_time_ms->median : r.time_ms.median, r.triangle_rate_mtris, 100 * r.bandwidth_fraction);
+  line += buf;
+  if (r.watertight.open_edges >= 0) line += "  open " + std::to_string(r.watertight.open_edges);
+  if (r.watertight.ray_cracks >= 0)
+    line += " cracks " + std::to_string(r.watertight.ray_cracks) + "/" + std::to_string(r.watertight.rays);
+  if (r.deviation.measured) {
+    std::snprintf(buf, sizeof buf, "  dev max %.3g%% p95 %.3g%% %.3gdeg", r.deviation.pos_max_pct, r.deviation.pos_p95_pct,
+                  r.deviation.normal_max_deg);
+    line += buf;
+  }
+  if (r.status != RunStatus::Ok) line += "  FAILED: " + r.message;
+  return line;
+}
+
+void print_row(const RunRow& r) { std::printf("%s%s\n", row_head(r).c_str(), row_figures(r).c_str()); }
 
 MeasureOptions validate_options(const RunOptions& opts) {
   MeasureOptions m;
@@ -89,9 +116,31 @@ RunSelection run_selection(const RunOptions& opts) {
   sel.schemes = opts.schemes, sel.meshes = opts.meshes, sel.backends = opts.backends, sel.levels = opts.levels;
   sel.all_meshes = opts.all_meshes || opts.all_corpus;
   sel.all_corpus = opts.all_corpus;
+  sel.quick = opts.quick;
+  if (!opts.shard.empty()) std::tie(sel.shard_index, sel.shard_count) = parse_shard(opts.shard);
   r.reps = opts.reps, r.rays = opts.rays, r.seed = opts.seed, r.validate = !opts.no_validate;
   return r;
 }
+
+// The summary cells timed in paired rounds beside each other (paired.h), with their progress.
+std::vector<PairedCell> paired_figures(RunSet& set, const ResultsFile& results, const RunOptions& opts) {
+  const std::vector<PairedPlanCell> cells = choose_paired_cells(results.runs);
+  if (cells.empty()) {
+    std::printf("paired rounds: none (no ok row has its peer's row in this run)\n");
+    return {};
+  }
+  const size_t items = paired_items(cells, opts.rounds);
+  std::printf("paired rounds: %zu summary cells (each scheme+backend at the level nearest 1 M triangles against its peer), "
+              "%d rounds on each of %zu meshes\n",
+              cells.size(), opts.rounds, items / size_t(opts.rounds));
+  std::fflush(stdout);
+  Progress progress(std::cout, stdout_is_terminal(), items, Progress::steady_seconds, terminal_columns());
+  auto note = [&](const std::string& line) { progress.note("note: " + line); };
+  return measure_paired(cells, {opts.rounds, kPairedMinTime}, set.context(), &progress, note);
+}
+
+// A row worth keeping on screen while a terminal shows only the status line.
+bool notable(const RunRow& r) { return r.status == RunStatus::Failed || has_crack(r); }
 
 // `selection_given`: with --resume, whether the command line named a selection of its own (it
 // must then be the journalled one) or leaves it to the journal.
@@ -110,13 +159,32 @@ int run(const RunOptions& opts, bool selection_given) {
   if (!opts.resume.empty())
     std::printf("resuming %s: %zu of %zu rows journalled%s; measuring %zu\n", out.c_str(), set.journalled(),
                 set.plan().runs.size(), set.dropped_torn_line() ? " (a torn last line dropped)" : "", set.remaining());
-  set.measure_remaining(print_row);
+  std::fflush(stdout);
+  {
+    Progress progress(std::cout, stdout_is_terminal(), set.remaining(), Progress::steady_seconds, terminal_columns());
+    set.measure_remaining([&](const RunRow& row) { progress.done(row_head(row), row_figures(row), notable(row)); },
+                          [&](const RunSpec& spec) { progress.begin(spec.name()); });
+  }
+  ResultsFile results = set.results();
+  RunOptions paired_opts = opts;  // a resumed quick run keeps the quick set's rounds
+  if (!opts.rounds_given && set.selection().selection.quick) paired_opts.rounds = kQuickRounds;
+  // A shard lacks the rest of the selection: which level is nearest 1 M, and the peer's row, may
+  // lie in another shard, so its cells would be partial and the merged shards' contradictory.
+  if (set.selection().selection.shard_count > 1)
+    std::printf("paired rounds: none in a shard (its summary cells may lie in other shards); the merged report's "
+                "ratios are single-pass\n");
+  else if (!opts.no_paired)
+    results.paired = paired_figures(set, results, paired_opts);
   RunSet::ReportWriter report;
-  if (!opts.no_report) report = [](const std::string& results, const std::string& dir) { write_report({results}, dir); };
-  const ResultsFile results = set.publish(report);
-  std::printf("wrote %s\n", (std::filesystem::path(out) / "results.json").string().c_str());
-  const bool failed = std::any_of(results.runs.begin(), results.runs.end(), [](const RunRow& r) { return r.status == RunStatus::Failed; });
-  return failed ? 1 : 0;
+  if (!opts.no_report) report = [](const std::string& results_json, const std::string& dir) { write_report({results_json}, dir); };
+  set.publish(results, report);
+  const RunSummary summary = summarise(results.runs);
+  std::printf("\n");
+  for (const std::string& line : paired_lines(results.paired)) std::printf("%s\n", line.c_str());
+  for (const std::string& line :
+       summary_lines(summary, (std::filesystem::path(out) / "results.json").string(), opts.no_report ? "" : out))
+    std::printf("%s\n", line.c_str());
+  return summary.failed > 0 ? 1 : 0;
 }
 
 void add_selection(CLI::App* cmd, RunOptions& opts) {
@@ -150,20 +218,40 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   r->add_option("--rays", opts->rays, "random lines per run, as many again aimed at patch borders (default 50000)")
       ->check(CLI::NonNegativeNumber);
   r->add_flag("--no-validate", opts->no_validate, "time only");
+  auto* quick = r->add_flag("--quick", opts->quick,
+                            "the quick set: every scheme on a quad, a triangle and a real mesh at two levels each "
+                            "(about 100 k and 1 M triangles); 3 repetitions, 3 paired rounds and 10000 rays unless "
+                            "given, Hausdorff distances only where no per-vertex deviation is measured");
+  quick->excludes(r->get_option("--all"))->excludes(r->get_option("--all-corpus"));
+  r->add_option("--shard", opts->shard,
+                "run shard I of N (0 <= I < N) of the selection: the runs whose position among the sorted run names "
+                "is I modulo N (merge the shards' results with `report --in`)");
   // What a resumed run compares with its journal: given at all, the whole selection must match.
   std::vector<const CLI::Option*> selection;
-  for (const char* name : {"--scheme", "--mesh", "--backend", "--level", "--all", "--all-corpus", "--reps", "--rays", "--no-validate"})
+  for (const char* name : {"--scheme", "--mesh", "--backend", "--level", "--all", "--all-corpus", "--reps", "--rays", "--no-validate",
+                           "--quick", "--shard"})
     selection.push_back(r->get_option(name));
   auto* out = r->add_option("--out", opts->out, "output folder (results.json, report, journal.jsonl)");
   r->add_option("--resume", opts->resume,
                 "continue the interrupted run journalled in DIR (DIR/journal.jsonl): measure only the rows it lacks")
       ->excludes(out);
   r->add_flag("--no-report", opts->no_report, "write results.json only");
+  auto* rounds = r->add_option("--rounds", opts->rounds,
+                               "paired rounds of the summary cells: each scheme+backend and its peer timed in the same "
+                               "rounds (default 5; 3 with --quick)")
+                     ->check(CLI::PositiveNumber);
+  r->add_flag("--no-paired", opts->no_paired, "skip the paired rounds (the report's ratios are then single-pass)")->excludes(rounds);
   r->add_flag("--in-process", opts->in_process,
               "measure every row in this process, for profilers and debuggers (default: in a worker process, "
               "so that a crash in a library fails its row and the run goes on)");
-  verbs["run"] = [opts, selection] {
+  const CLI::Option* reps = r->get_option("--reps");
+  const CLI::Option* rays = r->get_option("--rays");
+  verbs["run"] = [opts, selection, reps, rays, rounds] {
     const bool given = std::any_of(selection.begin(), selection.end(), [](const CLI::Option* o) { return o->count() > 0; });
+    if (opts->quick && reps->count() == 0) opts->reps = kQuickReps;
+    opts->rounds_given = rounds->count() > 0;
+    if (opts->quick && !opts->rounds_given) opts->rounds = kQuickRounds;
+    if (opts->quick && rays->count() == 0) opts->rays = kQuickRays;
     return run(*opts, given);
   };
 

@@ -1,0 +1,47 @@
+// The summary cells of a run measured in paired rounds: for each mesh and each scheme+backend, its
+// row at the level nearest a million output triangles and its peer's row (SchemeInfo::peer, on
+// the row's peer backend) at the level nearest in triangles, timed round by round in a fresh
+// random order (bench_runs' rounds), so that both sides of each round's ratio saw the same
+// machine. A ratio of two single-pass rows, measured minutes apart beside other work, is noise.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harness/bench/measure.h"
+#include "harness/bench/results.h"
+
+namespace sdb {
+
+class Progress;
+
+inline constexpr long kSummaryTriangles = 1'000'000;
+
+// A cell to measure: two ok rows of the run, the scheme's and its peer's, on one mesh.
+struct PairedPlanCell {
+  RunRow row, peer;
+};
+
+// The cells of `rows` in row order: rows that are not ok, have no peer or whose peer has no ok
+// row on the same mesh and backend give none.
+std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows, long target = kSummaryTriangles);
+
+// The cell from its two sides measured in the same `rounds` rounds: sample r of each in round r
+// (GPU time for GPU backends, wall time otherwise, as the rows' rates).
+PairedCell pair_rounds(const std::string& mesh, const RunRow& row, const RunRow& peer);
+
+struct PairedOptions {
+  int rounds = 5;
+  double min_time_s = 0.05;  // per benchmark and round
+};
+
+// Measures the cells mesh by mesh (each mesh's evaluations alive only while its rounds run). A mesh
+// whose rounds fail is reported through `note` and left out, never ending the run.
+std::vector<PairedCell> measure_paired(const std::vector<PairedPlanCell>& cells, const PairedOptions& options,
+                                       MeasureContext& context, Progress* progress,
+                                       const std::function<void(const std::string&)>& note);
+
+// Items measure_paired shows progress for: a round of a mesh's cells is one.
+size_t paired_items(const std::vector<PairedPlanCell>& cells, int rounds);
+
+}  // namespace sdb

@@ -1,0 +1,74 @@
+// Which rows a run's summary cells pair (paired.h), and the ratio a round gives; nothing timed.
+#include <gtest/gtest.h>
+
+#include "harness/bench/paired.h"
+
+using namespace sdb;
+
+namespace {
+
+RunRow row(const std::string& scheme, Backend backend, const std::string& mesh, int level, long triangles,
+           const std::string& peer = "", std::optional<Backend> peer_backend = std::nullopt) {
+  RunRow r;
+  r.scheme = r.spec = scheme;
+  r.backend = backend;
+  r.mesh = mesh;
+  r.level = level;
+  r.triangles = triangles;
+  r.peer = peer;
+  r.peer_backend = peer_backend;
+  return r;
+}
+
+}  // namespace
+
+TEST(ChoosePairedCells, TheRowNearestAMillionAgainstThePeerNearestInTriangles) {
+  const std::vector<RunRow> rows = {
+      row("osd-bfr", Backend::Cpu, "cube", 9, 100'000), row("osd-bfr", Backend::Cpu, "cube", 33, 1'500'000),
+      row("cpatch", Backend::Cpu, "cube", 9, 200'000, "osd-bfr", Backend::Cpu),
+      row("cpatch", Backend::Cpu, "cube", 17, 800'000, "osd-bfr", Backend::Cpu),
+      row("cpatch", Backend::Vulkan, "cube", 17, 800'000, "osd-bfr", Backend::CpuMt),  // no cpu-mt peer row
+      row("cpatch", Backend::Cpu, "torus", 17, 800'000, "osd-bfr", Backend::Cpu),    // no peer row on torus
+  };
+  const std::vector<PairedPlanCell> cells = choose_paired_cells(rows);
+  ASSERT_EQ(cells.size(), 1u);
+  EXPECT_EQ(cells[0].row.level, 17);   // 800 k is nearer 1 M than 200 k
+  EXPECT_EQ(cells[0].peer.level, 33);  // 1.5 M is nearer 800 k (in ratio) than 100 k
+}
+
+TEST(ChoosePairedCells, RowsThatAreNotOkAreNeitherSide) {
+  std::vector<RunRow> rows = {row("osd-bfr", Backend::Cpu, "cube", 9, 100'000),
+                              row("cpatch", Backend::Cpu, "cube", 9, 100'000, "osd-bfr", Backend::Cpu)};
+  rows[0].status = RunStatus::Failed;
+  EXPECT_TRUE(choose_paired_cells(rows).empty());
+  rows[0].status = RunStatus::Ok;
+  rows[1].status = RunStatus::Unsupported;
+  EXPECT_TRUE(choose_paired_cells(rows).empty());
+}
+
+TEST(PairRounds, RatioOfRatesPerRoundWithMedianAndRange) {
+  RunRow scheme = row("cpatch", Backend::Cpu, "cube", 17, 2000);
+  RunRow peer = row("osd-bfr", Backend::Cpu, "cube", 33, 1000);
+  scheme.time_ms.samples = {1.0, 2.0, 4.0};
+  peer.time_ms.samples = {2.0, 2.0, 2.0};
+  const PairedCell c = pair_rounds("cube", scheme, peer);
+  EXPECT_EQ(c.rounds, 3);
+  // Round r: (2000 / t_r) / (1000 / 2) = 4 / t_r.
+  EXPECT_EQ(c.rate_ratio_per_round, (std::vector<double>{4.0, 2.0, 1.0}));
+  EXPECT_DOUBLE_EQ(c.rate_ratio_median, 2.0);
+  EXPECT_DOUBLE_EQ(c.rate_ratio_min, 1.0);
+  EXPECT_DOUBLE_EQ(c.rate_ratio_max, 4.0);
+  EXPECT_DOUBLE_EQ(c.time_ms_median, 2.0);
+  EXPECT_DOUBLE_EQ(c.peer_time_ms_median, 2.0);
+  EXPECT_EQ(c.row.scheme, "cpatch");
+  EXPECT_EQ(c.peer.level, 33);
+}
+
+TEST(PairRounds, GpuRowsUseTheirGpuTime) {
+  RunRow scheme = row("cpatch", Backend::Vulkan, "cube", 17, 1000);
+  RunRow peer = row("osd-bfr", Backend::CpuMt, "cube", 17, 1000);
+  scheme.time_ms.samples = {10.0, 10.0};          // wall time, readback included
+  scheme.gpu_time_ms = TimeStats{1, 1, 1, 2, {1.0, 1.0}};
+  peer.time_ms.samples = {2.0, 2.0};
+  EXPECT_DOUBLE_EQ(pair_rounds("cube", scheme, peer).rate_ratio_median, 2.0);
+}

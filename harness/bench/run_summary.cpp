@@ -1,0 +1,103 @@
+#include "harness/bench/run_summary.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+
+namespace sdb {
+
+bool has_crack(const RunRow& r) {
+  const bool closed_checked = r.watertight.ray_cracks >= 0;
+  return closed_checked && (r.watertight.open_edges > 0 || r.watertight.ray_cracks > 0);
+}
+
+RunSummary summarise(const std::vector<RunRow>& rows) {
+  RunSummary s;
+  for (const RunRow& r : rows) {
+    if (r.status == RunStatus::Ok) ++s.ok;
+    else if (r.status == RunStatus::Unsupported) ++s.unsupported;
+    else ++s.failed;
+    if (has_crack(r)) {
+      s.not_watertight.push_back(r.name() + ": " + std::to_string(r.watertight.open_edges) + " open edges, " +
+                                 std::to_string(r.watertight.ray_cracks) + " ray cracks of " +
+                                 std::to_string(r.watertight.rays) + " rays");
+    } else if (r.status == RunStatus::Failed) {
+      s.failures.push_back(r.name() + ": " + r.message);
+    }
+  }
+  return s;
+}
+
+std::vector<std::string> summary_lines(const RunSummary& s, const std::string& results_json, const std::string& report_dir) {
+  std::vector<std::string> lines;
+  lines.push_back(std::to_string(s.ok + s.unsupported + s.failed) + " rows: " + std::to_string(s.ok) + " ok, " +
+                  std::to_string(s.unsupported) + " unsupported, " + std::to_string(s.failed) + " failed");
+  if (s.not_watertight.empty()) {
+    lines.push_back("watertight: every closed input gave a closed surface without ray cracks");
+  } else {
+    lines.push_back("NOT watertight (" + std::to_string(s.not_watertight.size()) + " rows):");
+    for (const std::string& n : s.not_watertight) lines.push_back("  " + n);
+  }
+  if (!s.failures.empty()) {
+    lines.push_back("other failures (" + std::to_string(s.failures.size()) + " rows):");
+    for (const std::string& f : s.failures) lines.push_back("  " + f);
+  }
+  lines.push_back("wrote " + results_json);
+  if (!report_dir.empty()) {
+    const std::filesystem::path dir(report_dir);
+    lines.push_back("wrote " + (dir / "report.html").string() + " (and " + (dir / "report.md").string() + ")");
+  }
+  return lines;
+}
+
+namespace {
+
+double rate_mtris(const PairedSide& side, double time_ms) { return time_ms > 0 ? double(side.triangles) / (time_ms * 1e3) : 0; }
+
+// The fastest side among the cells' on one mesh and backend, and its own cell (its ratio to its
+// peer), null for a scheme without a peer.
+std::pair<PairedSide, const PairedCell*> fastest(const std::vector<PairedCell>& cells, const std::string& mesh, Backend backend,
+                                                 double& rate) {
+  PairedSide best;
+  rate = -1;
+  for (const PairedCell& c : cells) {
+    if (c.mesh != mesh) continue;
+    if (c.row.backend == backend && rate_mtris(c.row, c.time_ms_median) > rate) best = c.row, rate = rate_mtris(c.row, c.time_ms_median);
+    if (c.peer.backend == backend && rate_mtris(c.peer, c.peer_time_ms_median) > rate)
+      best = c.peer, rate = rate_mtris(c.peer, c.peer_time_ms_median);
+  }
+  for (const PairedCell& c : cells)
+    if (c.mesh == mesh && c.row.backend == backend && c.row.scheme == best.scheme) return {best, &c};
+  return {best, nullptr};
+}
+
+}  // namespace
+
+std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells) {
+  std::vector<std::string> lines;
+  if (cells.empty()) return lines;
+  std::map<std::string, std::set<Backend>> backends;
+  for (const PairedCell& c : cells) backends[c.mesh].insert({c.row.backend, c.peer.backend});
+  lines.push_back("fastest per mesh and backend (paired rounds: median ratio to the peer, range over rounds):");
+  for (const auto& [mesh, used] : backends)
+    for (Backend backend : used) {
+      double rate = 0;
+      const auto [side, own] = fastest(cells, mesh, backend, rate);
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "  %-28s %-7s %-24s %9.2f Mtri/s", mesh.c_str(), std::string(to_string(backend)).c_str(),
+                    side.scheme.c_str(), rate);
+      std::string line = buf;
+      if (own) {
+        std::snprintf(buf, sizeof buf, "  %.2fx %s/%s (%.2f-%.2f over %d rounds)", own->rate_ratio_median, own->peer.scheme.c_str(),
+                      std::string(to_string(own->peer.backend)).c_str(), own->rate_ratio_min, own->rate_ratio_max, own->rounds);
+        line += buf;
+      } else {
+        line += "  (a peer without one of its own)";
+      }
+      lines.push_back(line);
+    }
+  return lines;
+}
+
+}  // namespace sdb

@@ -1,0 +1,51 @@
+// The closing summary of `run`: counts by status, every cracked row named, the files named.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "harness/bench/run_summary.h"
+
+using namespace sdb;
+
+namespace {
+
+RunRow row(const std::string& mesh, RunStatus status, long open_edges, long cracks) {
+  RunRow r;
+  r.scheme = r.spec = "c-patch";
+  r.mesh = mesh;
+  r.level = 4;
+  r.status = status;
+  r.watertight.open_edges = open_edges;
+  r.watertight.ray_cracks = cracks;
+  r.watertight.rays = 100;
+  return r;
+}
+
+}  // namespace
+
+TEST(RunSummary, CountsStatusesAndNamesCrackedRows) {
+  std::vector<RunRow> rows = {row("cube", RunStatus::Ok, 0, 0), row("torus", RunStatus::Failed, 2, 5),
+                              row("open-patch", RunStatus::Ok, 32, -1),  // an open input's boundary
+                              row("pole3", RunStatus::Unsupported, -1, -1), row("pole4", RunStatus::Failed, 0, 0)};
+  rows[4].message = "deviation past the bound";
+  const RunSummary s = summarise(rows);
+  EXPECT_EQ(s.ok, 2u);
+  EXPECT_EQ(s.unsupported, 1u);
+  EXPECT_EQ(s.failed, 2u);
+  ASSERT_EQ(s.not_watertight.size(), 1u);
+  EXPECT_EQ(s.not_watertight[0], "c-patch/cpu/torus/4: 2 open edges, 5 ray cracks of 100 rays");
+  ASSERT_EQ(s.failures.size(), 1u);
+  EXPECT_EQ(s.failures[0], "c-patch/cpu/pole4/4: deviation past the bound");
+
+  const auto lines = summary_lines(s, "out/results.json", "out");
+  EXPECT_EQ(lines.front(), "5 rows: 2 ok, 1 unsupported, 2 failed");
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "  c-patch/cpu/torus/4: 2 open edges, 5 ray cracks of 100 rays"), lines.end());
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "wrote out/results.json"), lines.end());
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "wrote out/report.html (and out/report.md)"), lines.end());
+}
+
+TEST(RunSummary, SaysWhenEverythingIsWatertightAndNoReportWasWritten) {
+  const auto lines = summary_lines(summarise({row("cube", RunStatus::Ok, 0, 0)}), "r.json", "");
+  EXPECT_EQ(lines[1], "watertight: every closed input gave a closed surface without ray cracks");
+  EXPECT_EQ(lines.back(), "wrote r.json");
+}
