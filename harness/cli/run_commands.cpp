@@ -20,6 +20,8 @@
 #include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
+#include "harness/gpu/context.h"
+#include "harness/pictures/pictures.h"
 #include "reports/report.h"
 
 namespace sdb::cli {
@@ -41,7 +43,7 @@ struct RunOptions {
   uint64_t seed = 1;
   bool json = false, all_meshes = false, all_corpus = false, no_validate = false, no_report = false;
   bool in_process = false;
-  bool quick = false, no_paired = false;
+  bool quick = false, no_paired = false, no_pictures = false;
   std::string shard;  // "I/N"
   int rounds = 5;     // paired rounds of the summary cells
   bool rounds_given = false;
@@ -144,6 +146,35 @@ bool notable(const RunRow& r) { return r.status == RunStatus::Failed || has_crac
 
 // `selection_given`: with --resume, whether the command line named a selection of its own (it
 // must then be the journalled one) or leaves it to the journal.
+// The report's pictures: the paper schemes among those the run selected (all of them when it
+// selected none) on the pictures' own meshes, which show each surface whatever meshes were timed.
+// None in a shard: the merged report takes them from one place, not from N copies.
+std::optional<pictures::PictureRequest> picture_request(const RunOptions& opts, const Selection& selection) {
+  if (opts.no_pictures || opts.no_report || selection.shard_count > 1) return std::nullopt;
+  pictures::PictureRequest request;
+  if (selection.schemes.empty()) return request;
+  const std::vector<std::string> drawable = pictures::default_schemes();
+  for (const std::string& spec : selection.schemes)
+    if (std::find(drawable.begin(), drawable.end(), spec.substr(0, spec.find(':'))) != drawable.end())
+      request.schemes.push_back(spec);
+  if (request.schemes.empty()) return std::nullopt;
+  return request;
+}
+
+RunSet::ReportWriter report_writer(const RunOptions& opts, const Selection& selection) {
+  if (opts.no_report) return {};
+  const std::optional<pictures::PictureRequest> request = picture_request(opts, selection);
+  return [request](const std::string& results_json, const std::string& dir) {
+    if (request) {
+      const pictures::PictureManifest m = pictures::write_pictures(*request, dir);
+      gpu::release_shared_context();
+      std::printf("pictures: %s\n", m.available ? (std::to_string(m.pictures.size()) + " on " + m.device).c_str()
+                                                : ("none: " + m.reason).c_str());
+    }
+    write_report({results_json}, dir);
+  };
+}
+
 int run(const RunOptions& opts, bool selection_given) {
   const bool isolate = !opts.in_process;
   RunSet set = opts.resume.empty()
@@ -175,9 +206,7 @@ int run(const RunOptions& opts, bool selection_given) {
                 "ratios are single-pass\n");
   else if (!opts.no_paired)
     results.paired = paired_figures(set, results, paired_opts);
-  RunSet::ReportWriter report;
-  if (!opts.no_report) report = [](const std::string& results_json, const std::string& dir) { write_report({results_json}, dir); };
-  set.publish(results, report);
+  set.publish(results, report_writer(opts, set.selection().selection));
   const RunSummary summary = summarise(results.runs);
   std::printf("\n");
   for (const std::string& line : paired_lines(results.paired)) std::printf("%s\n", line.c_str());
@@ -236,6 +265,8 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
                 "continue the interrupted run journalled in DIR (DIR/journal.jsonl): measure only the rows it lacks")
       ->excludes(out);
   r->add_flag("--no-report", opts->no_report, "write results.json only");
+  r->add_flag("--no-pictures", opts->no_pictures,
+              "no pictures in the report (default: the paper schemes' surfaces, rendered with Vulkan where a device exists)");
   auto* rounds = r->add_option("--rounds", opts->rounds,
                                "paired rounds of the summary cells: each scheme+backend and its peer timed in the same "
                                "rounds (default 5; 3 with --quick)")

@@ -171,7 +171,9 @@ TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
               same, closer, unjudged, refused);
   std::printf("osd-glcompute = osd-stencil to 1e-6 of the diagonal on %d shapes (%s)\n", gl_checked,
               on_device ? gl::probe().renderer.c_str() : "no OpenGL context");
-  if (on_device) EXPECT_GE(gl_checked, 100);
+  if (on_device) {
+    EXPECT_GE(gl_checked, 100);
+  }
   EXPECT_LE(unjudged, 3) << "the shapes OpenSubdiv 3.5.0's Bfr misbuilds (reference_test's BfrDefect)";
   EXPECT_LE(refused, 6) << "non-manifold shapes whose masks overrun OpenSubdiv's (catmark_fan, catmark_nonman_edge100, "
                            "catmark_val2_nonman, loop_nonman_edge100, loop_nonman_edges, loop_val2_interior)";
