@@ -1,5 +1,8 @@
 #include "harness/gpu/testing.h"
 
+#include <cmath>
+#include <cstdlib>
+
 #include <cstdio>
 #include <memory>
 
@@ -82,6 +85,30 @@ void VulkanTest::SetUp() {
 
 void VulkanTest::TearDown() {
   if (ctx_) end_vulkan_test(errors_before_);
+}
+
+bool hide_vulkan_drivers() {
+  unsetenv("VK_DRIVER_FILES");  // it would take precedence over VK_ICD_FILENAMES
+  unsetenv("VK_ADD_DRIVER_FILES");
+  return setenv("VK_ICD_FILENAMES", "/nonexistent", 1) == 0;
+}
+
+Tessellation uv_sphere(int rings, int segments, const Point3& centre, float radius) {
+  Tessellation t;
+  const float pi = 3.14159265f;
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s <= segments; ++s) {
+      const float theta = pi * float(r) / float(rings), phi = 2 * pi * float(s) / float(segments);
+      const Point3 n{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+      t.normals.push_back(n);
+      t.positions.push_back({centre[0] + radius * n[0], centre[1] + radius * n[1], centre[2] + radius * n[2]});
+    }
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const uint32_t a = r * (segments + 1) + s, b = a + segments + 1;
+      t.triangles.insert(t.triangles.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  return t;
 }
 
 }  // namespace sdb::gpu::testing

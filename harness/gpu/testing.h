@@ -12,8 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
 #include <string>
 
+#include "harness/core/tessellation.h"
 #include "harness/gpu/context.h"
 
 namespace sdb::gpu::testing {
@@ -28,6 +31,15 @@ const std::string& unavailable_reason();
 // counts it in "vulkan tests run on <device>: N". VulkanTest does the same.
 uint64_t begin_vulkan_test();
 void end_vulkan_test(uint64_t errors_before);
+
+// Points the Vulkan loader at a driver list that does not exist, so that this process finds no
+// device. Call it in a static initializer, before anything touches Vulkan; false if it failed.
+bool hide_vulkan_drivers();
+
+// A UV sphere of `radius` around `centre`, with exact normals: the renderer tests' subject.
+Tessellation uv_sphere(int rings, int segments, const Point3& centre = {0, 0, 0}, float radius = 1);
+// The renderer's background.
+inline bool is_white(const std::array<uint8_t, 4>& p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
 class VulkanTest : public ::testing::Test {
  protected:

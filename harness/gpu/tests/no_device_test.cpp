@@ -3,18 +3,13 @@
 // Vulkan (static initialization runs before main).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 
 #include "harness/gpu/gpu.h"
 #include "harness/gpu/loader.h"
 #include "harness/gpu/testing.h"
 
 namespace {
-const bool k_no_driver = [] {
-  unsetenv("VK_DRIVER_FILES");  // it would take precedence over VK_ICD_FILENAMES
-  unsetenv("VK_ADD_DRIVER_FILES");
-  return setenv("VK_ICD_FILENAMES", "/nonexistent", 1) == 0;
-}();
+const bool k_no_driver = sdb::gpu::testing::hide_vulkan_drivers();
 }  // namespace
 
 namespace sdb::gpu {

@@ -12,31 +12,13 @@
 namespace sdb::gpu {
 namespace {
 
+using testing::is_white;
+using testing::uv_sphere;
+
 class RenderTest : public testing::VulkanTest {};
 
-// A UV sphere of radius 2 around (1, 2, 3), with exact normals.
-Tessellation sphere(int rings, int segments) {
-  Tessellation t;
-  const float pi = 3.14159265f;
-  for (int r = 0; r <= rings; ++r)
-    for (int s = 0; s <= segments; ++s) {
-      const float theta = pi * float(r) / float(rings), phi = 2 * pi * float(s) / float(segments);
-      const Point3 n{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
-      t.normals.push_back(n);
-      t.positions.push_back({1 + 2 * n[0], 2 + 2 * n[1], 3 + 2 * n[2]});
-    }
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const uint32_t a = r * (segments + 1) + s, b = a + segments + 1;
-      t.triangles.insert(t.triangles.end(), {a, b, a + 1, a + 1, b, b + 1});
-    }
-  return t;
-}
-
-bool is_white(const std::array<uint8_t, 4>& p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
-
 TEST_F(RenderTest, TessellationIsFramedShadedAndWrittenAsPng) {
-  const Tessellation mesh = sphere(32, 64);
+  const Tessellation mesh = uv_sphere(32, 64, {1, 2, 3}, 2);
   const Image image = render_image(ctx(), mesh, 320, 240);
   // The centre is the sphere, lit head-on: bright but not the white background.
   const auto centre = image.pixel(160, 120);
@@ -66,7 +48,7 @@ TEST_F(RenderTest, TessellationIsFramedShadedAndWrittenAsPng) {
 TEST_F(RenderTest, DrawIsTimedAtThePapersFrameSize) {
   GpuTimer timer(ctx());
   if (!timer.supported()) GTEST_SKIP() << "no timestamps";
-  const Tessellation mesh = sphere(256, 512);  // 262k triangles
+  const Tessellation mesh = uv_sphere(256, 512, {1, 2, 3}, 2);  // 262k triangles
   RenderTarget target(ctx(), 1024, 768);
   const GpuMesh gpu_mesh = upload_mesh(ctx(), mesh);
   const MeshRenderer renderer(ctx());
@@ -89,7 +71,7 @@ TEST_F(RenderTest, DrawIsTimedAtThePapersFrameSize) {
 }
 
 TEST_F(RenderTest, MeshWithoutNormalsIsRefused) {
-  Tessellation mesh = sphere(4, 8);
+  Tessellation mesh = uv_sphere(4, 8, {1, 2, 3}, 2);
   mesh.normals.clear();
   EXPECT_THROW(upload_mesh(ctx(), mesh), std::invalid_argument);
 }

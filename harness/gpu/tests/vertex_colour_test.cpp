@@ -12,28 +12,11 @@
 namespace sdb::gpu {
 namespace {
 
+using testing::is_white;
+using testing::uv_sphere;
+
 class VertexColourTest : public testing::VulkanTest {};
 
-// A UV sphere of radius 1 around the origin, with exact normals.
-Tessellation unit_sphere(int rings, int segments) {
-  Tessellation t;
-  const float pi = 3.14159265f;
-  for (int r = 0; r <= rings; ++r)
-    for (int s = 0; s <= segments; ++s) {
-      const float theta = pi * float(r) / float(rings), phi = 2 * pi * float(s) / float(segments);
-      const Point3 n{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
-      t.normals.push_back(n);
-      t.positions.push_back(n);
-    }
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const uint32_t a = r * (segments + 1) + s, b = a + segments + 1;
-      t.triangles.insert(t.triangles.end(), {a, b, a + 1, a + 1, b, b + 1});
-    }
-  return t;
-}
-
-bool is_white(const std::array<uint8_t, 4>& p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
 void expect_near_colour(const std::array<uint8_t, 4>& pixel, const Point3& colour, int tolerance) {
   for (int c = 0; c < 3; ++c)
@@ -41,7 +24,7 @@ void expect_near_colour(const std::array<uint8_t, 4>& pixel, const Point3& colou
 }
 
 TEST_F(VertexColourTest, OneColourComesOutWhereTheSurfaceFacesTheEye) {
-  const Tessellation sphere = unit_sphere(48, 96);
+  const Tessellation sphere = uv_sphere(48, 96);
   const Point3 colour{0.2f, 0.6f, 0.9f};
   PictureOptions options;
   options.width = 320, options.height = 240;
@@ -64,7 +47,7 @@ TEST_F(VertexColourTest, OneColourComesOutWhereTheSurfaceFacesTheEye) {
 
 TEST_F(VertexColourTest, EachHalfKeepsItsOwnColour) {
   // Upper half (y > 0) red, lower half green: the camera keeps y up.
-  const Tessellation sphere = unit_sphere(48, 96);
+  const Tessellation sphere = uv_sphere(48, 96);
   std::vector<Point3> colours;
   for (const Point3& p : sphere.positions) colours.push_back(p[1] > 0 ? Point3{0.9f, 0.1f, 0.1f} : Point3{0.1f, 0.8f, 0.1f});
   PictureOptions options;
@@ -78,7 +61,7 @@ TEST_F(VertexColourTest, EachHalfKeepsItsOwnColour) {
 }
 
 TEST_F(VertexColourTest, SupersamplingKeepsTheSizeAndSmoothsTheSilhouette) {
-  const Tessellation sphere = unit_sphere(24, 48);
+  const Tessellation sphere = uv_sphere(24, 48);
   const std::vector<Point3> black(sphere.positions.size(), Point3{0, 0, 0});
   PictureOptions options;
   options.width = 160, options.height = 120, options.ambient = 0;
@@ -103,7 +86,7 @@ TEST_F(VertexColourTest, SupersamplingKeepsTheSizeAndSmoothsTheSilhouette) {
 }
 
 TEST_F(VertexColourTest, FramePointsFillsThePictureUpToItsMargin) {
-  const Tessellation sphere = unit_sphere(48, 96);
+  const Tessellation sphere = uv_sphere(48, 96);
   PictureOptions options;
   options.width = 200, options.height = 100, options.supersample = 1;
   options.camera = frame_points(sphere.positions, 2.0f, {0.3f, 0.2f, 1.0f}, 0.05f);
@@ -123,7 +106,7 @@ TEST_F(VertexColourTest, FramePointsFillsThePictureUpToItsMargin) {
 }
 
 TEST_F(VertexColourTest, ColourCountMustMatchTheVertices) {
-  const Tessellation sphere = unit_sphere(4, 8);
+  const Tessellation sphere = uv_sphere(4, 8);
   EXPECT_THROW(render_image(ctx(), sphere, std::vector<Point3>(3), PictureOptions{}), std::invalid_argument);
 }
 

@@ -4,18 +4,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "harness/gpu/testing.h"
 #include "harness/pictures/pictures.h"
 
 namespace {
-const bool k_no_driver = [] {
-  unsetenv("VK_DRIVER_FILES");  // it would take precedence over VK_ICD_FILENAMES
-  unsetenv("VK_ADD_DRIVER_FILES");
-  return setenv("VK_ICD_FILENAMES", "/nonexistent", 1) == 0;
-}();
+const bool k_no_driver = sdb::gpu::testing::hide_vulkan_drivers();
 }  // namespace
 
 namespace sdb::pictures {
