@@ -31,7 +31,7 @@ struct GateOptions {
   std::vector<int> levels;
   std::string out, baseline, current, config = SDB_SOURCE_DIR "/ci/gate.json";
   bool callgrind = false, record = false;
-  std::string scheme, mesh;
+  std::string scheme, mesh, backend = "cpu";
   int level = 0, iterations = 3, rounds = 0;
   std::string paper_id;
   bool quick = false;
@@ -159,7 +159,9 @@ int report(const std::vector<std::string>& inputs, const std::string& out, const
 }
 
 int workload(const GateOptions& opts) {
-  run_callgrind_workload({opts.scheme, opts.mesh, Backend::Cpu, opts.level}, opts.iterations);
+  const auto backend = parse_backend(opts.backend);
+  if (!backend) throw InputError("--backend", "unknown backend '" + opts.backend + "'");
+  run_callgrind_workload({opts.scheme, opts.mesh, *backend, opts.level}, opts.iterations);
   return 0;
 }
 
@@ -219,6 +221,8 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   w->add_option("--mesh", opts->mesh)->required();
   w->add_option("--level", opts->level)->required();
   w->add_option("--iterations", opts->iterations);
+  // Also by hand, to count a Vulkan kernel's instructions on lavapipe (harness/bench/README.md).
+  w->add_option("--backend", opts->backend);
   verbs["workload"] = [opts] { return workload(*opts); };
 }
 

@@ -28,6 +28,8 @@ VkBufferUsageFlags vk_usage(BufferUsage usage) {
   if (has(usage, BufferUsage::Vertex)) flags |= VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
   if (has(usage, BufferUsage::Index)) flags |= VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
   if (has(usage, BufferUsage::Indirect)) flags |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  if (has(usage, BufferUsage::UniformTexel)) flags |= VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  if (has(usage, BufferUsage::StorageTexel)) flags |= VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
   return flags;
 }
 

@@ -29,6 +29,8 @@ enum class BufferUsage : uint32_t {
   Vertex = 1u << 2,
   Index = 1u << 3,
   Indirect = 1u << 4,
+  UniformTexel = 1u << 5,
+  StorageTexel = 1u << 6,
 };
 constexpr BufferUsage operator|(BufferUsage a, BufferUsage b) {
   return static_cast<BufferUsage>(static_cast<uint32_t>(a) | static_cast<uint32_t>(b));
@@ -44,6 +46,7 @@ struct BufferRange {
   const Buffer* buffer = nullptr;
   uint64_t offset = 0;
   uint64_t bytes = VK_WHOLE_SIZE;
+  VkFormat texel_format = VK_FORMAT_UNDEFINED;  // texel-buffer bindings only: the view's format
 };
 
 class Buffer {

@@ -22,11 +22,14 @@ struct DeviceLimits {
   uint64_t max_buffer_size = 0;  // Vulkan 1.3 maxBufferSize; max_memory_allocation_size when not reported
   uint64_t min_storage_buffer_offset_alignment = 1;
   uint64_t min_uniform_buffer_offset_alignment = 1;
+  uint64_t max_texel_buffer_elements = 0;  // texels one texel-buffer view may cover
+  uint64_t min_texel_buffer_offset_alignment = 1;
   uint64_t device_local_bytes = 0;  // size of the largest device-local heap
   std::array<uint32_t, 3> max_compute_work_group_count{};
   std::array<uint32_t, 3> max_compute_work_group_size{};
   uint32_t max_compute_work_group_invocations = 0;
   uint32_t max_push_constants_size = 0;
+  uint32_t subgroup_size = 1;  // invocations that run in lock step (lavapipe: its SIMD width, 8 at 256 bits)
   uint32_t max_per_stage_storage_buffers = 0;
   uint32_t max_geometry_output_vertices = 0;
   uint32_t max_geometry_total_output_components = 0;

@@ -104,6 +104,8 @@ void fill_limits(const VkPhysicalDeviceLimits& l, DeviceLimits& out) {
   out.max_uniform_buffer_range = l.maxUniformBufferRange;
   out.min_storage_buffer_offset_alignment = std::max<uint64_t>(1, l.minStorageBufferOffsetAlignment);
   out.min_uniform_buffer_offset_alignment = std::max<uint64_t>(1, l.minUniformBufferOffsetAlignment);
+  out.max_texel_buffer_elements = l.maxTexelBufferElements;
+  out.min_texel_buffer_offset_alignment = std::max<uint64_t>(1, l.minTexelBufferOffsetAlignment);
   for (int i = 0; i < 3; ++i) {
     out.max_compute_work_group_count[i] = l.maxComputeWorkGroupCount[i];
     out.max_compute_work_group_size[i] = l.maxComputeWorkGroupSize[i];
@@ -132,8 +134,10 @@ void fill_extended(const Vk& vk, PhysicalDevice& pd) {
   VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceMaintenance4Properties maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES};
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &maintenance3};
-  void** next = &maintenance3.pNext;
+  maintenance3.pNext = &subgroup;
+  void** next = &subgroup.pNext;
   if (api >= VK_API_VERSION_1_2) {
     *next = &driver;
     next = &driver.pNext;
@@ -144,6 +148,7 @@ void fill_extended(const Vk& vk, PhysicalDevice& pd) {
   }
   vk.vkGetPhysicalDeviceProperties2(pd.handle, &props2);
   info.limits.max_memory_allocation_size = maintenance3.maxMemoryAllocationSize;
+  info.limits.subgroup_size = std::max<uint32_t>(1, subgroup.subgroupSize);
   if (api >= VK_API_VERSION_1_2) {
     info.driver_name = driver.driverName;
     info.driver_info = driver.driverInfo;

@@ -10,7 +10,104 @@ namespace sdb::gpu {
 namespace {
 
 VkDescriptorType descriptor_type(Binding b) {
-  return b == Binding::StorageBuffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  switch (b) {
+    case Binding::StorageBuffer:
+      return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case Binding::UniformBuffer:
+      return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case Binding::UniformTexelBuffer:
+      return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case Binding::StorageTexelBuffer:
+      return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+  }
+  throw std::logic_error("descriptor_type: unknown binding");
+}
+
+bool is_texel(Binding b) { return b == Binding::UniformTexelBuffer || b == Binding::StorageTexelBuffer; }
+
+struct BindingRules {
+  BufferUsage usage;
+  const char* usage_name;
+  uint64_t max_bytes, alignment;
+};
+
+BindingRules binding_rules(const DeviceLimits& l, Binding b, uint32_t texel_bytes) {
+  switch (b) {
+    case Binding::StorageBuffer:
+      return {BufferUsage::Storage, "Storage", l.max_storage_buffer_range, l.min_storage_buffer_offset_alignment};
+    case Binding::UniformBuffer:
+      return {BufferUsage::Uniform, "Uniform", l.max_uniform_buffer_range, l.min_uniform_buffer_offset_alignment};
+    case Binding::UniformTexelBuffer:
+      return {BufferUsage::UniformTexel, "UniformTexel", l.max_texel_buffer_elements * texel_bytes,
+              l.min_texel_buffer_offset_alignment};
+    case Binding::StorageTexelBuffer:
+      return {BufferUsage::StorageTexel, "StorageTexel", l.max_texel_buffer_elements * texel_bytes,
+              l.min_texel_buffer_offset_alignment};
+  }
+  throw std::logic_error("binding_rules: unknown binding");
+}
+
+// Bytes per texel of the formats texel bindings take here (32-bit float and integer channels).
+uint32_t texel_bytes(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SINT:
+      return 4;
+    case VK_FORMAT_R32G32_SFLOAT:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+    case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_R32G32B32A32_SINT:
+      return 16;
+    default:
+      return 0;
+  }
+}
+
+// The range's size in bytes, after checking it against the binding's usage and the device's limits.
+uint64_t checked_bytes(const Context& ctx, Binding binding, const BufferRange& r, const std::string& where) {
+  const uint32_t texel = is_texel(binding) ? texel_bytes(r.texel_format) : 1;
+  if (texel == 0) throw std::invalid_argument(where + ": a texel binding needs a 32-bit-channel texel_format");
+  const BindingRules rules = binding_rules(ctx.limits(), binding, texel);
+  if (!r.buffer || !*r.buffer) throw std::invalid_argument(where + ": no buffer");
+  if (!has(r.buffer->usage(), rules.usage))
+    throw std::invalid_argument(where + ": buffer '" + r.buffer->name() + "' was not made with usage " + rules.usage_name);
+  const uint64_t bytes = r.bytes == VK_WHOLE_SIZE ? r.buffer->size() - r.offset : r.bytes;
+  if (r.offset > r.buffer->size() || bytes > r.buffer->size() - r.offset)
+    throw std::invalid_argument(where + ": range past the end of buffer '" + r.buffer->name() + "'");
+  if (bytes > rules.max_bytes)
+    throw std::invalid_argument(where + ": " + std::to_string(bytes) + " bytes of buffer '" + r.buffer->name() +
+                                "' exceed the device's binding range of " + std::to_string(rules.max_bytes) +
+                                " bytes; split it with plan_chunks()");
+  if (r.offset % rules.alignment != 0)
+    throw std::invalid_argument(where + ": offset " + std::to_string(r.offset) + " is not a multiple of " +
+                                std::to_string(rules.alignment));
+  if (bytes % texel != 0)
+    throw std::invalid_argument(where + ": " + std::to_string(bytes) + " bytes are not whole texels of " +
+                                std::to_string(texel) + " bytes");
+  return bytes;
+}
+
+void count_descriptor(std::vector<VkDescriptorPoolSize>& sizes, VkDescriptorType type) {
+  for (VkDescriptorPoolSize& s : sizes)
+    if (s.type == type) {
+      ++s.descriptorCount;
+      return;
+    }
+  sizes.push_back({type, 1});
+}
+
+VkBufferView make_view(const Context& ctx, const BufferRange& r, uint64_t bytes) {
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = r.buffer->handle();
+  info.format = r.texel_format;
+  info.offset = r.offset;
+  info.range = bytes;
+  VkBufferView view = VK_NULL_HANDLE;
+  check(ctx.vk().vkCreateBufferView(ctx.device(), &info, nullptr, &view), "vkCreateBufferView",
+        "creating a texel view of buffer '" + r.buffer->name() + "'");
+  return view;
 }
 
 std::optional<std::string> push_constants_unsupported(const Context& ctx, uint32_t bytes) {
@@ -283,37 +380,39 @@ DescriptorSet::DescriptorSet(const Pipeline& pipeline, const std::vector<BufferR
   if (ranges.size() != bindings.size())
     throw std::invalid_argument("descriptor set: the pipeline has " + std::to_string(bindings.size()) +
                                 " bindings, " + std::to_string(ranges.size()) + " buffer ranges were given");
-  const DeviceLimits& limits = ctx_->limits();
   std::vector<VkDescriptorBufferInfo> infos;
-  uint32_t storage = 0, uniform = 0;
+  std::vector<VkDescriptorPoolSize> sizes;
   for (size_t i = 0; i < ranges.size(); ++i) {
-    const BufferRange& r = ranges[i];
-    const bool is_storage = bindings[i] == Binding::StorageBuffer;
-    const std::string where = "binding " + std::to_string(i);
-    if (!r.buffer || !*r.buffer) throw std::invalid_argument(where + ": no buffer");
-    if (!has(r.buffer->usage(), is_storage ? BufferUsage::Storage : BufferUsage::Uniform))
-      throw std::invalid_argument(where + ": buffer '" + r.buffer->name() + "' was not made with usage " +
-                                  (is_storage ? "Storage" : "Uniform"));
-    const uint64_t bytes = r.bytes == VK_WHOLE_SIZE ? r.buffer->size() - r.offset : r.bytes;
-    const uint64_t max_range = is_storage ? limits.max_storage_buffer_range : limits.max_uniform_buffer_range;
-    const uint64_t alignment =
-        is_storage ? limits.min_storage_buffer_offset_alignment : limits.min_uniform_buffer_offset_alignment;
-    if (r.offset > r.buffer->size() || bytes > r.buffer->size() - r.offset)
-      throw std::invalid_argument(where + ": range past the end of buffer '" + r.buffer->name() + "'");
-    if (bytes > max_range)
-      throw std::invalid_argument(where + ": " + std::to_string(bytes) + " bytes of buffer '" + r.buffer->name() +
-                                  "' exceed the device's binding range of " + std::to_string(max_range) +
-                                  " bytes; split it with plan_chunks()");
-    if (r.offset % alignment != 0)
-      throw std::invalid_argument(where + ": offset " + std::to_string(r.offset) + " is not a multiple of " +
-                                  std::to_string(alignment));
-    infos.push_back({r.buffer->handle(), r.offset, bytes});
-    (is_storage ? storage : uniform) += 1;
+    const uint64_t bytes = checked_bytes(*ctx_, bindings[i], ranges[i], "binding " + std::to_string(i));
+    infos.push_back({ranges[i].buffer->handle(), ranges[i].offset, bytes});
+    count_descriptor(sizes, descriptor_type(bindings[i]));
   }
   if (infos.empty()) return;  // nothing to bind; Commands::bind skips an empty set
-  std::vector<VkDescriptorPoolSize> sizes;
-  if (storage) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage});
-  if (uniform) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniform});
+  try {
+    allocate(pipeline, sizes);
+    for (size_t i = 0; i < ranges.size(); ++i)
+      if (is_texel(bindings[i])) views_.push_back(make_view(*ctx_, ranges[i], infos[i].range));
+  } catch (...) {
+    release();
+    throw;
+  }
+  std::vector<VkWriteDescriptorSet> writes;
+  for (uint32_t i = 0, view = 0; i < infos.size(); ++i) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set_;
+    w.dstBinding = i;
+    w.descriptorCount = 1;
+    w.descriptorType = descriptor_type(bindings[i]);
+    if (is_texel(bindings[i]))
+      w.pTexelBufferView = &views_[view++];
+    else
+      w.pBufferInfo = &infos[i];
+    writes.push_back(w);
+  }
+  ctx_->vk().vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void DescriptorSet::allocate(const Pipeline& pipeline, const std::vector<VkDescriptorPoolSize>& sizes) {
   const Vk& vk = ctx_->vk();
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pool_info.maxSets = 1;
@@ -326,22 +425,8 @@ DescriptorSet::DescriptorSet(const Pipeline& pipeline, const std::vector<BufferR
   alloc.descriptorPool = pool_;
   alloc.descriptorSetCount = 1;
   alloc.pSetLayouts = &layout;
-  VkResult r = vk.vkAllocateDescriptorSets(ctx_->device(), &alloc, &set_);
-  if (r < 0) {
-    release();
-    check(r, "vkAllocateDescriptorSets", "allocating a descriptor set");
-  }
-  std::vector<VkWriteDescriptorSet> writes;
-  for (uint32_t i = 0; i < infos.size(); ++i) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = set_;
-    w.dstBinding = i;
-    w.descriptorCount = 1;
-    w.descriptorType = descriptor_type(bindings[i]);
-    w.pBufferInfo = &infos[i];
-    writes.push_back(w);
-  }
-  vk.vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  check(vk.vkAllocateDescriptorSets(ctx_->device(), &alloc, &set_), "vkAllocateDescriptorSets",
+        "allocating a descriptor set");
 }
 
 DescriptorSet::DescriptorSet(DescriptorSet&& other) noexcept { *this = std::move(other); }
@@ -352,6 +437,7 @@ DescriptorSet& DescriptorSet::operator=(DescriptorSet&& other) noexcept {
     ctx_ = std::exchange(other.ctx_, nullptr);
     pool_ = std::exchange(other.pool_, VK_NULL_HANDLE);
     set_ = std::exchange(other.set_, VK_NULL_HANDLE);
+    views_ = std::exchange(other.views_, {});
   }
   return *this;
 }
@@ -361,6 +447,9 @@ DescriptorSet::~DescriptorSet() { release(); }
 void DescriptorSet::release() {
   // Destroying the pool frees its set.
   if (ctx_ && pool_) ctx_->vk().vkDestroyDescriptorPool(ctx_->device(), pool_, nullptr);
+  for (VkBufferView view : views_)
+    if (ctx_) ctx_->vk().vkDestroyBufferView(ctx_->device(), view, nullptr);
+  views_.clear();
   pool_ = VK_NULL_HANDLE;
   set_ = VK_NULL_HANDLE;
   ctx_ = nullptr;

@@ -16,7 +16,11 @@
 
 namespace sdb::gpu {
 
-enum class Binding { StorageBuffer, UniformBuffer };
+// Texel buffers are read (texelFetch on a samplerBuffer) or written (imageStore on an
+// imageBuffer) through a view in the BufferRange's texel_format. On lavapipe they are the fast
+// path: a storage buffer's loads and stores go lane by lane with a branch each, a texel fetch is
+// one vector gather (README.md, "Memory access on lavapipe").
+enum class Binding { StorageBuffer, UniformBuffer, UniformTexelBuffer, StorageTexelBuffer };
 
 struct SpecConstant {
   uint32_t id = 0;  // layout(constant_id = id)
@@ -132,10 +136,12 @@ class DescriptorSet {
   VkDescriptorSet handle() const { return set_; }
 
  private:
+  void allocate(const Pipeline& pipeline, const std::vector<VkDescriptorPoolSize>& sizes);
   void release();
   Context* ctx_ = nullptr;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
+  std::vector<VkBufferView> views_;  // of the texel bindings, in binding order
 };
 
 }  // namespace sdb::gpu

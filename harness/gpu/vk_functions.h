@@ -79,6 +79,8 @@
   X(vkDestroyPipeline)                  \
   X(vkCreateDescriptorPool)             \
   X(vkDestroyDescriptorPool)            \
+  X(vkCreateBufferView)                 \
+  X(vkDestroyBufferView)                \
   X(vkAllocateDescriptorSets)           \
   X(vkUpdateDescriptorSets)             \
   X(vkCreateQueryPool)                  \

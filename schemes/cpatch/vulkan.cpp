@@ -155,7 +155,7 @@ struct CpatchVulkan::Device {
     else
       make_output(ctx, t, grid.rate(), o);
     if (o.variant == GpuVariant::TwoPass)
-      make_two_pass(ctx, grid.rate(), o);
+      make_two_pass(ctx, t, grid.rate(), o);
     else
       make_corner_pipeline(ctx, grid.rate(), o);
   }
@@ -179,15 +179,13 @@ struct CpatchVulkan::Device {
     }
   }
 
-  void make_two_pass(gpu::Context& ctx, int rate, const GpuOptions& o) {
+  void make_two_pass(gpu::Context& ctx, const CpatchTopology& t, int rate, const GpuOptions& o) {
     vertices = std::make_unique<gpu::ComputePipeline>(ctx, vertices_pass_desc());
     patches = std::make_unique<gpu::ComputePipeline>(ctx, patches_pass_desc());
     vertices_set = gpu::DescriptorSet(*vertices, vertices_pass_bindings(mesh));
     patches_set = gpu::DescriptorSet(*patches, patches_pass_bindings(mesh));
     if (o.mode == GpuMode::Evaluate) {
-      evaluate = std::make_unique<gpu::ComputePipeline>(ctx, evaluate_pass_desc(rate));
-      for (const gpu::Chunk& c : output->plan().chunks)
-        chunk_sets.emplace_back(*evaluate, evaluate_pass_bindings(mesh, *output, c));
+      make_evaluate_pass(ctx, t, rate);
       return;
     }
     const bool heat_map = !o.heat_values.empty();
@@ -196,6 +194,20 @@ struct CpatchVulkan::Device {
     graphics_set = gpu::DescriptorSet(*graphics, grid_render_bindings(mesh, camera, heat_map ? &heat : nullptr));
     indices = gpu::device_buffer_with(ctx, grid_indices(rate, grids_per_instance(rate)), gpu::BufferUsage::Index,
                                       "c-patch grid indices");
+  }
+
+  // Four pipelines (patch kind x interior or border rows) sharing one descriptor set per chunk.
+  void make_evaluate_pass(gpu::Context& ctx, const CpatchTopology& t, int rate) {
+    const uint32_t subgroup = ctx.limits().subgroup_size;
+    evaluate_local_size = std::max<uint32_t>(1, kLocalSize / subgroup) * subgroup;
+    for (int k = 0; k < 4; ++k)
+      evaluate[k] = std::make_unique<gpu::ComputePipeline>(
+          ctx, evaluate_pass_desc(rate, k & 1, k & 2, evaluate_local_size));
+    EvaluateRuns plan = cpatch::evaluate_runs(t, output->plan(), uint64_t(rate) * rate);
+    evaluate_runs = std::move(plan.runs);
+    quad_lists = gpu::storage_table(ctx, std::move(plan.lists), "c-patch evaluate quad lists");
+    for (const gpu::Chunk& c : output->plan().chunks)
+      chunk_sets.emplace_back(*evaluate[0], evaluate_pass_bindings(mesh, *output, c, quad_lists));
   }
 
   // cpatch-1pass and cpatch-tess: one graphics pipeline from corner.vert on.
@@ -213,8 +225,11 @@ struct CpatchVulkan::Device {
   DeviceMesh mesh;
   std::optional<DeviceOutput> output;             // evaluate mode
   std::unique_ptr<gpu::RenderTarget> target;      // render mode; 1 x 1 for graphics evaluate mode
-  gpu::Buffer camera, heat, indices, tess_error, tess_error_staging;
-  std::unique_ptr<gpu::ComputePipeline> vertices, patches, evaluate;
+  gpu::Buffer camera, heat, indices, tess_error, tess_error_staging, quad_lists;
+  std::unique_ptr<gpu::ComputePipeline> vertices, patches;
+  std::unique_ptr<gpu::ComputePipeline> evaluate[4];  // index: cpatch + 2 border_rows
+  uint32_t evaluate_local_size = kLocalSize;
+  std::vector<EvaluateRun> evaluate_runs;
   std::unique_ptr<gpu::GraphicsPipeline> graphics;
   gpu::DescriptorSet vertices_set, patches_set, graphics_set;
   std::vector<gpu::DescriptorSet> chunk_sets;  // evaluate mode, one per output chunk
@@ -301,16 +316,25 @@ void CpatchVulkan::record_two_pass_evaluation(gpu::Commands& cmd) {
     return;
   }
   d.frame_timer.begin(cmd, gpu::PassKind::Kernel, "pass 2: evaluate");
-  const auto& chunks = d.output->plan().chunks;
-  for (size_t k = 0; k < chunks.size(); ++k) {
-    // One invocation per grid row (evaluate.comp).
-    const uint32_t rows = static_cast<uint32_t>(chunks[k].elements / rate());
-    const uint32_t push[2] = {static_cast<uint32_t>(chunks[k].first_element / rate()), rows};
-    cmd.bind(*d.evaluate, d.chunk_sets[k]);
-    cmd.push(push);
-    cmd.dispatch(gpu::groups_for(rows, kLocalSize, ctx_->limits()));
-  }
+  for (const EvaluateRun& run : d.evaluate_runs)
+    for (bool border_rows : {false, true}) record_evaluate_run(cmd, run, border_rows);
   d.frame_timer.end(cmd);
+}
+
+// One evaluate.comp dispatch: a run's quads (x, y) times its rows (z): rows 1..N-2, or 0 and N-1.
+void CpatchVulkan::record_evaluate_run(gpu::Commands& cmd, const EvaluateRun& run, bool border_rows) const {
+  Device& d = *device_;
+  const uint32_t last = static_cast<uint32_t>(rate() - 1);
+  const uint32_t rows = border_rows ? 2 : last - 1;
+  if (rows == 0) return;
+  const gpu::Groups groups = gpu::groups_for(run.count, d.evaluate_local_size, ctx_->limits());
+  if (groups.z != 1 || rows > ctx_->limits().max_compute_work_group_count[2])
+    throw gpu::Unsupported("c-patch evaluate: " + std::to_string(run.count) + " quads of " + std::to_string(rows) +
+                           " rows exceed the device's work group counts");
+  const uint32_t push[5] = {run.first_quad, run.list_offset, run.count, border_rows ? 0 : 1u, border_rows ? last : 1u};
+  cmd.bind(*d.evaluate[(run.cpatch ? 1 : 0) + (border_rows ? 2 : 0)], d.chunk_sets[run.chunk]);
+  cmd.push(push);
+  cmd.dispatch(groups.x, groups.y, rows);
 }
 
 // cpatch-1pass and cpatch-tess: one draw of the quads' corners (render mode), or one per output

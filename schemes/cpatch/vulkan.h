@@ -22,6 +22,8 @@
 
 namespace sdb::cpatch {
 
+struct EvaluateRun;  // vulkan_resources.h
+
 enum class GpuVariant { TwoPass, OnePass, Tessellation };
 enum class GpuMode { Evaluate, Render };
 const char* scheme_name(GpuVariant variant);  // "cpatch-2pass", ...
@@ -89,6 +91,7 @@ class CpatchVulkan {
   void record_frame();
   void record_conversion(gpu::Commands& cmd);
   void record_two_pass_evaluation(gpu::Commands& cmd);
+  void record_evaluate_run(gpu::Commands& cmd, const EvaluateRun& run, bool border_rows) const;
   void record_corner_draw(gpu::Commands& cmd);
   void record_readback();
 

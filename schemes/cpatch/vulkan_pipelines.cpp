@@ -13,6 +13,11 @@ using gpu::Binding;
 
 std::vector<Binding> storage_bindings(size_t count) { return std::vector<Binding>(count, Binding::StorageBuffer); }
 
+gpu::BufferRange texels(gpu::BufferRange r, VkFormat format) {
+  r.texel_format = format;
+  return r;
+}
+
 gpu::SpecConstant rate_constant(int rate) { return {0, static_cast<uint32_t>(rate)}; }
 
 // corner.vert's buffers (bindings 0-5) and the patch stages' (6-8), shared by cpatch-1pass and
@@ -47,8 +52,12 @@ gpu::ComputePipelineDesc vertices_pass_desc() {
 
 gpu::ComputePipelineDesc patches_pass_desc() { return {shaders::get("patches.comp"), storage_bindings(9), sizeof(uint32_t), {}}; }
 
-gpu::ComputePipelineDesc evaluate_pass_desc(int rate) {
-  return {shaders::get("evaluate.comp"), storage_bindings(5), 2 * sizeof(uint32_t), {rate_constant(rate)}};
+gpu::ComputePipelineDesc evaluate_pass_desc(int rate, bool cpatch, bool border_rows, uint32_t local_size) {
+  return {shaders::get("evaluate.comp"),
+          {Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::StorageTexelBuffer,
+           Binding::StorageTexelBuffer, Binding::StorageBuffer},
+          5 * sizeof(uint32_t),
+          {rate_constant(rate), {1, cpatch ? 1u : 0u}, {2, border_rows ? 1u : 0u}, {3, local_size}}};
 }
 
 int grids_per_instance(int rate) { return std::max(1, kVerticesPerInstance / (rate * rate)); }
@@ -77,8 +86,13 @@ std::vector<gpu::BufferRange> patches_pass_bindings(const DeviceMesh& m) {
           m.edge_points.range(),    m.tangent_points.range(), m.records.range()};
 }
 
-std::vector<gpu::BufferRange> evaluate_pass_bindings(const DeviceMesh& m, const DeviceOutput& out, const gpu::Chunk& c) {
-  return {m.records.range(), m.quad_info.range(), m.grid.range(), out.positions(c), out.normals(c)};
+std::vector<gpu::BufferRange> evaluate_pass_bindings(const DeviceMesh& m, const DeviceOutput& out, const gpu::Chunk& c,
+                                                     const gpu::Buffer& quad_lists) {
+  return {{&m.records, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT},
+          {&m.grid, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT},
+          texels(out.positions(c), VK_FORMAT_R32_SFLOAT),
+          texels(out.normals(c), VK_FORMAT_R32_SFLOAT),
+          quad_lists.range()};
 }
 
 std::vector<gpu::BufferRange> grid_render_bindings(const DeviceMesh& m, const gpu::Buffer& camera, const gpu::Buffer* heat) {

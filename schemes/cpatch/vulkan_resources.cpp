@@ -40,6 +40,22 @@ std::vector<uint32_t> quad_info_table(const CpatchTopology& t) {
   return info;
 }
 
+EvaluateRuns evaluate_runs(const CpatchTopology& t, const gpu::ChunkPlan& plan, uint64_t samples_per_quad) {
+  EvaluateRuns r;
+  for (size_t k = 0; k < plan.chunks.size(); ++k) {
+    const uint64_t first = plan.chunks[k].first_element / samples_per_quad;
+    const uint64_t end = first + plan.chunks[k].elements / samples_per_quad;
+    for (bool cpatch : {false, true}) {
+      EvaluateRun run{k, cpatch, static_cast<uint32_t>(first), static_cast<uint32_t>(r.lists.size()), 0};
+      for (uint64_t q = first; q < end; ++q)
+        if ((t.extraordinary_index[q] >= 0) == cpatch) r.lists.push_back(uint32_t(q) << 4 | t.forward_sides[q]);
+      run.count = static_cast<uint32_t>(r.lists.size() - run.list_offset);
+      if (run.count > 0) r.runs.push_back(run);
+    }
+  }
+  return r;
+}
+
 uint64_t DeviceMesh::bytes_needed(const CpatchTopology& t, const SampleGrid& grid, bool intermediates) {
   uint64_t bytes = 2 * float3_bytes(t.num_vertices) + (t.first_slot.size() + t.ring.size()) * sizeof(int) +
                    t.corners.size() * sizeof(QuadCorner) + t.num_quads * sizeof(uint32_t) +
@@ -62,13 +78,19 @@ DeviceMesh::DeviceMesh(gpu::Context& ctx, const CpatchTopology& t, const SampleG
   corners = gpu::storage_table(ctx, t.corners, "c-patch quad corners");
   quad_info = gpu::storage_table(ctx, quad_info_table(t), "c-patch quad info");
   corner_weights = gpu::storage_table(ctx, t.cpatch_weights, "c-patch Table 2 weights");
-  grid = gpu::storage_table(ctx, grid_table(sample_grid), "c-patch grid weights");
+  // Storage for the graphics variants' stages, a texel buffer for the evaluate pass (fetches
+  // are vector gathers on lavapipe).
+  grid = gpu::device_buffer_with(ctx, grid_table(sample_grid), gpu::BufferUsage::Storage | gpu::BufferUsage::UniformTexel,
+                                 "c-patch grid weights");
   if (!intermediates) return;
   limit_points = storage(ctx, control_bytes, "c-patch limit points");
   face_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch face points");
   edge_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch edge points");
   tangent_points = storage(ctx, float3_bytes(t.num_slots()), "c-patch tangent points");
-  records = storage(ctx, size_t(t.num_quads) * kRecordSize * 4 * sizeof(float), "c-patch patch records");
+  const uint64_t record_bytes = size_t(t.num_quads) * kRecordSize * 4 * sizeof(float);
+  gpu::check_storage_binding(ctx, record_bytes, "c-patch patch records");
+  records = gpu::Buffer::device(ctx, record_bytes, gpu::BufferUsage::Storage | gpu::BufferUsage::UniformTexel,
+                                "c-patch patch records");
 }
 
 void DeviceMesh::write_positions(const std::vector<Vec3f>& positions) const {
@@ -82,8 +104,9 @@ DeviceOutput::DeviceOutput(gpu::Context& ctx, int num_quads, int rate, uint32_t 
     : samples_(uint64_t(rate) * rate) {
   plan_ = gpu::plan_chunks(ctx.limits(), {uint64_t(num_quads) * samples_, 12, samples_, local_size, max_chunk_bytes});
   for (uint64_t bytes : plan_.buffer_bytes) {
-    positions_.push_back(gpu::Buffer::device(ctx, bytes, gpu::BufferUsage::Storage, "c-patch output positions"));
-    normals_.push_back(gpu::Buffer::device(ctx, bytes, gpu::BufferUsage::Storage, "c-patch output normals"));
+    const gpu::BufferUsage usage = gpu::BufferUsage::Storage | gpu::BufferUsage::StorageTexel;
+    positions_.push_back(gpu::Buffer::device(ctx, bytes, usage, "c-patch output positions"));
+    normals_.push_back(gpu::Buffer::device(ctx, bytes, usage, "c-patch output normals"));
     positions_staging_.push_back(gpu::Buffer::readback(ctx, bytes, "c-patch output positions (readback)"));
     normals_staging_.push_back(gpu::Buffer::readback(ctx, bytes, "c-patch output normals (readback)"));
   }

@@ -25,6 +25,21 @@ std::vector<float> grid_table(const SampleGrid& grid);
 // Per quad: bits 0-3 forward_sides, bits 4.. the c-patch index + 1 (0: ordinary); record.glsl.
 std::vector<uint32_t> quad_info_table(const CpatchTopology& t);
 
+// The evaluate pass's dispatches: per output chunk, its ordinary quads, then its c-patches, each
+// a run of EvaluateRuns::lists entries (quad << 4 | forward_sides).
+struct EvaluateRun {
+  size_t chunk = 0;
+  bool cpatch = false;
+  uint32_t first_quad = 0;   // the chunk's
+  uint32_t list_offset = 0;  // in the lists
+  uint32_t count = 0;
+};
+struct EvaluateRuns {
+  std::vector<uint32_t> lists;
+  std::vector<EvaluateRun> runs;  // none empty
+};
+EvaluateRuns evaluate_runs(const CpatchTopology& t, const gpu::ChunkPlan& plan, uint64_t samples_per_quad);
+
 class DeviceMesh {
  public:
   // `intermediates`: the 2-pass scheme's VertexPoints and PatchRecord buffers as well.

@@ -109,6 +109,46 @@ TEST_F(ComputeTest, WrongBindingsAreRefusedBeforeVulkanSeesThem) {
   });
 }
 
+// Texel buffers (the lavapipe fast path for reads and writes, pipeline.h): a vec4 view in, a
+// float view out, from an offset into each buffer; the result is the CPU's to the bit.
+TEST_F(ComputeTest, TexelBuffersReadAndWriteThroughViews) {
+  const uint32_t count = 1000, skip = 16;  // views start `skip` texels in (minTexelBufferOffsetAlignment <= 256 B)
+  std::vector<float> values(4 * size_t(count + skip));
+  for (size_t k = 0; k < values.size(); ++k) values[k] = 0.25f * float(k % 97) + 1.0f;
+  ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("texel_copy.comp"),
+                                   {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer}, 4});
+  Buffer in = device_buffer_with(ctx(), values, BufferUsage::UniformTexel, "texels in");
+  Buffer out = Buffer::device(ctx(), 4 * (count + skip), BufferUsage::StorageTexel, "texels out");
+  DescriptorSet set(pipeline, {{&in, 16 * skip, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT},
+                               {&out, 4 * skip, VK_WHOLE_SIZE, VK_FORMAT_R32_SFLOAT}});
+  ctx().run([&](Commands& cmd) {
+    cmd.bind(pipeline, set);
+    cmd.push(count);
+    cmd.dispatch(groups_for(count, 64, ctx().limits()));
+  });
+  const std::vector<float> gpu = download_as<float>(ctx(), out, count + skip);
+  for (uint32_t i = 0; i < count; ++i) {
+    const float* v = &values[4 * size_t(i + skip)];
+    const float sum = v[0] + v[1], product = sum * v[2], expected = product - v[3];
+    ASSERT_EQ(gpu[i + skip], expected) << "texel " << i;
+  }
+}
+
+TEST_F(ComputeTest, TexelBindingsWithoutAFormatOrUsageAreRefused) {
+  ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("texel_copy.comp"),
+                                   {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer}, 4});
+  Buffer texels = Buffer::device(ctx(), 256, BufferUsage::UniformTexel | BufferUsage::StorageTexel, "texels");
+  Buffer storage = Buffer::device(ctx(), 256, BufferUsage::Storage, "storage");
+  const BufferRange vec4s{&texels, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT};
+  const BufferRange floats{&texels, 0, VK_WHOLE_SIZE, VK_FORMAT_R32_SFLOAT};
+  EXPECT_NO_THROW(DescriptorSet(pipeline, {vec4s, floats}));
+  EXPECT_THROW(DescriptorSet(pipeline, {texels.range(), floats}), std::invalid_argument);  // no format
+  EXPECT_THROW(DescriptorSet(pipeline, {{&storage, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT}, floats}),
+               std::invalid_argument);  // not made for texels
+  EXPECT_THROW(DescriptorSet(pipeline, {{&texels, 0, 40, VK_FORMAT_R32G32B32A32_SFLOAT}, floats}),
+               std::invalid_argument);  // 40 bytes are not whole vec4 texels
+}
+
 TEST(EmbeddedShaders, LookupByFileName) {
   EXPECT_THROW(gpu_test_shaders::get("missing.comp"), std::out_of_range);
   EXPECT_EQ(gpu_test_shaders::all().size(), 8u);

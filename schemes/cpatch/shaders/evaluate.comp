@@ -1,43 +1,119 @@
 #version 450
-// cpatch-2pass, pass 2 (evaluate-only mode): one invocation per grid row of a quad (N output
-// vertices) in one chunk (gpu::plan_chunks), writing float3 positions and unit normals. Output
-// vertex k is grid sample (i, j) = (s mod N, s div N), s = k mod N^2, of quad k div N^2. A row
-// per invocation reads the quad's record once for N samples: the record loads are what a
-// sample costs most on lavapipe, and N x quads invocations still fill a GPU.
+// cpatch-2pass, pass 2 (evaluate-only mode), shaped for SIMD lanes (README.md, "The evaluate
+// pass"): one invocation per (quad, grid row j), neighbouring invocations on different quads of
+// one kind and the same row, so that everything but the quad is the same across the lanes:
+// - one pipeline per patch kind (kCpatch) and per kind of row (kBorderRow: rows 0 and N - 1,
+//   whose positions all come from the border curves), so no lane branches on either;
+// - the row's loop over i has the same bounds in every lane, the c-patch's pieces are visited as
+//   the row's segments (piece 3, then 0 or 2, then 1), and the grid weights are fetched at the same
+//   texel in every lane;
+// - the record is read once per row through a texel buffer (a vector gather on lavapipe, where a
+//   storage-buffer load goes lane by lane), and the bicubic patch's column curves at v_j are
+//   evaluated once per row, as the CPU does.
+// The arithmetic is evaluate.glsl's, operation for operation: outputs stay bit-identical to the
+// CPU's.
 #extension GL_GOOGLE_include_directive : require
-#include "sdb/dispatch.glsl"
 
-#define BINDING_RECORDS 0
-#define BINDING_QUAD_INFO 1
-#define BINDING_GRID 2
-#define BINDING_OUTPUT 3  // and 4: normals
 #include "buffers.glsl"
+// Float3 positions and normals of the output chunk, as float texels: an image store is a vector
+// scatter on lavapipe, a storage-buffer store a branch per lane.
+layout(binding = 2, r32f) uniform restrict writeonly imageBuffer out_positions;
+layout(binding = 3, r32f) uniform restrict writeonly imageBuffer out_normals;
+layout(binding = 0) uniform samplerBuffer record_texels;  // conversion.h PatchRecord, a vec4 per entry
+layout(binding = 1) uniform samplerBuffer grid_texels;    // vulkan_resources.cpp grid_table()
+// Per quad of this dispatch: its index << 4 | forward_sides (vulkan_resources.cpp quad_lists()).
+layout(std430, binding = 4) restrict readonly buffer QuadList { uint quad_list[]; };
+#define CUBIC_LOAD(i) texelFetch(grid_texels, i)
+#define QUARTIC_LOAD(i) texelFetch(grid_texels, i)
 #include "record.glsl"
 
 layout(constant_id = 0) const int kRate = 2;
+layout(constant_id = 1) const bool kCpatch = false;
+layout(constant_id = 2) const bool kBorderRow = false;
+layout(local_size_x_id = 3) in;
 #include "evaluate.glsl"
-#include "load_record.glsl"
 
-layout(local_size_x = 64) in;
 layout(push_constant) uniform Push {
-  uint first_row;  // of this chunk, in the whole output: quad q's row j is row q N + j
-  uint rows;       // in this chunk
+  uint first_quad;   // of the output chunk: output vertex (q - first_quad) N^2 + j N + i
+  uint list_offset;  // of this dispatch's quads in quad_list
+  uint count;        // quads in this dispatch
+  uint first_row, row_step;  // row j = first_row + gl_WorkGroupID.z row_step
 } push;
 
-void main() {
-  const uint local_row = SDB_LINEAR_INVOCATION();
-  if (local_row >= push.rows) return;
-  const uint row = push.first_row + local_row;
-  const int quad = int(row / uint(kRate)), j = int(row % uint(kRate));
-  const uint info = quad_info[quad];
-  const bool is_cpatch = cpatch_index_of(info) >= 0;
-  vec3 record[kRecordSize];
-  load_record(quad, is_cpatch, record);
-  for (int i = 0; i < kRate; ++i) {
-    vec3 position, normal;
-    evaluate_sample(record, is_cpatch, forward_sides_of(info), i, j, position, normal);
-    const int local = int(local_row) * kRate + i;  // chunk-relative vertex
-    STORE3(out_positions, local, position);
-    STORE3(out_normals, local, normal);
+const int kLast = kRate - 1;
+
+void store_sample(int index, vec3 position, SurfacePoint p) {
+  const vec3 normal = unit_normal(p.du, p.dv);
+  [[unroll]] for (int k = 0; k < 3; ++k) {
+    imageStore(out_positions, 3 * index + k, vec4(position[k]));
+    imageStore(out_normals, 3 * index + k, vec4(normal[k]));
   }
+}
+
+// The position of sample (i, j), 0 < i < N - 1, from the patch point: on a border row the side's
+// curve (write_border), else p*_0 + the patch.
+vec3 row_position(vec3 record[kRecordSize], uint forward_sides, int i, int j, vec3 patch_position) {
+  if (kBorderRow) return j == 0 ? border_position(record, forward_sides, 0, i) : border_position(record, forward_sides, 2, kLast - i);
+  precise vec3 p = record[record_index(0, kP)] + patch_position;
+  return p;
+}
+
+void bicubic_row(PatchControl c, vec3 record[kRecordSize], uint forward_sides, int j, int first) {
+  vec3 column[4], column_dv[4];
+  bicubic_columns(c, j, column, column_dv);
+  for (int i = 1; i < kLast; ++i) {
+    const SurfacePoint p = bicubic_along_row(column, column_dv, i);
+    store_sample(first + i, row_position(record, forward_sides, i, j, p.position), p);
+  }
+  [[unroll]] for (int end = 0; end < 2; ++end) {
+    const int i = end * kLast;
+    const SurfacePoint p = bicubic_along_row(column, column_dv, i);
+    store_sample(first + i, sample_position(record, forward_sides, i, j, p.position), p);
+  }
+}
+
+// Samples [begin, end) of row j, all in piece `piece`.
+void cpatch_segment(PatchControl c, vec3 record[kRecordSize], uint forward_sides, int j, int first, int piece, int begin,
+                    int end) {
+  if (begin >= end) return;
+  vec3 b[15];
+  piece_points(c, piece, b);
+  for (int i = begin; i < end; ++i) {
+    const SurfacePoint p = cpatch_point(b, j * kRate + i);
+    store_sample(first + i, row_position(record, forward_sides, i, j, p.position), p);
+  }
+}
+
+// Row j meets piece 3 on [0, lo), piece 0 (lower half) or 2 (upper half) up to the other
+// diagonal, piece 1 after it (cpatch_piece(), ties included); the row's end samples are done apart.
+void cpatch_row(PatchControl c, vec3 record[kRecordSize], uint forward_sides, int j, int first) {
+  const bool lower = j <= kLast - j;
+  const int lo = min(j, kLast - j);
+  const int hi = lower ? kLast - j + 1 : j;  // first sample of piece 1
+  cpatch_segment(c, record, forward_sides, j, first, 3, 1, max(lo, 1));
+  cpatch_segment(c, record, forward_sides, j, first, lower ? 0 : 2, max(lo, 1), min(hi, kLast));
+  cpatch_segment(c, record, forward_sides, j, first, 1, max(hi, 1), kLast);
+  [[unroll]] for (int end = 0; end < 2; ++end) {
+    const int i = end * kLast;
+    const SurfacePoint p = evaluate_cpatch(c, i, j);
+    store_sample(first + i, sample_position(record, forward_sides, i, j, p.position), p);
+  }
+}
+
+void main() {
+  const uint slot = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+  // Past the last quad a lane repeats it (same values to the same place): no lane leaves early.
+  const uint entry = quad_list[push.list_offset + min(slot, push.count - 1u)];
+  const int quad = int(entry >> 4u);
+  const uint forward_sides = entry & 15u;
+  const int j = int(push.first_row + gl_WorkGroupID.z * push.row_step);
+  vec3 record[kRecordSize];
+  [[unroll]] for (int e = 0; e < kRecordSize; ++e)  // an ordinary quad's X1, X2 are not stored: zero
+    record[e] = (!kCpatch && e % 7 > kX0) ? vec3(0.0) : texelFetch(record_texels, quad * kRecordSize + e).xyz;
+  const PatchControl c = local_control(record);
+  const int first = (quad - int(push.first_quad)) * kSamples + j * kRate;
+  if (kCpatch)
+    cpatch_row(c, record, forward_sides, j, first);
+  else
+    bicubic_row(c, record, forward_sides, j, first);
 }

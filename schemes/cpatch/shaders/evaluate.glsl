@@ -10,9 +10,16 @@
 // piece holding s (padded to 16): position at 2 N + 12 s + m / 4, component m mod 4, d/du 4 and
 // d/dv 8 vec4s further.
 const int kSamples = kRate * kRate;
-vec4 cubic_weights(int i) { return grid[i]; }
-vec4 cubic_derivatives(int i) { return grid[kRate + i]; }
-vec4 quartic_weights(int table, int s, int quarter) { return grid[2 * kRate + 12 * s + 4 * table + quarter]; }
+// An includer may read the table elsewhere: CUBIC_LOAD(i) for entries below 2 N, QUARTIC_LOAD(i) above.
+#ifndef CUBIC_LOAD
+#define CUBIC_LOAD(i) grid[i]
+#endif
+#ifndef QUARTIC_LOAD
+#define QUARTIC_LOAD(i) grid[i]
+#endif
+vec4 cubic_weights(int i) { return CUBIC_LOAD(i); }
+vec4 cubic_derivatives(int i) { return CUBIC_LOAD(kRate + i); }
+vec4 quartic_weights(int table, int s, int quarter) { return QUARTIC_LOAD(2 * kRate + 12 * s + 4 * table + quarter); }
 
 // patch_control.h PatchControl<float>: the record relative to p*_0.
 struct PatchControl {
@@ -46,25 +53,33 @@ struct SurfacePoint {
 };
 
 // Figure 6's 4 x 4 Bezier points g[4 k + l] (k along u, l along v), separated as the CPU does:
-// the column curves at v_j, then along the row.
-SurfacePoint evaluate_bicubic(PatchControl c, int i, int j) {
+// the column curves at v_j (bicubic_columns), then along the row (bicubic_along_row).
+void bicubic_columns(PatchControl c, int j, out vec3 column[4], out vec3 column_dv[4]) {
   vec3 g[16];
   g[0] = c.v[0], g[4] = c.t0[0], g[1] = c.t1[0], g[5] = c.x[0];
   g[12] = c.v[1], g[13] = c.t0[1], g[8] = c.t1[1], g[9] = c.x[3];
   g[15] = c.v[2], g[11] = c.t0[2], g[14] = c.t1[2], g[10] = c.x[6];
   g[3] = c.v[3], g[2] = c.t0[3], g[7] = c.t1[3], g[6] = c.x[9];
   const vec4 bv = cubic_weights(j), dv = cubic_derivatives(j);
-  vec3 column[4], column_dv[4];
   [[unroll]] for (int k = 0; k < 4; ++k) {
     column[k] = cubic_combination(bv, g[4 * k], g[4 * k + 1], g[4 * k + 2], g[4 * k + 3]);
     column_dv[k] = cubic_combination(dv, g[4 * k], g[4 * k + 1], g[4 * k + 2], g[4 * k + 3]);
   }
+}
+
+SurfacePoint bicubic_along_row(vec3 column[4], vec3 column_dv[4], int i) {
   const vec4 bu = cubic_weights(i), du = cubic_derivatives(i);
   SurfacePoint p;
   p.position = cubic_combination(bu, column[0], column[1], column[2], column[3]);
   p.du = cubic_combination(du, column[0], column[1], column[2], column[3]);
   p.dv = cubic_combination(bu, column_dv[0], column_dv[1], column_dv[2], column_dv[3]);
   return p;
+}
+
+SurfacePoint evaluate_bicubic(PatchControl c, int i, int j) {
+  vec3 column[4], column_dv[4];
+  bicubic_columns(c, j, column, column_dv);
+  return bicubic_along_row(column, column_dv, i);
 }
 
 // evaluation.cpp cpatch_piece: which triangular piece holds sample (i, j), decided on integers.
@@ -121,23 +136,23 @@ void piece_points(PatchControl c, int i, out vec3 b[15]) {
   b[14] = center;
 }
 
-// Sum over the piece's 15 points with the sample's tabulated weights, in the CPU's order.
+// Sum over the piece's 15 points with sample s's tabulated weights, in the CPU's order.
+SurfacePoint cpatch_point(vec3 b[15], int s) {
+  precise vec3 position = vec3(0.0), du = vec3(0.0), dv = vec3(0.0);
+  [[unroll]] for (int m = 0; m < 15; ++m) {
+    const int quarter = m / 4, k = m % 4;
+    const float w = quartic_weights(0, s, quarter)[k], wu = quartic_weights(1, s, quarter)[k], wv = quartic_weights(2, s, quarter)[k];
+    position = position + w * b[m];
+    du = du + wu * b[m];
+    dv = dv + wv * b[m];
+  }
+  return SurfacePoint(position, du, dv);
+}
+
 SurfacePoint evaluate_cpatch(PatchControl c, int i, int j) {
   vec3 b[15];
   piece_points(c, cpatch_piece(i, j), b);
-  const int s = j * kRate + i;
-  precise vec3 position = vec3(0.0), du = vec3(0.0), dv = vec3(0.0);
-  [[unroll]] for (int quarter = 0; quarter < 4; ++quarter) {
-    const vec4 w = quartic_weights(0, s, quarter), wu = quartic_weights(1, s, quarter), wv = quartic_weights(2, s, quarter);
-    [[unroll]] for (int k = 0; k < 4; ++k) {
-      const int m = 4 * quarter + k;
-      if (m == 15) break;
-      position = position + w[k] * b[m];
-      du = du + wu[k] * b[m];
-      dv = dv + wv[k] * b[m];
-    }
-  }
-  return SurfacePoint(position, du, dv);
+  return cpatch_point(b, j * kRate + i);
 }
 
 // Unit normal du x dv; (0, 0, 1) for a degenerate frame (normals_in_place).
@@ -175,11 +190,8 @@ vec3 border_position(vec3 record[kRecordSize], uint forward_sides, int side, int
 
 // Grid sample (i, j): position (absolute) and unit normal. Corners are p* + (v - p*), border
 // samples border_position(), interior samples p*_0 + the patch; normals always from the patch.
-void evaluate_sample(vec3 record[kRecordSize], bool is_cpatch, uint forward_sides, int i, int j, out vec3 position,
-                     out vec3 normal) {
-  const PatchControl c = local_control(record);
-  const SurfacePoint s = is_cpatch ? evaluate_cpatch(c, i, j) : evaluate_bicubic(c, i, j);
-  normal = unit_normal(s.du, s.dv);
+vec3 sample_position(vec3 record[kRecordSize], uint forward_sides, int i, int j, vec3 patch_position) {
+  vec3 position;
   const int last = kRate - 1;
   const bool on_corner = (i == 0 || i == last) && (j == 0 || j == last);
   if (on_corner) {
@@ -195,7 +207,16 @@ void evaluate_sample(vec3 record[kRecordSize], bool is_cpatch, uint forward_side
   } else if (i == 0) {
     position = border_position(record, forward_sides, 3, last - j);
   } else {
-    precise vec3 p = record[record_index(0, kP)] + s.position;
+    precise vec3 p = record[record_index(0, kP)] + patch_position;
     position = p;
   }
+  return position;
+}
+
+void evaluate_sample(vec3 record[kRecordSize], bool is_cpatch, uint forward_sides, int i, int j, out vec3 position,
+                     out vec3 normal) {
+  const PatchControl c = local_control(record);
+  const SurfacePoint s = is_cpatch ? evaluate_cpatch(c, i, j) : evaluate_bicubic(c, i, j);
+  normal = unit_normal(s.du, s.dv);
+  position = sample_position(record, forward_sides, i, j, s.position);
 }
