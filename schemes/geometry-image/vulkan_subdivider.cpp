@@ -59,9 +59,21 @@ std::vector<int32_t> stencil_words(const std::array<CutVertexStencil, 4>& stenci
   return words;
 }
 
-gpu::ComputePipelineDesc pass(const char* shader, uint32_t bindings) {
-  return {
-      shaders::get(shader), std::vector<Binding>(bindings, Binding::StorageBuffer), sizeof(Push), {{0, kLocalSize}}};
+// Images are read through float texel views (source_planes.glsl) and written through r32f
+// storage texel views (destination_planes.glsl, output_grid.glsl); tables stay storage buffers.
+constexpr Binding kRead = Binding::UniformTexelBuffer, kWrite = Binding::StorageTexelBuffer,
+                  kTable = Binding::StorageBuffer;
+const BufferUsage kPlaneUsage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
+
+gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings) {
+  return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
+}
+
+// The pipeline's bindings' ranges: texel bindings get a float (R32) view.
+gpu::DescriptorSet set_of(const gpu::ComputePipeline& pipeline, std::vector<gpu::BufferRange> ranges) {
+  for (size_t i = 0; i < ranges.size() && i < pipeline.bindings().size(); ++i)
+    if (pipeline.bindings()[i] != Binding::StorageBuffer) ranges[i].texel_format = VK_FORMAT_R32_SFLOAT;
+  return gpu::DescriptorSet(pipeline, ranges);
 }
 
 std::vector<gpu::BufferRange> ranges_of(std::initializer_list<const gpu::Buffer*> buffers) {
@@ -94,6 +106,10 @@ std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx
     return image + " needs padded image planes of " + std::to_string(widest) + " x " + std::to_string(widest) +
            " floats (" + mib_text(plane) + ") in one binding; " + device + " binds at most " +
            mib_text(std::min(limits.max_storage_buffer_range, largest_buffer));
+  if (uint64_t(widest) * widest > limits.max_texel_buffer_elements)
+    return image + " reads padded image planes of " + std::to_string(widest) + " x " + std::to_string(widest) +
+           " floats through texel views; " + device + " allows " + std::to_string(limits.max_texel_buffer_elements) +
+           " texels in one";
   const gpu::Groups groups = row_groups(uint64_t(widest), uint64_t(widest));
   if (groups.x > limits.max_compute_work_group_count[0] || groups.y > limits.max_compute_work_group_count[1])
     return image + " dispatches " + std::to_string(groups.x) + " x " + std::to_string(groups.y) +
@@ -136,8 +152,9 @@ VulkanSubdivider::VulkanSubdivider(gpu::Context& ctx, int base_size, int levels,
     throw gpu::Unsupported("the positions of a " + std::to_string(n) + " x " + std::to_string(n) +
                            " grid do not fit one buffer of " + ctx.info().name);
   const uint64_t output_bytes = outputs_.buffer_bytes[0];
-  positions_ = gpu::Buffer::device(ctx, output_bytes, BufferUsage::Storage | BufferUsage::Vertex, "p^k positions");
-  normals_ = gpu::Buffer::device(ctx, output_bytes, BufferUsage::Storage | BufferUsage::Vertex, "n^k normals");
+  const BufferUsage output_usage = BufferUsage::Storage | BufferUsage::StorageTexel | BufferUsage::Vertex;
+  positions_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "p^k positions");
+  normals_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "n^k normals");
   positions_staging_ = gpu::Buffer::readback(ctx, output_bytes, "p^k positions (readback)");
   normals_staging_ = gpu::Buffer::readback(ctx, output_bytes, "n^k normals (readback)");
 
@@ -154,23 +171,24 @@ VulkanSubdivider::Planes VulkanSubdivider::make_planes(int side, const std::stri
   p.side = side;
   const char* axes[] = {"x", "y", "z"};
   for (int c = 0; c < 3; ++c)
-    p.plane[c] = gpu::Buffer::device(ctx_, plane_bytes(side), BufferUsage::Storage, name + " plane " + axes[c]);
+    p.plane[c] = gpu::Buffer::device(ctx_, plane_bytes(side), kPlaneUsage, name + " plane " + axes[c]);
   return p;
 }
 
 void VulkanSubdivider::make_pipelines() {
   pipelines_ = std::make_unique<Pipelines>();
   Pipelines& p = *pipelines_;
-  p.pad.emplace(ctx_, pass("pad.comp", 5));
-  p.cut_normal.emplace(ctx_, pass("cut_normal.comp", 5));
+  p.pad.emplace(ctx_, pass("pad.comp", {kTable, kTable, kWrite, kWrite, kWrite}));
+  p.cut_normal.emplace(ctx_, pass("cut_normal.comp", {kRead, kRead, kRead, kTable, kTable}));
+  const std::vector<Binding> image_to_image = {kRead, kRead, kRead, kWrite, kWrite, kWrite};
   if (plan_ == PassPlan::Fused) {
-    p.split_average.emplace(ctx_, pass("split_average.comp", 6));
-    p.limit_normal.emplace(ctx_, pass("limit_normal.comp", 5));
+    p.split_average.emplace(ctx_, pass("split_average.comp", image_to_image));
+    p.limit_normal.emplace(ctx_, pass("limit_normal.comp", {kRead, kRead, kRead, kWrite, kWrite}));
   } else {
-    p.split.emplace(ctx_, pass("split.comp", 6));
-    p.average.emplace(ctx_, pass("average.comp", 6));
-    p.limit.emplace(ctx_, pass("limit.comp", 4));
-    p.normal.emplace(ctx_, pass("normal.comp", 4));
+    p.split.emplace(ctx_, pass("split.comp", image_to_image));
+    p.average.emplace(ctx_, pass("average.comp", image_to_image));
+    p.limit.emplace(ctx_, pass("limit.comp", {kRead, kRead, kRead, kWrite}));
+    p.normal.emplace(ctx_, pass("normal.comp", {kRead, kRead, kRead, kWrite}));
   }
 }
 
@@ -178,11 +196,11 @@ void VulkanSubdivider::make_descriptor_sets() {
   const Pipelines& p = *pipelines_;
   auto planes = [](const Planes& a) { return std::vector<const gpu::Buffer*>{&a.plane[0], &a.plane[1], &a.plane[2]}; };
   auto image_to_image = [&](const gpu::ComputePipeline& pipeline, const Planes& src, const Planes& dst) {
-    return gpu::DescriptorSet(pipeline, ranges_of({&src.plane[0], &src.plane[1], &src.plane[2], &dst.plane[0],
-                                                   &dst.plane[1], &dst.plane[2]}));
+    return set_of(pipeline, ranges_of({&src.plane[0], &src.plane[1], &src.plane[2], &dst.plane[0], &dst.plane[1],
+                                       &dst.plane[2]}));
   };
   const Planes& g0 = images_[0];
-  pad_set_ = gpu::DescriptorSet(*p.pad, ranges_of({&gather_, &control_, &g0.plane[0], &g0.plane[1], &g0.plane[2]}));
+  pad_set_ = set_of(*p.pad, ranges_of({&gather_, &control_, &g0.plane[0], &g0.plane[1], &g0.plane[2]}));
   for (int k = 0; k < levels_; ++k) {
     if (plan_ == PassPlan::Fused) {
       fused_sets_.push_back(image_to_image(*p.split_average, images_[k], images_[k + 1]));
@@ -197,7 +215,7 @@ void VulkanSubdivider::make_descriptor_sets() {
     std::vector<gpu::BufferRange> ranges;
     for (const gpu::Buffer* b : last) ranges.push_back(b->range());
     ranges.insert(ranges.end(), outputs.begin(), outputs.end());
-    return gpu::DescriptorSet(pipeline, ranges);
+    return set_of(pipeline, ranges);
   };
   for (const gpu::Chunk& c : outputs_.chunks) {
     const gpu::BufferRange pos = positions_.range(c.byte_offset, c.bytes), nrm = normals_.range(c.byte_offset, c.bytes);

@@ -4,7 +4,7 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(std430, binding = 3) writeonly buffer Positions { float positions[]; };
+layout(binding = 3, r32f) uniform restrict writeonly imageBuffer positions;
 
 void main() {
   uint x = gl_GlobalInvocationID.x;
@@ -12,7 +12,5 @@ void main() {
   uint j = gl_GlobalInvocationID.y * pc.dst_side + x;  // in the chunk
   uint c = padded_index(x, pc.first_row + gl_GlobalInvocationID.y);
   vec3 p = limit_at(c);
-  positions[3u * j] = p.x;
-  positions[3u * j + 1u] = p.y;
-  positions[3u * j + 2u] = p.z;
+  STORE_FLOAT3(positions, j, p);
 }

@@ -5,8 +5,8 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(std430, binding = 3) writeonly buffer Positions { float positions[]; };
-layout(std430, binding = 4) writeonly buffer Normals { float normals[]; };
+layout(binding = 3, r32f) uniform restrict writeonly imageBuffer positions;
+layout(binding = 4, r32f) uniform restrict writeonly imageBuffer normals;
 
 void main() {
   uint x = gl_GlobalInvocationID.x;
@@ -15,10 +15,6 @@ void main() {
   uint c = padded_index(x, pc.first_row + gl_GlobalInvocationID.y);
   vec3 p = limit_at(c);
   vec3 n = normal_at(c);
-  positions[3u * j] = p.x;
-  positions[3u * j + 1u] = p.y;
-  positions[3u * j + 2u] = p.z;
-  normals[3u * j] = n.x;
-  normals[3u * j + 1u] = n.y;
-  normals[3u * j + 2u] = n.z;
+  STORE_FLOAT3(positions, j, p);
+  STORE_FLOAT3(normals, j, n);
 }

@@ -4,7 +4,7 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(std430, binding = 3) writeonly buffer Normals { float normals[]; };
+layout(binding = 3, r32f) uniform restrict writeonly imageBuffer normals;
 
 void main() {
   uint x = gl_GlobalInvocationID.x;
@@ -12,7 +12,5 @@ void main() {
   uint j = gl_GlobalInvocationID.y * pc.dst_side + x;  // in the chunk
   uint c = padded_index(x, pc.first_row + gl_GlobalInvocationID.y);
   vec3 n = normal_at(c);
-  normals[3u * j] = n.x;
-  normals[3u * j + 1u] = n.y;
-  normals[3u * j + 2u] = n.z;
+  STORE_FLOAT3(normals, j, n);
 }

@@ -3,6 +3,18 @@
 // Outputs are tightly packed float3 (Point3), chunk-relative: vertex (x, pc.first_row + r) is
 // element r * n + x of the chunk's binding.
 
+// Float texel views (r32f) of the output chunk, written by imageStore; float3 vertex j is texels
+// 3 j .. 3 j + 2.
+// A macro: GLSL passes no image to a function.
+#define STORE_FLOAT3(out_image, j, v)                     \
+  {                                                      \
+    const vec3 value_ = (v);                             \
+    const int texel_ = int(3u * (j));                    \
+    imageStore(out_image, texel_, vec4(value_.x));       \
+    imageStore(out_image, texel_ + 1, vec4(value_.y));   \
+    imageStore(out_image, texel_ + 2, vec4(value_.z));   \
+  }
+
 // Padded index of image sample (x, y) (padded (x + 1, y + 1)).
 uint padded_index(uint x, uint y) { return (y + 1u) * pc.src_side + (x + 1u); }
 
