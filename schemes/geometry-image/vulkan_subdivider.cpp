@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <initializer_list>
+#include <numeric>
 #include <stdexcept>
 
 #include "sdb_scheme_geometry_image_shaders.h"
@@ -20,8 +21,8 @@ constexpr uint32_t kLocalSize = 64;
 static_assert(kLocalSize >= 4 && kLocalSize % 2 == 0,
               "the cut-vertex pass runs its four invocations in one work group; "
               "L gives half of each group the even columns, half the odd ones");
-// The most storage buffers one pass binds (an image pass: three source and three destination planes).
-constexpr uint32_t kMaxBindings = 6;
+// The most storage buffers one pass binds (pad: the gather table and the control points; cut_normal: the stencils and the normals).
+constexpr uint32_t kMaxBindings = 2;  // storage buffers per stage: pad's gather table and control points
 
 // The shaders' push constants (gim_common.glsl).
 struct Push {
@@ -33,7 +34,14 @@ gpu::Groups row_groups(uint64_t width, uint64_t rows) {
   return {static_cast<uint32_t>((width + kLocalSize - 1) / kLocalSize), static_cast<uint32_t>(rows), 1};
 }
 
-uint64_t plane_bytes(int side) { return uint64_t(side) * uint64_t(side) * sizeof(float); }
+constexpr uint64_t kOutputPadding = 3 * sizeof(Point3);
+
+// A chunk's outputs as rgba32f texels, rounded up to whole texels (into the padding).
+gpu::BufferRange vec4_view(const gpu::Buffer& output, const gpu::Chunk& c) {
+  return {&output, c.byte_offset, (c.bytes + 15) / 16 * 16, VK_FORMAT_R32G32B32A32_SFLOAT};
+}
+
+uint64_t image_bytes(int side) { return uint64_t(side) * uint64_t(side) * 4 * sizeof(float); }
 
 double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
 
@@ -59,28 +67,19 @@ std::vector<int32_t> stencil_words(const std::array<CutVertexStencil, 4>& stenci
   return words;
 }
 
-// Images are read through float texel views (source_planes.glsl) and written through r32f
-// storage texel views (destination_planes.glsl, output_grid.glsl); tables stay storage buffers.
+// Images are read through vec4 texel views (source_planes.glsl) and written through rgba32f
+// storage texel views (destination_planes.glsl); outputs through r32f views (output_grid.glsl);
+// tables stay storage buffers.
 constexpr Binding kRead = Binding::UniformTexelBuffer, kWrite = Binding::StorageTexelBuffer,
                   kTable = Binding::StorageBuffer;
-const BufferUsage kPlaneUsage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
+const BufferUsage kImageUsage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
 
 gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings) {
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
 }
 
-// The pipeline's bindings' ranges: texel bindings get a float (R32) view.
-gpu::DescriptorSet set_of(const gpu::ComputePipeline& pipeline, std::vector<gpu::BufferRange> ranges) {
-  for (size_t i = 0; i < ranges.size() && i < pipeline.bindings().size(); ++i)
-    if (pipeline.bindings()[i] != Binding::StorageBuffer) ranges[i].texel_format = VK_FORMAT_R32_SFLOAT;
-  return gpu::DescriptorSet(pipeline, ranges);
-}
+gpu::BufferRange image_view(const gpu::Buffer& image) { return {&image, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT}; }
 
-std::vector<gpu::BufferRange> ranges_of(std::initializer_list<const gpu::Buffer*> buffers) {
-  std::vector<gpu::BufferRange> ranges;
-  for (const gpu::Buffer* b : buffers) ranges.push_back(b->range());
-  return ranges;
-}
 
 }  // namespace
 
@@ -99,16 +98,15 @@ std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx
   const std::vector<int> sides = image_sides(base_size, levels, plan);
   const int widest = *std::max_element(sides.begin(), sides.end());
   const uint64_t largest_buffer = std::min(limits.max_memory_allocation_size, limits.max_buffer_size);
-  const uint64_t plane = plane_bytes(widest);
+  const uint64_t texels = uint64_t(widest) * uint64_t(widest), plane = image_bytes(widest);
   const std::string image = "a " + std::to_string(base_size) + " x " + std::to_string(base_size) + " image at depth " +
                             std::to_string(levels);
-  if (plane > std::min(limits.max_storage_buffer_range, largest_buffer) || uint64_t(widest) * widest > UINT32_MAX)
-    return image + " needs padded image planes of " + std::to_string(widest) + " x " + std::to_string(widest) +
-           " floats (" + mib_text(plane) + ") in one binding; " + device + " binds at most " +
-           mib_text(std::min(limits.max_storage_buffer_range, largest_buffer));
-  if (uint64_t(widest) * widest > limits.max_texel_buffer_elements)
-    return image + " reads padded image planes of " + std::to_string(widest) + " x " + std::to_string(widest) +
-           " floats through texel views; " + device + " allows " + std::to_string(limits.max_texel_buffer_elements) +
+  if (plane > largest_buffer || texels > UINT32_MAX)
+    return image + " needs padded images of " + std::to_string(widest) + " x " + std::to_string(widest) +
+           " vec4 (" + mib_text(plane) + ") in one buffer; " + device + " allocates at most " + mib_text(largest_buffer);
+  if (texels > limits.max_texel_buffer_elements)
+    return image + " reads padded images of " + std::to_string(widest) + " x " + std::to_string(widest) +
+           " texels through texel views; " + device + " allows " + std::to_string(limits.max_texel_buffer_elements) +
            " texels in one";
   const gpu::Groups groups = row_groups(uint64_t(widest), uint64_t(widest));
   if (groups.x > limits.max_compute_work_group_count[0] || groups.y > limits.max_compute_work_group_count[1])
@@ -121,7 +119,7 @@ std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx
     return image + " writes " + mib_text(output) + " of positions, more than one buffer of " + device + " holds (" +
            mib_text(largest_buffer) + ")";
   uint64_t total = 2 * output;
-  for (int side : sides) total += 3 * plane_bytes(side);
+  for (int side : sides) total += image_bytes(side);
   if (limits.device_local_bytes > 0 && total > limits.device_local_bytes)
     return image + " needs " + mib_text(total) + " of device memory; " + device + " has " +
            mib_text(limits.device_local_bytes);
@@ -142,16 +140,19 @@ VulkanSubdivider::VulkanSubdivider(gpu::Context& ctx, int base_size, int levels,
   cut_stencils_ = cut_vertex_stencils(size(levels));
   stencils_ = gpu::device_buffer_with(ctx, stencil_words(cut_stencils_), BufferUsage::Storage, "cut-vertex stencils");
 
-  for (int k = 0; k <= levels; ++k) images_.push_back(make_planes(size(k) + 2, "g^" + std::to_string(k)));
-  if (plan == PassPlan::PerMask && levels > 0) split_ = make_planes(2 * images_[levels - 1].side - 1, "L[g^k]");
+  for (int k = 0; k <= levels; ++k) images_.push_back(make_image(size(k) + 2, "g^" + std::to_string(k)));
+  if (plan == PassPlan::PerMask && levels > 0) split_ = make_image(2 * images_[levels - 1].side - 1, "L[g^k]");
 
   const uint64_t n = uint64_t(size(levels));
-  // Chunks of whole rows: an output pass dispatches a row of work groups per row.
-  outputs_ = gpu::plan_chunks(ctx.limits(), {n * n, sizeof(Point3), n, kLocalSize, options.max_output_chunk_bytes});
+  // Chunks of whole groups of four rows: a multiple of four vertices, as an output pass writes
+  // them (output_grid.glsl), but in the last chunk.
+  outputs_ = gpu::plan_chunks(ctx.limits(),
+                              {n * n, sizeof(Point3), std::lcm(n, uint64_t(4)), kLocalSize, options.max_output_chunk_bytes});
   if (outputs_.buffer_bytes.size() != 1)
     throw gpu::Unsupported("the positions of a " + std::to_string(n) + " x " + std::to_string(n) +
                            " grid do not fit one buffer of " + ctx.info().name);
-  const uint64_t output_bytes = outputs_.buffer_bytes[0];
+  // Padded by three vertices: the last group of four of the last chunk writes there.
+  const uint64_t output_bytes = outputs_.buffer_bytes[0] + kOutputPadding;
   const BufferUsage output_usage = BufferUsage::Storage | BufferUsage::StorageTexel | BufferUsage::Vertex;
   positions_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "p^k positions");
   normals_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "n^k normals");
@@ -166,41 +167,32 @@ VulkanSubdivider::VulkanSubdivider(gpu::Context& ctx, int base_size, int levels,
 
 VulkanSubdivider::~VulkanSubdivider() = default;
 
-VulkanSubdivider::Planes VulkanSubdivider::make_planes(int side, const std::string& name) const {
-  Planes p;
-  p.side = side;
-  const char* axes[] = {"x", "y", "z"};
-  for (int c = 0; c < 3; ++c)
-    p.plane[c] = gpu::Buffer::device(ctx_, plane_bytes(side), kPlaneUsage, name + " plane " + axes[c]);
-  return p;
+VulkanSubdivider::DeviceImage VulkanSubdivider::make_image(int side, const std::string& name) const {
+  return {side, gpu::Buffer::device(ctx_, image_bytes(side), kImageUsage, name)};
 }
 
 void VulkanSubdivider::make_pipelines() {
   pipelines_ = std::make_unique<Pipelines>();
   Pipelines& p = *pipelines_;
-  p.pad.emplace(ctx_, pass("pad.comp", {kTable, kTable, kWrite, kWrite, kWrite}));
-  p.cut_normal.emplace(ctx_, pass("cut_normal.comp", {kRead, kRead, kRead, kTable, kTable}));
-  const std::vector<Binding> image_to_image = {kRead, kRead, kRead, kWrite, kWrite, kWrite};
+  p.pad.emplace(ctx_, pass("pad.comp", {kTable, kTable, kWrite}));
+  p.cut_normal.emplace(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
   if (plan_ == PassPlan::Fused) {
-    p.split_average.emplace(ctx_, pass("split_average.comp", image_to_image));
-    p.limit_normal.emplace(ctx_, pass("limit_normal.comp", {kRead, kRead, kRead, kWrite, kWrite}));
+    p.split_average.emplace(ctx_, pass("split_average.comp", {kRead, kWrite}));
+    p.limit_normal.emplace(ctx_, pass("limit_normal.comp", {kRead, kWrite, kWrite}));
   } else {
-    p.split.emplace(ctx_, pass("split.comp", image_to_image));
-    p.average.emplace(ctx_, pass("average.comp", image_to_image));
-    p.limit.emplace(ctx_, pass("limit.comp", {kRead, kRead, kRead, kWrite}));
-    p.normal.emplace(ctx_, pass("normal.comp", {kRead, kRead, kRead, kWrite}));
+    p.split.emplace(ctx_, pass("split.comp", {kRead, kWrite}));
+    p.average.emplace(ctx_, pass("average.comp", {kRead, kWrite}));
+    p.limit.emplace(ctx_, pass("limit.comp", {kRead, kWrite}));
+    p.normal.emplace(ctx_, pass("normal.comp", {kRead, kWrite}));
   }
 }
 
 void VulkanSubdivider::make_descriptor_sets() {
   const Pipelines& p = *pipelines_;
-  auto planes = [](const Planes& a) { return std::vector<const gpu::Buffer*>{&a.plane[0], &a.plane[1], &a.plane[2]}; };
-  auto image_to_image = [&](const gpu::ComputePipeline& pipeline, const Planes& src, const Planes& dst) {
-    return set_of(pipeline, ranges_of({&src.plane[0], &src.plane[1], &src.plane[2], &dst.plane[0], &dst.plane[1],
-                                       &dst.plane[2]}));
+  auto image_to_image = [&](const gpu::ComputePipeline& pipeline, const DeviceImage& src, const DeviceImage& dst) {
+    return gpu::DescriptorSet(pipeline, {image_view(src.texels), image_view(dst.texels)});
   };
-  const Planes& g0 = images_[0];
-  pad_set_ = set_of(*p.pad, ranges_of({&gather_, &control_, &g0.plane[0], &g0.plane[1], &g0.plane[2]}));
+  pad_set_ = gpu::DescriptorSet(*p.pad, {gather_.range(), control_.range(), image_view(images_[0].texels)});
   for (int k = 0; k < levels_; ++k) {
     if (plan_ == PassPlan::Fused) {
       fused_sets_.push_back(image_to_image(*p.split_average, images_[k], images_[k + 1]));
@@ -209,23 +201,18 @@ void VulkanSubdivider::make_descriptor_sets() {
       average_sets_.push_back(image_to_image(*p.average, split_, images_[k + 1]));
     }
   }
-  // Output passes: the last image's planes, then the chunk's part of the outputs.
-  const std::vector<const gpu::Buffer*> last = planes(images_[levels_]);
-  auto output_set = [&](const gpu::ComputePipeline& pipeline, std::vector<gpu::BufferRange> outputs) {
-    std::vector<gpu::BufferRange> ranges;
-    for (const gpu::Buffer* b : last) ranges.push_back(b->range());
-    ranges.insert(ranges.end(), outputs.begin(), outputs.end());
-    return set_of(pipeline, ranges);
-  };
+  // Output passes: the last image, then the chunk's part of the outputs.
+  const gpu::BufferRange last = image_view(images_[levels_].texels);
   for (const gpu::Chunk& c : outputs_.chunks) {
-    const gpu::BufferRange pos = positions_.range(c.byte_offset, c.bytes), nrm = normals_.range(c.byte_offset, c.bytes);
+    const gpu::BufferRange nrm = normals_.range(c.byte_offset, c.bytes);
+    const gpu::BufferRange pos4 = vec4_view(positions_, c), nrm4 = vec4_view(normals_, c);
     if (plan_ == PassPlan::Fused) {
-      limit_normal_sets_.push_back(output_set(*p.limit_normal, {pos, nrm}));
+      limit_normal_sets_.push_back(gpu::DescriptorSet(*p.limit_normal, {last, pos4, nrm4}));
     } else {
-      limit_sets_.push_back(output_set(*p.limit, {pos}));
-      normal_sets_.push_back(output_set(*p.normal, {nrm}));
+      limit_sets_.push_back(gpu::DescriptorSet(*p.limit, {last, pos4}));
+      normal_sets_.push_back(gpu::DescriptorSet(*p.normal, {last, nrm4}));
     }
-    cut_sets_.push_back(output_set(*p.cut_normal, {stencils_.range(), nrm}));
+    cut_sets_.push_back(gpu::DescriptorSet(*p.cut_normal, {last, stencils_.range(), nrm}));
   }
 }
 
@@ -251,7 +238,7 @@ void VulkanSubdivider::record_output_pass(gpu::Commands& cmd, const gpu::Compute
     cmd.bind(sets[i]);
     cmd.push(Push{uint32_t(src_side), uint32_t(n), uint32_t(first_row), uint32_t(rows)});
     if (work == OutputWork::EveryVertex)
-      cmd.dispatch(row_groups(n, rows));
+      cmd.dispatch(gpu::groups_for((c.elements + 3) / 4, kLocalSize, ctx_.limits()));
     else
       cmd.dispatch(1);  // four invocations, one per cut vertex
   }
@@ -360,10 +347,12 @@ std::optional<GpuTimes> VulkanSubdivider::times() const {
 }
 
 PaddedImage VulkanSubdivider::level(int k) const {
-  const Planes& image = images_.at(static_cast<size_t>(k));
+  const DeviceImage& image = images_.at(static_cast<size_t>(k));
   PaddedImage out(image.side);
-  const uint64_t count = uint64_t(image.side) * uint64_t(image.side);
-  for (int c = 0; c < 3; ++c) gpu::download(ctx_, image.plane[c], out.plane(c), count * sizeof(float));
+  const size_t count = size_t(image.side) * size_t(image.side);
+  const std::vector<float> texels = gpu::download_as<float>(ctx_, image.texels, 4 * count);
+  for (int c = 0; c < 3; ++c)
+    for (size_t i = 0; i < count; ++i) out.plane(c)[i] = texels[4 * i + c];
   return out;
 }
 

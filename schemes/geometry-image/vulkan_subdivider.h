@@ -68,13 +68,13 @@ class VulkanSubdivider {
   const gpu::Buffer& normals() const { return normals_; }
 
  private:
-  struct Planes {  // one padded image: a storage buffer per coordinate plane
+  struct DeviceImage {  // one padded image: side^2 vec4 texels, (x, y, z, 0) per sample
     int side = 0;
-    std::array<gpu::Buffer, 3> plane;
+    gpu::Buffer texels;
   };
   struct Pipelines;
 
-  Planes make_planes(int side, const std::string& name) const;
+  DeviceImage make_image(int side, const std::string& name) const;
   void make_pipelines();
   void make_descriptor_sets();
   void record_frame();
@@ -98,8 +98,8 @@ class VulkanSubdivider {
   std::array<CutVertexStencil, 4> cut_stencils_{};
 
   gpu::Buffer control_staging_, control_, gather_, stencils_;
-  std::vector<Planes> images_;  // g^0 .. g^k
-  Planes split_;                // L[g^k] (per-mask plan), sized for the largest level
+  std::vector<DeviceImage> images_;  // g^0 .. g^k
+  DeviceImage split_;                // L[g^k] (per-mask plan), sized for the largest level
   gpu::ChunkPlan outputs_;      // chunks of p^k and n^k (the same for both)
   gpu::Buffer positions_, normals_, positions_staging_, normals_staging_;
 

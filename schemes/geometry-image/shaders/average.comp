@@ -3,7 +3,7 @@
 // M -> M - 2. One invocation per destination sample.
 #include "gim_common.glsl"
 #include "source_planes.glsl"
-#define GIM_DESTINATION 3
+#define GIM_DESTINATION 1
 #include "destination_planes.glsl"
 
 void main() {

@@ -8,8 +8,8 @@
 
 // Per cut vertex: output vertex, then padded offsets of c, c+u, c+e, c+u+e, c-u+e
 // (masks.h CutVertexStencil).
-layout(std430, binding = 3) readonly buffer Stencils { int stencils[24]; };
-layout(std430, binding = 4) writeonly buffer Normals { float normals[]; };
+layout(std430, binding = 1) readonly buffer Stencils { int stencils[24]; };
+layout(std430, binding = 2) writeonly buffer Normals { float normals[]; };
 
 void main() {
   uint i = gl_LocalInvocationIndex;

@@ -1,11 +1,5 @@
-// The destination image's planes at bindings GIM_DESTINATION, + 1, + 2 (define it first).
-// Float texel views (r32f), written by imageStore: cheaper than storage-buffer stores on lavapipe.
-layout(binding = GIM_DESTINATION, r32f) uniform restrict writeonly imageBuffer destination_x;
-layout(binding = GIM_DESTINATION + 1, r32f) uniform restrict writeonly imageBuffer destination_y;
-layout(binding = GIM_DESTINATION + 2, r32f) uniform restrict writeonly imageBuffer destination_z;
+// The destination image at binding GIM_DESTINATION (define it first).
+// An rgba32f texel view written by imageStore: one store per sample (w unused, 0).
+layout(binding = GIM_DESTINATION, rgba32f) uniform restrict writeonly imageBuffer destination;
 
-void store(uint i, vec3 v) {
-  imageStore(destination_x, int(i), vec4(v.x));
-  imageStore(destination_y, int(i), vec4(v.y));
-  imageStore(destination_z, int(i), vec4(v.z));
-}
+void store(uint i, vec3 v) { imageStore(destination, int(i), vec4(v, 0.0)); }

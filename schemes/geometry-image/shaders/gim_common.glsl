@@ -1,10 +1,10 @@
 // Shared by the geometry-image compute passes (../README.md, "Vulkan passes"): the work layout
 // and the push constants.
 //
-// A padded image of side S is three storage buffers, one per coordinate plane (x, y, z), each
-// S * S floats in row-major order, exactly the CPU's planes (masks.h): value(c, col, row) is
-// plane c at row * S + col. One binding per plane keeps every binding under the device's
-// maxStorageBufferRange for images three times larger than one binding could hold.
+// A padded image of side S is one buffer of S * S vec4 texels in row-major order, (x, y, z, 0)
+// per sample, the CPU's three planes (masks.h) interleaved: sample (col, row) is texel
+// row * S + col. A texel view may cover maxTexelBufferElements texels (2 GiB of vec4 on lavapipe),
+// so an image is not bound by maxStorageBufferRange (128 MiB there).
 //
 // Every value the masks compute is `precise` (SPIR-V NoContraction: no fused multiply-add), and
 // the sums are written in the CPU's order: opposite stencil samples paired first, pair sums added

@@ -1,16 +1,16 @@
 #version 450
-// E, the limit mask, at every sample of the opened grid: positions.
+// E, the limit mask, at every sample of the opened grid: positions, four vertices per invocation
+// (output_grid.glsl).
 #include "gim_common.glsl"
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(binding = 3, r32f) uniform restrict writeonly imageBuffer positions;
+layout(binding = 1, rgba32f) uniform restrict writeonly imageBuffer positions;
 
 void main() {
-  uint x = gl_GlobalInvocationID.x;
-  if (x >= pc.dst_side) return;
-  uint j = gl_GlobalInvocationID.y * pc.dst_side + x;  // in the chunk
-  uint c = padded_index(x, pc.first_row + gl_GlobalInvocationID.y);
-  vec3 p = limit_at(c);
-  STORE_FLOAT3(positions, j, p);
+  const uint t = SDB_LINEAR_INVOCATION();
+  if (4u * t >= chunk_vertices()) return;
+  vec3 p[4];
+  [[unroll]] for (int k = 0; k < 4; ++k) p[k] = limit_at(vertex_source(4u * t + uint(k)));
+  STORE_FOUR(positions, t, p);
 }

@@ -1,16 +1,16 @@
 #version 450
-// T_s, T_t and their unit cross product at every sample of the opened grid: normals.
+// T_s, T_t and their unit cross product at every sample of the opened grid: normals, four
+// vertices per invocation (output_grid.glsl).
 #include "gim_common.glsl"
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(binding = 3, r32f) uniform restrict writeonly imageBuffer normals;
+layout(binding = 1, rgba32f) uniform restrict writeonly imageBuffer normals;
 
 void main() {
-  uint x = gl_GlobalInvocationID.x;
-  if (x >= pc.dst_side) return;
-  uint j = gl_GlobalInvocationID.y * pc.dst_side + x;  // in the chunk
-  uint c = padded_index(x, pc.first_row + gl_GlobalInvocationID.y);
-  vec3 n = normal_at(c);
-  STORE_FLOAT3(normals, j, n);
+  const uint t = SDB_LINEAR_INVOCATION();
+  if (4u * t >= chunk_vertices()) return;
+  vec3 n[4];
+  [[unroll]] for (int k = 0; k < 4; ++k) n[k] = normal_at(vertex_source(4u * t + uint(k)));
+  STORE_FOUR(normals, t, n);
 }

@@ -1,22 +1,32 @@
-// Output passes (E, T, fused E+T): one invocation per vertex of the opened n x n grid, in chunks
-// of whole rows that fit one binding (vulkan_subdivider.cpp plans them with gpu::plan_chunks).
-// Outputs are tightly packed float3 (Point3), chunk-relative: vertex (x, pc.first_row + r) is
-// element r * n + x of the chunk's binding.
-
-// Float texel views (r32f) of the output chunk, written by imageStore; float3 vertex j is texels
-// 3 j .. 3 j + 2.
-// A macro: GLSL passes no image to a function.
-#define STORE_FLOAT3(out_image, j, v)                     \
-  {                                                      \
-    const vec3 value_ = (v);                             \
-    const int texel_ = int(3u * (j));                    \
-    imageStore(out_image, texel_, vec4(value_.x));       \
-    imageStore(out_image, texel_ + 1, vec4(value_.y));   \
-    imageStore(out_image, texel_ + 2, vec4(value_.z));   \
-  }
+// Output passes (E, T, fused E+T): invocation t computes vertices 4 t .. 4 t + 3 of its chunk
+// (row-major over the chunk's rows of the n x n grid), whose 12 floats are three vec4 texels of the
+// chunk's rgba32f views: a quarter of the stores that one float at a time would take (lavapipe
+// stores lane by lane). Chunks hold whole groups of four rows (vulkan_subdivider.cpp plans them
+// with gpu::plan_chunks); the last chunk's last group may run past the grid's end, and writes up
+// to three copies of the last vertex into the padding after the outputs.
+#extension GL_EXT_control_flow_attributes : require
+#include "sdb/dispatch.glsl"
 
 // Padded index of image sample (x, y) (padded (x + 1, y + 1)).
 uint padded_index(uint x, uint y) { return (y + 1u) * pc.src_side + (x + 1u); }
+
+uint chunk_vertices() { return pc.rows * pc.dst_side; }
+
+// Padded source index of the chunk's vertex j, clamped to the chunk's last vertex.
+uint vertex_source(uint j) {
+  const uint v = min(j, chunk_vertices() - 1u);
+  return padded_index(v % pc.dst_side, pc.first_row + v / pc.dst_side);
+}
+
+// Vertices 4 t .. 4 t + 3 (vec3 v[4]) as texels 3 t .. 3 t + 2 of an rgba32f view. A macro: GLSL
+// passes no image to a function.
+#define STORE_FOUR(out_image, t, v)                                          \
+  {                                                                          \
+    const int texel_ = int(3u * (t));                                        \
+    imageStore(out_image, texel_, vec4(v[0], v[1].x));                       \
+    imageStore(out_image, texel_ + 1, vec4(v[1].y, v[1].z, v[2].x, v[2].y)); \
+    imageStore(out_image, texel_ + 2, vec4(v[2].z, v[3]));                   \
+  }
 
 // E: 1/36 [1 4 1; 4 16 4; 1 4 1]. The constant is 1.0f / 36.0f as C++ rounds it, given by its
 // bits so that no compiler rounds it differently.

@@ -4,7 +4,7 @@
 // One invocation per destination sample, as the paper's fragment program.
 #include "gim_common.glsl"
 #include "source_planes.glsl"
-#define GIM_DESTINATION 3
+#define GIM_DESTINATION 1
 #include "destination_planes.glsl"
 
 void main() {

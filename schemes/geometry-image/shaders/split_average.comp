@@ -14,7 +14,7 @@
 // split_average_row's, in its order.
 #include "gim_common.glsl"
 #include "source_planes.glsl"
-#define GIM_DESTINATION 3
+#define GIM_DESTINATION 1
 #include "destination_planes.glsl"
 
 void main() {

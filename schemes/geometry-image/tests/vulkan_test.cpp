@@ -224,10 +224,10 @@ TEST_F(GeometryImageVulkan, TheSchemeRunsOnVulkanWithBothPlans) {
 }
 
 TEST_F(GeometryImageVulkan, RefusesWhatTheDeviceCannotHoldWithTheReason) {
-  // 2049 x 2049 at depth 6: padded planes of 131,075^2 floats, past any device's binding.
+  // 2049 x 2049 at depth 6: padded images of 131,075^2 vec4, past any device's largest buffer.
   const auto why = VulkanSubdivider::unsupported(ctx(), 2049, 6, PassPlan::Fused);
   ASSERT_TRUE(why);
-  EXPECT_NE(why->find("binds at most"), std::string::npos) << *why;
+  EXPECT_NE(why->find("allocates at most"), std::string::npos) << *why;
   EXPECT_THROW(VulkanSubdivider(ctx(), 2049, 6, PassPlan::Fused), gpu::Unsupported);
   EXPECT_FALSE(VulkanSubdivider::unsupported(ctx(), 31, 4, PassPlan::PerMask));
 }
