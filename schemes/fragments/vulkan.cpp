@@ -17,7 +17,6 @@ using gpu::BufferUsage;
 
 // Invocations per work group, one fragment each (the shaders' local_size_x_id = 0).
 constexpr uint32_t kLocalSize = 64;
-constexpr uint32_t kBindings = 7;  // fragments.glsl
 // Scratch of a wave, both halves (a level and the next): past this, fragments run in more waves.
 // Small enough for lavapipe's 2 GiB heap beside a large output, large enough that a real GPU
 // runs one wave.
@@ -155,7 +154,8 @@ void place_output(Wave& w, uint64_t alignment) {
 // Consecutive batches while their scratch and output fit one binding each (and the dispatch's y).
 WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface::Batch>& batches,
                     const gpu::DeviceLimits& limits, uint64_t max_wave_bytes, const std::string& device) {
-  const uint64_t alignment = std::max<uint64_t>(limits.min_storage_buffer_offset_alignment, 4);
+  // The output bindings are r32f texel views: their offsets align for those.
+  const uint64_t alignment = std::max<uint64_t>(limits.min_texel_buffer_offset_alignment, 4);
   const uint64_t range = max_wave_bytes ? std::min(max_wave_bytes, limits.max_storage_buffer_range)
                                         : limits.max_storage_buffer_range;
   // The scratch binding holds two halves (a level and the next).
@@ -185,9 +185,35 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
   return plan;
 }
 
+// fragments.glsl's bindings: tables, batches, fragment list, control points, scratch (read),
+// positions, normals, scratch (written). Reads go through texel views and writes through r32f
+// image views (lavapipe's fast paths); the batches, one uvec4 per invocation, stay a storage buffer.
 gpu::ComputePipelineDesc pass(const char* shader) {
-  return {shaders::get(shader), std::vector<gpu::Binding>(kBindings, gpu::Binding::StorageBuffer), sizeof(Push),
+  using gpu::Binding;
+  return {shaders::get(shader),
+          {Binding::UniformTexelBuffer, Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
+           Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
+           Binding::StorageTexelBuffer},
+          sizeof(Push),
           {{0, kLocalSize}}};
+}
+
+void check_texels(const gpu::Context& c, uint64_t count, const std::string& what) {
+  if (count > c.limits().max_texel_buffer_elements)
+    throw gpu::Unsupported(what + " takes " + std::to_string(count) + " 32-bit texels; " + c.info().name +
+                           " views at most " + std::to_string(c.limits().max_texel_buffer_elements));
+}
+
+// A table of 32-bit words read through a texel view (at least one word: Vulkan has no empty buffers).
+gpu::Buffer texel_table(gpu::Context& c, std::vector<uint32_t> words, const std::string& name) {
+  if (words.empty()) words.resize(1);
+  check_texels(c, words.size(), name);
+  return gpu::device_buffer_with(c, words, BufferUsage::UniformTexel, name);
+}
+
+gpu::BufferRange texels(gpu::BufferRange r, VkFormat format) {
+  r.texel_format = format;
+  return r;
 }
 
 class VulkanFragmentEvaluation final : public Evaluation {
@@ -275,15 +301,18 @@ class VulkanFragmentEvaluation final : public Evaluation {
       batch_words.insert(batch_words.end(), {uint32_t(surface_.partition.fragments[surface_.order[b.begin]].shape),
                                              b.begin, b.count, plan_.scratch_offset[i]});
     }
-    tables_ = gpu::storage_table(c, tables.words, "fragments' pattern tables");
+    tables_ = texel_table(c, tables.words, "fragments' pattern tables");
     batches_buffer_ = gpu::storage_table(c, batch_words, "fragments' batches");
-    fragments_ = gpu::storage_table(c, tables.fragments, "fragment list");
+    fragments_ = texel_table(c, tables.fragments, "fragment list");
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
-    control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::Storage, "control points");
-    scratch_ = gpu::Buffer::device(c, 2 * scratch, BufferUsage::Storage, "scratch (two levels)");
-    positions_ = gpu::Buffer::device(c, output, BufferUsage::Storage | BufferUsage::Vertex, "positions");
-    normals_ = gpu::Buffer::device(c, output, BufferUsage::Storage | BufferUsage::Vertex, "normals");
+    control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::UniformTexel, "control points");
+    check_texels(c, 2 * scratch / sizeof(float), "the scratch");
+    scratch_ = gpu::Buffer::device(c, 2 * scratch, BufferUsage::UniformTexel | BufferUsage::StorageTexel,
+                                   "scratch (two levels)");
+    const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
+    positions_ = gpu::Buffer::device(c, output, output_usage, "positions");
+    normals_ = gpu::Buffer::device(c, output, output_usage, "normals");
     positions_staging_ = gpu::Buffer::readback(c, output, "positions (readback)");
     normals_staging_ = gpu::Buffer::readback(c, output, "normals (readback)");
   }
@@ -316,10 +345,13 @@ class VulkanFragmentEvaluation final : public Evaluation {
   }
 
   gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w) const {
-    return gpu::DescriptorSet(p, {tables_.range(), batches_buffer_.range(), fragments_.range(), control_buffer_.range(),
-                                  scratch_.range(),
-                                  positions_.range(w.bind_offset, w.bind_bytes),
-                                  normals_.range(w.bind_offset, w.bind_bytes)});
+    return gpu::DescriptorSet(p, {texels(tables_.range(), VK_FORMAT_R32_UINT), batches_buffer_.range(),
+                                  texels(fragments_.range(), VK_FORMAT_R32_UINT),
+                                  texels(control_buffer_.range(), VK_FORMAT_R32_SFLOAT),
+                                  texels(scratch_.range(), VK_FORMAT_R32_SFLOAT),
+                                  texels(positions_.range(w.bind_offset, w.bind_bytes), VK_FORMAT_R32_SFLOAT),
+                                  texels(normals_.range(w.bind_offset, w.bind_bytes), VK_FORMAT_R32_SFLOAT),
+                                  texels(scratch_.range(), VK_FORMAT_R32_SFLOAT)});
   }
 
   // Invocations take chunks of the pass's entries: x the chunk, y the batch (its work group's scratch).
@@ -425,10 +457,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
 std::optional<std::string> vulkan_unavailable() {
   static const gpu::DeviceInfo device = gpu::probe();
   if (!device.available) return "no Vulkan device: " + device.reason;
-  if (device.limits.max_per_stage_storage_buffers < kBindings)
-    return device.name + " binds " + std::to_string(device.limits.max_per_stage_storage_buffers) +
-           " storage buffers per stage; the fragment passes bind " + std::to_string(kBindings);
-  return std::nullopt;
+  return std::nullopt;  // one storage buffer and seven texel views per pass: within Vulkan's minimum limits
 }
 
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,

@@ -11,15 +11,24 @@
 
 layout(local_size_x_id = 0) in;
 
-layout(std430, binding = 0) readonly buffer Tables { uint T[]; };     // device_tables.h
+layout(binding = 0) uniform usamplerBuffer tables;  // device_tables.h, r32ui texels
 // Per batch: shape, first fragment, count, first float of its scratch in the wave's.
 layout(std430, binding = 1) readonly buffer Batches { uvec4 batch[]; };
-layout(std430, binding = 2) readonly buffer Fragments { uint F[]; };  // control list, first vertex
-layout(std430, binding = 3) readonly buffer Control { float control[]; };  // x y z per vertex
+layout(binding = 2) uniform usamplerBuffer fragment_words;  // control list, first vertex
+layout(binding = 3) uniform samplerBuffer control_floats;  // x y z per vertex
 // Two halves: level d - 1's slots (from src_base) and level d's (from dst_base), this wave's.
-layout(std430, binding = 4) buffer Scratch { float scratch[]; };
-layout(std430, binding = 5) writeonly buffer Positions { float out_position[]; };
-layout(std430, binding = 6) writeonly buffer Normals { float out_normal[]; };
+layout(binding = 4) uniform samplerBuffer scratch_in;                        // the scratch buffer, read
+layout(binding = 7, r32f) uniform restrict writeonly imageBuffer scratch_out;  // and written (other slots)
+layout(binding = 5, r32f) uniform restrict writeonly imageBuffer out_position;
+layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_normal;
+
+// Every buffer is read through a texel view and written through an r32f image view: on lavapipe a
+// storage-buffer access is a loop over the lanes with a branch each, a texel fetch one gather
+// (harness/gpu/README.md, "Memory access on lavapipe").
+uint table_word(uint i) { return texelFetch(tables, int(i)).x; }
+uint fragment_word(uint i) { return texelFetch(fragment_words, int(i)).x; }
+float control_float(uint i) { return texelFetch(control_floats, int(i)).x; }
+float scratch_float(uint i) { return texelFetch(scratch_in, int(i)).x; }
 
 layout(push_constant) uniform Push {
   uint level;          // the level a level pass makes, 1 .. levels
@@ -68,21 +77,23 @@ uvec2 chunk_of(uint count) {
   return uvec2(min(begin, count), min(begin + pc.chunk, count));
 }
 uint limit_header() { return header() + kHeaderPerLevel * pc.levels; }
-float number(uint at) { return uintBitsToFloat(T[at]); }
+float number(uint at) { return uintBitsToFloat(table_word(at)); }
 
 // The batch's slots: x, y, z planes of its `count` lanes each.
 uint scratch_index(uint slot) { return g_scratch + (slot * 3u) * g_count + g_lane; }
 
 vec3 load(bool from_dst, uint slot) {
   const uint i = (from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot), w = g_count;
-  return vec3(scratch[i], scratch[i + w], scratch[i + 2u * w]);
+  return vec3(scratch_float(i), scratch_float(i + w), scratch_float(i + 2u * w));
 }
 float load_axis(bool from_dst, uint slot, uint axis) {
-  return scratch[(from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot) + axis * g_count];
+  return scratch_float((from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot) + axis * g_count);
 }
 void store(uint slot, vec3 p) {
   const uint i = pc.dst_base + scratch_index(slot), w = g_count;
-  scratch[i] = p.x, scratch[i + w] = p.y, scratch[i + 2u * w] = p.z;
+  imageStore(scratch_out, int(i), vec4(p.x));
+  imageStore(scratch_out, int(i + w), vec4(p.y));
+  imageStore(scratch_out, int(i + 2u * w), vec4(p.z));
 }
 
 // -0 as +0, by its bits (what kernel.cpp's "+ 0.0f" does, and no compiler can fold away): min and
@@ -108,12 +119,12 @@ precise float sorted_sum(bool from_dst, uint ref, uint n, uint axis) {
     float m = 0.0;
     bool found = false;
     for (uint i = 0u; i < n; ++i) {
-      const float v = canonical(load_axis(from_dst, T[ref + i], axis));
+      const float v = canonical(load_axis(from_dst, table_word(ref + i), axis));
       if ((done == 0u || v > prev) && (!found || v < m)) m = v, found = true;
     }
     uint count = 0u;
     for (uint i = 0u; i < n; ++i)
-      if (canonical(load_axis(from_dst, T[ref + i], axis)) == m) ++count;
+      if (canonical(load_axis(from_dst, table_word(ref + i), axis)) == m) ++count;
     if (!found || count == 0u) break;  // NaN: nothing orders it (inputs are checked; never loop forever)
     for (uint k = 0u; k < count; ++k) s = done + k == 0u ? m : s + m;
     done += count;
@@ -126,21 +137,21 @@ precise float sorted_sum(bool from_dst, uint ref, uint n, uint axis) {
 precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
   precise vec3 r;
   if (n == 1u) {
-    r = load(from_dst, T[ref]);
+    r = load(from_dst, table_word(ref));
   } else if (n == 2u) {
-    r = load(from_dst, T[ref]) + load(from_dst, T[ref + 1u]);
+    r = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 1u));
   } else if (n == 4u) {
-    r = (load(from_dst, T[ref]) + load(from_dst, T[ref + 2u])) + (load(from_dst, T[ref + 1u]) + load(from_dst, T[ref + 3u]));
+    r = (load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 2u))) + (load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 3u)));
   } else if (n == 6u) {
-    precise vec3 a = load(from_dst, T[ref]) + load(from_dst, T[ref + 3u]);
-    precise vec3 b = load(from_dst, T[ref + 1u]) + load(from_dst, T[ref + 4u]);
-    precise vec3 c = load(from_dst, T[ref + 2u]) + load(from_dst, T[ref + 5u]);
+    precise vec3 a = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 3u));
+    precise vec3 b = load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 4u));
+    precise vec3 c = load(from_dst, table_word(ref + 2u)) + load(from_dst, table_word(ref + 5u));
     r = vec3(sum3_sorted(a.x, b.x, c.x), sum3_sorted(a.y, b.y, c.y), sum3_sorted(a.z, b.z, c.z));
   } else if (n == 8u) {
-    precise vec3 q0 = load(from_dst, T[ref]) + load(from_dst, T[ref + 4u]);
-    precise vec3 q1 = load(from_dst, T[ref + 1u]) + load(from_dst, T[ref + 5u]);
-    precise vec3 q2 = load(from_dst, T[ref + 2u]) + load(from_dst, T[ref + 6u]);
-    precise vec3 q3 = load(from_dst, T[ref + 3u]) + load(from_dst, T[ref + 7u]);
+    precise vec3 q0 = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 4u));
+    precise vec3 q1 = load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 5u));
+    precise vec3 q2 = load(from_dst, table_word(ref + 2u)) + load(from_dst, table_word(ref + 6u));
+    precise vec3 q3 = load(from_dst, table_word(ref + 3u)) + load(from_dst, table_word(ref + 7u));
     r = (q0 + q2) + (q1 + q3);
   } else {
     r = vec3(sorted_sum(from_dst, ref, n, 0u), sorted_sum(from_dst, ref, n, 1u), sorted_sum(from_dst, ref, n, 2u));
@@ -151,12 +162,12 @@ precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
 // kernel.cpp's apply(): wv c + wc (p0 + p1) + we sum(e) + wf sum(f). The centre, pair and ring are
 // read from src; the f terms from dst when faces_in_dst (Catmull-Clark's new face points).
 precise vec3 apply_vertex_rule(uint at, uint ring, bool faces_in_dst) {
-  const uint counts = T[at + 4u];
+  const uint counts = table_word(at + 4u);
   const uint num_e = counts & 0xffffu, num_f = counts >> 16;
   const float wv = number(at + 5u), wc = number(at + 6u), we = number(at + 7u), wf = number(at + 8u);
-  const uint ref = ring + T[at + 3u];
-  precise vec3 s = load(false, T[at]) * wv;
-  if (wc != 0.0) s = s + (load(false, T[at + 1u]) + load(false, T[at + 2u])) * wc;
+  const uint ref = ring + table_word(at + 3u);
+  precise vec3 s = load(false, table_word(at)) * wv;
+  if (wc != 0.0) s = s + (load(false, table_word(at + 1u)) + load(false, table_word(at + 2u))) * wc;
   if (num_e != 0u) s = s + ring_sum(false, ref, num_e) * we;
   if (num_f != 0u) s = s + ring_sum(faces_in_dst, ref + num_e, num_f) * wf;
   return s;

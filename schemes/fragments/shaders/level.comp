@@ -7,14 +7,14 @@
 void main() {
   if (!begin_invocation()) return;
   const uint h = header() + kHeaderPerLevel * (pc.level - 1u);
-  const uint num_faces = T[h + 1u], faces = T[h + 2u], num_edges = T[h + 3u], edges = T[h + 4u];
-  const uint num_vertices = T[h + 5u], vertices = T[h + 6u], ring = T[h + 7u];
+  const uint num_faces = table_word(h + 1u), faces = table_word(h + 2u), num_edges = table_word(h + 3u), edges = table_word(h + 4u);
+  const uint num_vertices = table_word(h + 5u), vertices = table_word(h + 6u), ring = table_word(h + 7u);
   const bool catmark = (pc.flags & kCatmark) != 0u;
   if (pc.part == kFaces) {
     const uvec2 range = chunk_of(num_faces);
     for (uint i = range.x; i < range.y; ++i) {
       const uint at = faces + 4u * i;
-      precise vec3 p = ((load(false, T[at]) + load(false, T[at + 2u])) + (load(false, T[at + 1u]) + load(false, T[at + 3u]))) * 0.25;
+      precise vec3 p = ((load(false, table_word(at)) + load(false, table_word(at + 2u))) + (load(false, table_word(at + 1u)) + load(false, table_word(at + 3u)))) * 0.25;
       store(i, p);
     }
     return;
@@ -24,12 +24,12 @@ void main() {
     precise vec3 p;
     if (j < num_edges) {
       const uint at = edges + 6u * j;
-      precise vec3 v = load(false, T[at]) + load(false, T[at + 1u]);
+      precise vec3 v = load(false, table_word(at)) + load(false, table_word(at + 1u));
       const float wf = number(at + 5u);
       if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
         p = v * number(at + 4u);
       } else {
-        precise vec3 f = load(catmark, T[at + 2u]) + load(catmark, T[at + 3u]);
+        precise vec3 f = load(catmark, table_word(at + 2u)) + load(catmark, table_word(at + 3u));
         p = v * number(at + 4u) + f * wf;
       }
     } else {

@@ -8,20 +8,20 @@
 const uint kLongTangentMask = 32u;
 
 precise vec3 limit_position(uint lh, uint entry) {
-  const uint at = T[lh + kPositions] + 9u * entry;
+  const uint at = table_word(lh + kPositions) + 9u * entry;
   precise vec3 p;
   if ((pc.flags & kProject) == 0u) {
-    p = load(false, T[at]);
+    p = load(false, table_word(at));
     return p;
   }
-  const int stencil = int(T[T[lh + kStencil] + entry]);
+  const int stencil = int(table_word(table_word(lh + kStencil) + entry));
   if (stencil < 0) {
-    p = apply_vertex_rule(at, T[lh + kLimitRing], false);
+    p = apply_vertex_rule(at, table_word(lh + kLimitRing), false);
     return p;
   }
   p = vec3(0.0);  // in the stencil's order, which every fragment shares
-  const uint begin = T[T[lh + kStencilBegin] + uint(stencil)], end = T[T[lh + kStencilBegin] + uint(stencil) + 1u];
-  for (uint k = begin; k < end; ++k) p = p + load(false, T[T[lh + kStencilSlot] + k]) * number(T[lh + kStencilW] + k);
+  const uint begin = table_word(table_word(lh + kStencilBegin) + uint(stencil)), end = table_word(table_word(lh + kStencilBegin) + uint(stencil) + 1u);
+  for (uint k = begin; k < end; ++k) p = p + load(false, table_word(table_word(lh + kStencilSlot) + k)) * number(table_word(lh + kStencilW) + k);
   return p;
 }
 
@@ -36,26 +36,26 @@ precise vec3 unit_normal(vec3 a, vec3 b) {
 // kernel.cpp's regular_normal: Sdc's regular tangents as differences. Slots: centre, e, f.
 precise vec3 regular_normal(uint slots, uint size) {
   if (size == 9u) {
-    precise vec3 d02 = load(false, T[slots + 5u]) - load(false, T[slots + 7u]);
-    precise vec3 d13 = load(false, T[slots + 6u]) - load(false, T[slots + 8u]);
-    precise vec3 a = (load(false, T[slots + 1u]) - load(false, T[slots + 3u])) * 4.0 + (d02 - d13);
-    precise vec3 b = (load(false, T[slots + 2u]) - load(false, T[slots + 4u])) * 4.0 + (d02 + d13);
+    precise vec3 d02 = load(false, table_word(slots + 5u)) - load(false, table_word(slots + 7u));
+    precise vec3 d13 = load(false, table_word(slots + 6u)) - load(false, table_word(slots + 8u));
+    precise vec3 a = (load(false, table_word(slots + 1u)) - load(false, table_word(slots + 3u))) * 4.0 + (d02 - d13);
+    precise vec3 b = (load(false, table_word(slots + 2u)) - load(false, table_word(slots + 4u))) * 4.0 + (d02 + d13);
     return unit_normal(a, b);
   }
-  precise vec3 d14 = load(false, T[slots + 2u]) - load(false, T[slots + 5u]);
-  precise vec3 d25 = load(false, T[slots + 3u]) - load(false, T[slots + 6u]);
-  precise vec3 a = (load(false, T[slots + 1u]) - load(false, T[slots + 4u])) + (d14 - d25) * 0.5;
+  precise vec3 d14 = load(false, table_word(slots + 2u)) - load(false, table_word(slots + 5u));
+  precise vec3 d25 = load(false, table_word(slots + 3u)) - load(false, table_word(slots + 6u));
+  precise vec3 a = (load(false, table_word(slots + 1u)) - load(false, table_word(slots + 4u))) + (d14 - d25) * 0.5;
   precise vec3 b = (d14 + d25) * 0.866025404;
   return unit_normal(a, b);
 }
 
 precise vec3 general_normal(uint lh, uint entry) {
-  const uint begin = T[T[lh + kTangentBegin] + entry], end = T[T[lh + kTangentBegin] + entry + 1u];
-  const uint slot = T[lh + kTangentSlot], w1 = T[lh + kTangentW1], w2 = T[lh + kTangentW2];
+  const uint begin = table_word(table_word(lh + kTangentBegin) + entry), end = table_word(table_word(lh + kTangentBegin) + entry + 1u);
+  const uint slot = table_word(lh + kTangentSlot), w1 = table_word(lh + kTangentW1), w2 = table_word(lh + kTangentW2);
   precise vec3 a = vec3(0.0), b = vec3(0.0), ca = vec3(0.0), cb = vec3(0.0);
   const bool compensated = end - begin > kLongTangentMask;
   for (uint k = begin; k < end; ++k) {
-    const vec3 p = load(false, T[slot + k]);
+    const vec3 p = load(false, table_word(slot + k));
     precise vec3 ta = p * number(w1 + k), tb = p * number(w2 + k);
     if (!compensated) {
       a = a + ta, b = b + tb;
@@ -70,26 +70,26 @@ precise vec3 general_normal(uint lh, uint entry) {
   return unit_normal(a + ca, b + cb);
 }
 
-vec3 control_point(uint v) { return vec3(control[3u * v], control[3u * v + 1u], control[3u * v + 2u]); }
+vec3 control_point(uint v) { return vec3(control_float(3u * v), control_float(3u * v + 1u), control_float(3u * v + 2u)); }
 
 // kernel.cpp's net_normal: the tangents as weights on the control points relative to the first.
 precise vec3 net_normal(uint lh, uint entry) {
-  const uint n = T[lh + kNetSize], w = T[lh + kNetTangents] + 2u * n * entry, list = F[2u * g_fragment];
-  const vec3 first = control_point(T[list]);
+  const uint n = table_word(lh + kNetSize), w = table_word(lh + kNetTangents) + 2u * n * entry, list = fragment_word(2u * g_fragment);
+  const vec3 first = control_point(table_word(list));
   precise vec3 a = vec3(0.0), b = vec3(0.0);
   for (uint j = 1u; j < n; ++j) {
-    precise vec3 p = control_point(T[list + j]) - first;
+    precise vec3 p = control_point(table_word(list + j)) - first;
     a = a + p * number(w + j), b = b + p * number(w + n + j);
   }
   return unit_normal(a, b);
 }
 
 precise vec3 limit_normal(uint lh, uint entry) {
-  if (T[lh + kNetSize] != 0u) return net_normal(lh, entry);
-  const int regular = int(T[T[lh + kRegular] + entry]);
+  if (table_word(lh + kNetSize) != 0u) return net_normal(lh, entry);
+  const int regular = int(table_word(table_word(lh + kRegular) + entry));
   if (regular >= 0) {
-    const uint size = T[lh + kRegularSize];
-    return regular_normal(T[lh + kRegularSlots] + uint(regular) * size, size);
+    const uint size = table_word(lh + kRegularSize);
+    return regular_normal(table_word(lh + kRegularSlots) + uint(regular) * size, size);
   }
   return general_normal(lh, entry);
 }
@@ -97,14 +97,18 @@ precise vec3 limit_normal(uint lh, uint entry) {
 void main() {
   if (!begin_invocation()) return;
   const uint lh = limit_header();
-  const uint block = T[lh + kBlock], block_normal = T[lh + kBlockNormal];
-  const uint first = 3u * (F[2u * g_fragment + 1u] - pc.wave_first_vertex) + pc.out_shift;
-  const uvec2 range = chunk_of(T[lh + kBlockVertices]);
+  const uint block = table_word(lh + kBlock), block_normal = table_word(lh + kBlockNormal);
+  const uint first = 3u * (fragment_word(2u * g_fragment + 1u) - pc.wave_first_vertex) + pc.out_shift;
+  const uvec2 range = chunk_of(table_word(lh + kBlockVertices));
   for (uint i = range.x; i < range.y; ++i) {
-    precise vec3 p = limit_position(lh, T[block + i]) + pc.origin.xyz;
-    const vec3 nrm = limit_normal(lh, T[block_normal + i]);
+    precise vec3 p = limit_position(lh, table_word(block + i)) + pc.origin.xyz;
+    const vec3 nrm = limit_normal(lh, table_word(block_normal + i));
     const uint o = first + 3u * i;
-    out_position[o] = p.x, out_position[o + 1u] = p.y, out_position[o + 2u] = p.z;
-    out_normal[o] = nrm.x, out_normal[o + 1u] = nrm.y, out_normal[o + 2u] = nrm.z;
+    imageStore(out_position, int(o), vec4(p.x));
+    imageStore(out_position, int(o + 1u), vec4(p.y));
+    imageStore(out_position, int(o + 2u), vec4(p.z));
+    imageStore(out_normal, int(o), vec4(nrm.x));
+    imageStore(out_normal, int(o + 1u), vec4(nrm.y));
+    imageStore(out_normal, int(o + 2u), vec4(nrm.z));
   }
 }
