@@ -188,14 +188,16 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
 // fragments.glsl's bindings: tables, batches, fragment list, control points, scratch (read),
 // positions, normals, scratch (written). Reads go through texel views and writes through r32f
 // image views (lavapipe's fast paths); the batches, one uvec4 per invocation, stay a storage buffer.
-gpu::ComputePipelineDesc pass(const char* shader) {
+// The rule's flags and the pass's part are specialization constants: lavapipe runs both sides of
+// every branch, masked, unless its condition is a constant.
+gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part) {
   using gpu::Binding;
   return {shaders::get(shader),
           {Binding::UniformTexelBuffer, Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
            Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
            Binding::StorageTexelBuffer},
           sizeof(Push),
-          {{0, kLocalSize}}};
+          {{0, kLocalSize}, {1, flags}, {2, static_cast<uint32_t>(part)}}};
 }
 
 void check_texels(const gpu::Context& c, uint64_t count, const std::string& what) {
@@ -238,14 +240,14 @@ class VulkanFragmentEvaluation final : public Evaluation {
       throw gpu::Unsupported("the output's " + gpu::gib_text(output) + " of positions exceed one buffer on " +
                              ctx_->info().name);
     make_buffers(tables, scratch, output);
-    make_pipelines();
+    push_.flags = (rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0);
+    make_pipelines();  // the flags specialize them
     surface_.describe(out_);
     if (options.render_width > 0) make_renderer(options);
     const Bounds box = bounds_of(control_);
     for (int k = 0; k < 3; ++k) push_.origin[k] = static_cast<float>(box.centre(k));
     push_.levels = tables.levels;
     push_.header_words = tables.header_words;
-    push_.flags = (rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0);
     record_frame();
     record_readback();
     out_.positions.resize(surface_.num_output_vertices);
@@ -339,9 +341,10 @@ class VulkanFragmentEvaluation final : public Evaluation {
   }
 
   void make_pipelines() {
-    gather_.emplace(*ctx_, pass("gather.comp"));
-    level_.emplace(*ctx_, pass("level.comp"));
-    limit_.emplace(*ctx_, pass("limit.comp"));
+    gather_.emplace(*ctx_, pass("gather.comp", push_.flags, Part::Gather));
+    level_.emplace(*ctx_, pass("level.comp", push_.flags, Part::Faces));
+    level_edges_.emplace(*ctx_, pass("level.comp", push_.flags, Part::EdgesVertices));
+    limit_.emplace(*ctx_, pass("limit.comp", push_.flags, Part::Limit));
   }
 
   gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w) const {
@@ -395,7 +398,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
       const uint32_t level = pass.level;
       frame_timer_->begin(cmd, gpu::PassKind::Kernel, "level " + std::to_string(level));
       for (; k < passes_.size() && passes_[k].level == level && passes_[k].part != Part::Limit; ++k)
-        dispatch(cmd, *level_, s[1], w, passes_[k]);
+        dispatch(cmd, passes_[k].part == Part::Faces ? *level_ : *level_edges_, s[1], w, passes_[k]);
       frame_timer_->end(cmd);
     }
   }
@@ -440,7 +443,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
   Push push_;
   gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_;
   gpu::Buffer positions_, normals_, positions_staging_, normals_staging_;
-  std::optional<gpu::ComputePipeline> gather_, level_, limit_;
+  std::optional<gpu::ComputePipeline> gather_, level_, level_edges_, limit_;  // level_: face points
   std::vector<gpu::DescriptorSet> sets_;
   std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
   std::optional<gpu::Recording> frame_, readback_;

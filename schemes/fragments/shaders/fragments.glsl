@@ -47,6 +47,10 @@ layout(push_constant) uniform Push {
 } pc;
 
 const uint kCatmark = 1u, kProject = 2u;
+// The pipeline's rule flags (kCatmark | kProject) and part (kGather ...): constants, so that a
+// branch on them costs one side only (lavapipe runs both sides of a run-time branch).
+layout(constant_id = 1) const uint kFlags = 0u;
+layout(constant_id = 2) const uint kPart = 0u;
 const uint kGather = 0u, kFaces = 1u, kEdgesVertices = 2u, kLimit = 3u;
 const uint kHeaderPerLevel = 8u;
 // Limit header fields (device_tables.h).

@@ -9,8 +9,8 @@ void main() {
   const uint h = header() + kHeaderPerLevel * (pc.level - 1u);
   const uint num_faces = table_word(h + 1u), faces = table_word(h + 2u), num_edges = table_word(h + 3u), edges = table_word(h + 4u);
   const uint num_vertices = table_word(h + 5u), vertices = table_word(h + 6u), ring = table_word(h + 7u);
-  const bool catmark = (pc.flags & kCatmark) != 0u;
-  if (pc.part == kFaces) {
+  const bool catmark = (kFlags & kCatmark) != 0u;
+  if (kPart == kFaces) {
     const uvec2 range = chunk_of(num_faces);
     for (uint i = range.x; i < range.y; ++i) {
       const uint at = faces + 4u * i;
@@ -19,22 +19,24 @@ void main() {
     }
     return;
   }
+  // The chunk's edges, then its vertices: two loops, not a branch per entry (lavapipe would run
+  // both rules for every entry).
   const uvec2 range = chunk_of(num_edges + num_vertices);
-  for (uint j = range.x; j < range.y; ++j) {
+  for (uint j = range.x; j < min(range.y, num_edges); ++j) {
+    const uint at = edges + 6u * j;
+    precise vec3 v = load(false, table_word(at)) + load(false, table_word(at + 1u));
+    const float wf = number(at + 5u);
     precise vec3 p;
-    if (j < num_edges) {
-      const uint at = edges + 6u * j;
-      precise vec3 v = load(false, table_word(at)) + load(false, table_word(at + 1u));
-      const float wf = number(at + 5u);
-      if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
-        p = v * number(at + 4u);
-      } else {
-        precise vec3 f = load(catmark, table_word(at + 2u)) + load(catmark, table_word(at + 3u));
-        p = v * number(at + 4u) + f * wf;
-      }
+    if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
+      p = v * number(at + 4u);
     } else {
-      p = apply_vertex_rule(vertices + 9u * (j - num_edges), ring, catmark);
+      precise vec3 f = load(catmark, table_word(at + 2u)) + load(catmark, table_word(at + 3u));
+      p = v * number(at + 4u) + f * wf;
     }
+    store(num_faces + j, p);
+  }
+  for (uint j = max(range.x, num_edges); j < range.y; ++j) {
+    precise vec3 p = apply_vertex_rule(vertices + 9u * (j - num_edges), ring, catmark);
     store(num_faces + j, p);
   }
 }

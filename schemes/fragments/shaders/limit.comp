@@ -10,7 +10,7 @@ const uint kLongTangentMask = 32u;
 precise vec3 limit_position(uint lh, uint entry) {
   const uint at = table_word(lh + kPositions) + 9u * entry;
   precise vec3 p;
-  if ((pc.flags & kProject) == 0u) {
+  if ((kFlags & kProject) == 0u) {
     p = load(false, table_word(at));
     return p;
   }
