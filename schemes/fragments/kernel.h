@@ -39,6 +39,12 @@ void refine_level(const LevelTable& table, bool catmark, const Slot* parent, Slo
 void project_to_limit(const LimitTable& table, const Lanes<kLanes>* last, const Lanes<kLanes>* net, bool project,
                       Lanes<kLanes>* position, Lanes<kLanes>* normal);
 
+// Copies the first `count` limit entries of `lanes` fragments, which take them in block order
+// (ShapeTables::block_in_order), into their output blocks pos[l], nrm[l], adding `origin` to the
+// positions.
+void write_blocks(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, uint32_t count, const float* origin,
+                  float* const* pos, float* const* nrm, uint32_t lanes);
+
 // The same for one fragment refined as Pairs: positions from the centred halves; tangents from
 // the local halves (net tangents, read from `net`, only at control vertices: streaming 2 x
 // net_size weights for every vertex made the bunny 33% slower), from the centred ones where the
