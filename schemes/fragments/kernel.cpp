@@ -1,6 +1,7 @@
 #include "schemes/fragments/kernel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -159,6 +160,18 @@ inline V<K> apply(const VertexRule& r, const uint32_t* ring, Slots<K> pv, Slots<
   return s;
 }
 
+// apply() without its branches for the smooth regular vertex (Loop's valence 6, Catmull-Clark's 4
+// with its face points), nearly every vertex rule and limit position: the same terms in the same
+// order.
+template <int K>
+inline V<K> apply_regular_first(const VertexRule& r, const uint32_t* ring, Slots<K> pv, Slots<K> pf) {
+  const uint32_t* ref = ring + r.ring;
+  if (r.wc == 0 && r.num_e == 6 && r.num_f == 0) return pv[r.centre] * r.wv + ring_sum(pv, ref, 6) * r.we;
+  if (r.wc == 0 && r.num_e == 4 && r.num_f == 4)
+    return (pv[r.centre] * r.wv + ring_sum(pv, ref, 4) * r.we) + ring_sum(pf, ref + 4, 4) * r.wf;
+  return apply(r, ring, pv, pf);
+}
+
 template <class Slot>
 Slots<vectors_of<Slot>> slots(const Slot* p) {
   return {reinterpret_cast<const F8u*>(p)};
@@ -269,28 +282,32 @@ void net_normal(const float* w1, uint32_t n, const Lanes<1>* net, Lanes<1>& out)
 
 // The patch polynomial (tables.h, patch_*): its coefficients from the net once, then per row the
 // derivatives' coefficients as cubics in u, then per vertex Horner's rule. `emit(a, b)` takes each
-// vertex's two tangents.
+// vertex's two tangents. The table's vectors are read into locals first: stores through the
+// may_alias vectors would make the compiler reload them after every store.
 template <int K, class Emit>
 void patch_tangents(const LimitTable& t, Slots<K> net, Emit emit) {
   const uint32_t n = t.net_size;
   const int s = t.patch_segments, m = static_cast<int>(t.patch_powers.size());
+  const std::array<uint8_t, 2>* powers = t.patch_powers.data();
+  const float* weights = t.patch_weights.data();
   V<K> c[25];
   for (int k = 0; k < m; ++k) {
     V<K> sum{};
-    const float* w = t.patch_weights.data() + size_t(k) * n;
+    const float* w = weights + size_t(k) * n;
     for (uint32_t slot = 1; slot < n; ++slot) sum = sum + net[slot] * w[slot];
     c[k] = sum;
   }
+  const bool triangle = t.patch_triangle;
   for (int j = 0; j <= s; ++j) {
     const float v = float(j) / float(s);
     float vp[5] = {1, v, v * v, v * v * v, v * v * v * v};
     V<K> du[4] = {}, dv[4] = {};  // coefficients of u^0 .. u^3
     for (int k = 0; k < m; ++k) {
-      const int a = t.patch_powers[k][0], b = t.patch_powers[k][1];
+      const int a = powers[k][0], b = powers[k][1];
       if (a > 0) du[a - 1] = du[a - 1] + c[k] * (float(a) * vp[b]);
       if (b > 0) dv[a] = dv[a] + c[k] * (float(b) * vp[b - 1]);
     }
-    const int points = t.patch_triangle ? s + 1 - j : s + 1;
+    const int points = triangle ? s + 1 - j : s + 1;
     for (int i = 0; i < points; ++i) {
       const float u = float(i) / float(s);
       emit(((du[3] * u + du[2]) * u + du[1]) * u + du[0], ((dv[3] * u + dv[2]) * u + dv[1]) * u + dv[0]);
@@ -298,17 +315,42 @@ void patch_tangents(const LimitTable& t, Slots<K> net, Emit emit) {
   }
 }
 
+// A LimitTable's tangent entries, read into locals once (see patch_tangents).
+struct TangentView {
+  explicit TangentView(const LimitTable& t)
+      : size(t.regular.size()), regular(t.regular.data()), regular_slots(t.regular_slots.data()),
+        regular_size(t.regular_size), net(t.net_tangents.data()), net_size(t.net_size),
+        at_control_vertex(t.at_control_vertex.data()) {}
+  template <int K>
+  void tangents(const LimitTable& t, size_t i, Slots<K> last, V<K>& a, V<K>& b) const {
+    if (regular[i] >= 0)
+      regular_tangents(regular_slots + static_cast<size_t>(regular[i]) * regular_size, regular_size, last, a, b);
+    else
+      general_tangents(t, i, last, a, b);
+  }
+  size_t size;
+  const int32_t* regular;
+  const uint32_t* regular_slots;
+  int regular_size;
+  const float* net;
+  uint32_t net_size;
+  const char* at_control_vertex;
+};
+
 template <int K, class Slot>
 void project_positions(const LimitTable& t, Slots<K> last, bool project, Slot* position) {
-  for (size_t i = 0; i < t.position.size(); ++i) {
+  const VertexRule* rule = t.position.data();
+  const int32_t* stencil = t.stencil.data();
+  const uint32_t *ring = t.ring.data(), *begin = t.stencil_begin.data(), *slot = t.stencil_slot.data();
+  const float* weight = t.stencil_w.data();
+  for (size_t i = 0, size = t.position.size(); i < size; ++i) {
     if (!project) {
-      store(position + i, last[t.position[i].centre]);
-    } else if (t.stencil[i] < 0) {
-      store(position + i, apply(t.position[i], t.ring.data(), last, last));
+      store(position + i, last[rule[i].centre]);
+    } else if (stencil[i] < 0) {
+      store(position + i, apply_regular_first(rule[i], ring, last, last));
     } else {  // in the stencil's order, which every fragment shares
       V<K> p{};
-      for (uint32_t k = t.stencil_begin[t.stencil[i]]; k < t.stencil_begin[t.stencil[i] + 1]; ++k)
-        p = p + last[t.stencil_slot[k]] * t.stencil_w[k];
+      for (uint32_t k = begin[stencil[i]]; k < begin[stencil[i] + 1]; ++k) p = p + last[slot[k]] * weight[k];
       store(position + i, p);
     }
   }
@@ -389,7 +431,7 @@ SDB_KERNEL_CLONES void refine_level(const LevelTable& t, bool catmark, const Slo
     store(out++, e.wf == 0 ? v : v + (opposite[e.f0] + opposite[e.f1]) * e.wf);
   }
   const uint32_t* ring = t.ring.data();
-  for (const VertexRule& v : t.vertices) store(out++, apply(v, ring, p, opposite));
+  for (const VertexRule& v : t.vertices) store(out++, apply_regular_first(v, ring, p, opposite));
 }
 
 SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<kLanes>* last, const Lanes<kLanes>* net,
@@ -399,17 +441,14 @@ SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<kLanes>
     patch_tangents(t, slots(net), [&](const V<3>& a, const V<3>& b) { unit_normal(a, b, *normal++); });
     return;
   }
-  for (size_t i = 0; i < t.regular.size(); ++i) {
-    V<3> a, b;
-    if (t.net_size) {
-      net_normal(t.net_tangents.data() + i * 2 * t.net_size, t.net_size, slots(net), normal[i]);
+  const TangentView view(t);
+  for (size_t i = 0; i < view.size; ++i) {
+    if (view.net_size) {
+      net_normal(view.net + i * 2 * view.net_size, view.net_size, slots(net), normal[i]);
       continue;
     }
-    if (t.regular[i] >= 0)
-      regular_tangents(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size,
-                       slots(last), a, b);
-    else
-      general_tangents(t, i, slots(last), a, b);
+    V<3> a, b;
+    view.tangents(t, i, slots(last), a, b);
     unit_normal(a, b, normal[i]);
   }
 }
@@ -422,18 +461,15 @@ SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Pair* last, c
     patch_tangents(t, slots(level0), [&](const V<1>& a, const V<1>& b) { unit_normal(a, b, kLocal, *normal++); });
     return;
   }
-  const int h = t.net_size ? kLocal : 0;
-  for (size_t i = 0; i < t.regular.size(); ++i) {
-    V<1> a, b;
-    if (t.net_size && t.at_control_vertex[i]) {
-      net_normal(t.net_tangents.data() + i * 2 * t.net_size, t.net_size, net, normal[i]);
+  const TangentView view(t);
+  const int h = view.net_size ? kLocal : 0;
+  for (size_t i = 0; i < view.size; ++i) {
+    if (view.net_size && view.at_control_vertex[i]) {
+      net_normal(view.net + i * 2 * view.net_size, view.net_size, net, normal[i]);
       continue;
     }
-    if (t.regular[i] >= 0)
-      regular_tangents(t.regular_slots.data() + static_cast<size_t>(t.regular[i]) * t.regular_size, t.regular_size,
-                       slots(last), a, b);
-    else
-      general_tangents(t, i, slots(last), a, b);
+    V<1> a, b;
+    view.tangents(t, i, slots(last), a, b);
     unit_normal(a, b, h, normal[i]);
   }
 }
