@@ -5,9 +5,6 @@
 #include <cmath>
 #include <cstring>
 
-#ifdef __SSE__
-#include <immintrin.h>
-#endif
 
 // The vector helpers below are inlined into the kernel's clones (flatten): their ABI never matters.
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -177,17 +174,15 @@ Slots<vectors_of<Slot>> slots(const Slot* p) {
   return {reinterpret_cast<const F8u*>(p)};
 }
 
-// 1 / sqrt(v), IEEE-exact in every element (GCC 12 leaves sqrtf scalar here; SSE's sqrtps and
-// divps round as sqrtf and / do, so the bits are the same either way).
+// 1 / sqrt(v), IEEE-exact in every element: as a loop GCC vectorizes it (vsqrtps and vdivps on
+// all eight under AVX; the SSE intrinsics this replaced took two halves), and sqrtps and divps
+// round as sqrtf and / do, so the bits are the same either way.
 inline F8 inverse_sqrt(F8 v) {
-#ifdef __SSE__
-  __m128 h[2];
-  std::memcpy(h, &v, sizeof v);
-  for (__m128& x : h) x = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(x));
-  std::memcpy(&v, h, sizeof v);
-#else
-  for (int l = 0; l < 8; ++l) v[l] = 1.0f / std::sqrt(v[l]);
-#endif
+  float a[8];
+  std::memcpy(a, &v, sizeof v);
+#pragma omp simd
+  for (int l = 0; l < 8; ++l) a[l] = 1.0f / std::sqrt(a[l]);
+  std::memcpy(&v, a, sizeof v);
   return v;
 }
 
@@ -280,6 +275,31 @@ void net_normal(const float* w1, uint32_t n, const Lanes<1>* net, Lanes<1>& out)
   unit_normal(V<1>{{F8{ax, ay, az}}}, V<1>{{F8{bx, by, bz}}}, 0, out);
 }
 
+// A row's derivative coefficients: du[a - 1] = sum of a v^b c[k], dv[a] = sum of b v^(b - 1) c[k]
+// over the monomials k = u^a v^b, from 0 in the order of k. The monomials run a-major
+// (net_tangents.cpp), so each coefficient's terms are one run of k, summed in registers;
+// zero-initialising the arrays instead compiled to a rep stos a row, a tenth of the limit's time.
+template <int K>
+inline void row_coefficients(const std::array<uint8_t, 2>* powers, int m, const V<K>* c, const float* vp, V<K>* du,
+                             V<K>* dv) {
+  bool set_u[4] = {}, set_v[4] = {};
+  for (int k = 0; k < m;) {
+    const int a = powers[k][0];
+    V<K> su{}, sv{};
+    for (; k < m && powers[k][0] == a; ++k) {
+      const int b = powers[k][1];
+      if (a > 0) su = su + c[k] * (float(a) * vp[b]);
+      if (b > 0) sv = sv + c[k] * (float(b) * vp[b - 1]);
+    }
+    if (a > 0) du[a - 1] = su, set_u[a - 1] = true;
+    if (a < 4) dv[a] = sv, set_v[a] = true;
+  }
+  for (int i = 0; i < 4; ++i) {
+    if (!set_u[i]) du[i] = V<K>{};
+    if (!set_v[i]) dv[i] = V<K>{};
+  }
+}
+
 // The patch polynomial (tables.h, patch_*): its coefficients from the net once, then per row the
 // derivatives' coefficients as cubics in u, then per vertex Horner's rule. `emit(a, b)` takes each
 // vertex's two tangents. The table's vectors are read into locals first: stores through the
@@ -301,12 +321,8 @@ void patch_tangents(const LimitTable& t, Slots<K> net, Emit emit) {
   for (int j = 0; j <= s; ++j) {
     const float v = float(j) / float(s);
     float vp[5] = {1, v, v * v, v * v * v, v * v * v * v};
-    V<K> du[4] = {}, dv[4] = {};  // coefficients of u^0 .. u^3
-    for (int k = 0; k < m; ++k) {
-      const int a = powers[k][0], b = powers[k][1];
-      if (a > 0) du[a - 1] = du[a - 1] + c[k] * (float(a) * vp[b]);
-      if (b > 0) dv[a] = dv[a] + c[k] * (float(b) * vp[b - 1]);
-    }
+    V<K> du[4], dv[4];  // coefficients of u^0 .. u^3
+    row_coefficients(powers, m, c, vp, du, dv);
     const int points = triangle ? s + 1 - j : s + 1;
     for (int i = 0; i < points; ++i) {
       const float u = float(i) / float(s);
