@@ -23,18 +23,16 @@ CpuFragmentEvaluation::CpuFragmentEvaluation(const ControlMesh& mesh, Subdivisio
   out_.normals.resize(surface_.num_output_vertices);
 }
 
-template <int W>
-void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Buffers<W>& s) {
+void CpuFragmentEvaluation::run_lanes(const FragmentSurface::Batch& batch, LaneBuffers& s) {
   if (s.a.size() < surface_.max_slots) {
     s.a.resize(surface_.max_slots), s.b.resize(surface_.max_slots), s.net.resize(surface_.max_slots);
-    s.local_a.resize(surface_.max_slots), s.local_b.resize(surface_.max_slots);
     s.position.resize(surface_.max_limit_entries), s.normal.resize(surface_.max_limit_entries);
   }
   const std::vector<Fragment>& fragments = surface_.partition.fragments;
   const uint32_t* ids = surface_.order.data() + batch.begin;
   const ShapeTables& t = surface_.tables[fragments[ids[0]].shape];
-  Lanes<W>*src = s.a.data(), *dst = s.b.data();
-  for (int l = 0; l < W; ++l) {  // lanes past the batch repeat its last fragment
+  Lanes<kLanes>*src = s.a.data(), *dst = s.b.data();
+  for (int l = 0; l < kLanes; ++l) {  // lanes past the batch repeat its last fragment
     const std::vector<int>& control = fragments[ids[std::min<uint32_t>(l, batch.count - 1)]].control;
     const Point3& first = control_[control[0]];
     for (size_t i = 0; i < control.size(); ++i) {
@@ -49,37 +47,69 @@ void CpuFragmentEvaluation::run_batch(const FragmentSurface::Batch& batch, Buffe
     refine_level(level, catmark, src, dst);
     std::swap(src, dst);
   }
-  // A fragment of a shape of its own: its net refined a second time, relative to its first control
-  // point, for the tangents (tables.h, at_control_vertex).
-  const Lanes<W>* local_last = nullptr;
-  if (W == 1 && t.limit.net_size && t.limit.patch_weights.empty()) {
-    Lanes<W>*lsrc = s.local_a.data(), *ldst = s.local_b.data();
-    std::copy(s.net.begin(), s.net.begin() + t.num_slots0, lsrc);
-    for (const LevelTable& level : t.levels) {
-      refine_level(level, catmark, lsrc, ldst);
-      std::swap(lsrc, ldst);
+  project_to_limit(t.limit, src, s.net.data(), project_, s.position.data(), s.normal.data());
+  const uint32_t lanes = std::min<uint32_t>(batch.count, kLanes);
+  if (t.block_in_order) {
+    float *pos[kLanes], *nrm[kLanes];
+    for (uint32_t l = 0; l < lanes; ++l) {
+      pos[l] = out_.positions[surface_.first_vertex[ids[l]]].data();
+      nrm[l] = out_.normals[surface_.first_vertex[ids[l]]].data();
     }
-    local_last = lsrc;
+    return write_blocks(s.position.data(), s.normal.data(), static_cast<uint32_t>(t.block.size()), origin_, pos, nrm,
+                        lanes);
   }
-  project_to_limit(t.limit, src, s.net.data(), local_last, project_, s.position.data(), s.normal.data());
-  // Each lane's block written front to back: one stream per lane is what the memory system
-  // takes best (an AVX transpose writing the eight blocks side by side measured 10% slower).
-  const bool in_order = t.block_in_order;
-  for (uint32_t l = 0; l < std::min<uint32_t>(batch.count, W); ++l) {
+  for (uint32_t l = 0; l < lanes; ++l) {
     Point3* pos = out_.positions.data() + surface_.first_vertex[ids[l]];
     Point3* nrm = out_.normals.data() + surface_.first_vertex[ids[l]];
     for (size_t i = 0; i < t.block.size(); ++i) {
-      const Lanes<W>&p = s.position[in_order ? i : t.block[i]], &n = s.normal[in_order ? i : t.block_normal[i]];
+      const Lanes<kLanes>&p = s.position[t.block[i]], &n = s.normal[t.block_normal[i]];
       pos[i] = {p.x[l] + origin_[0], p.y[l] + origin_[1], p.z[l] + origin_[2]};
       nrm[i] = {n.x[l], n.y[l], n.z[l]};
     }
   }
 }
 
+// A fragment of a shape of its own: its net refined twice at once, relative to the centre and
+// relative to its first control point (kernel.h, Pair).
+void CpuFragmentEvaluation::run_pair(uint32_t fragment, PairBuffers& s) {
+  if (s.a.size() < surface_.max_slots) {
+    s.level0.resize(surface_.max_slots), s.a.resize(surface_.max_slots), s.b.resize(surface_.max_slots);
+    s.net.resize(surface_.max_slots);
+    s.position.resize(surface_.max_limit_entries), s.normal.resize(surface_.max_limit_entries);
+  }
+  const Fragment& f = surface_.partition.fragments[fragment];
+  const ShapeTables& t = surface_.tables[f.shape];
+  const Point3& first = control_[f.control[0]];
+  for (size_t i = 0; i < f.control.size(); ++i) {
+    const Point3& p = control_[f.control[i]];
+    const float x = p[0] - first[0], y = p[1] - first[1], z = p[2] - first[2];
+    s.level0[i] = {{p[0] - origin_[0], p[1] - origin_[1], p[2] - origin_[2], 0}, {x, y, z, 0}};
+    s.net[i] = {{x}, {y}, {z}};
+  }
+  const bool catmark = surface_.rule == SubdivisionRule::CatmullClark;
+  const Pair* src = s.level0.data();
+  Pair *dst = s.a.data(), *spare = s.b.data();
+  for (const LevelTable& level : t.levels) {
+    refine_level(level, catmark, src, dst);
+    src = dst;
+    std::swap(dst, spare);
+  }
+  project_to_limit(t.limit, src, s.level0.data(), s.net.data(), project_, s.position.data(), s.normal.data());
+  const bool in_order = t.block_in_order;
+  Point3* pos = out_.positions.data() + surface_.first_vertex[fragment];
+  Point3* nrm = out_.normals.data() + surface_.first_vertex[fragment];
+  for (size_t i = 0; i < t.block.size(); ++i) {
+    const Pair& p = s.position[in_order ? i : t.block[i]];
+    const Lanes<1>& n = s.normal[in_order ? i : t.block_normal[i]];
+    pos[i] = {p.centred[0] + origin_[0], p.centred[1] + origin_[1], p.centred[2] + origin_[2]};
+    nrm[i] = {n.x[0], n.y[0], n.z[0]};
+  }
+}
+
 // A batch of one or two fragments runs them one at a time: eight lanes would be mostly idle.
 void CpuFragmentEvaluation::run(const FragmentSurface::Batch& b, Scratch& s) {
-  if (b.count > 2) return run_batch(b, s.wide);
-  for (uint32_t i = 0; i < b.count; ++i) run_batch({b.begin + i, 1}, s.narrow);
+  if (b.count > 2) return run_lanes(b, s.wide);
+  for (uint32_t i = 0; i < b.count; ++i) run_pair(surface_.order[b.begin + i], s.narrow);
 }
 
 void CpuFragmentEvaluation::execute() {

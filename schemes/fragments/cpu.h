@@ -25,16 +25,19 @@ class CpuFragmentEvaluation final : public Evaluation {
   const FragmentSurface& surface() const { return surface_; }
 
  private:
-  template <int W>
-  struct Buffers {
-    std::vector<Lanes<W>> a, b, net, local_a, local_b, position, normal;
+  struct LaneBuffers {
+    std::vector<Lanes<kLanes>> a, b, net, position, normal;
+  };
+  struct PairBuffers {
+    std::vector<Pair> level0, a, b, position;
+    std::vector<Lanes<1>> net, normal;
   };
   struct Scratch {
-    Buffers<kLanes> wide;
-    Buffers<1> narrow;
+    LaneBuffers wide;
+    PairBuffers narrow;
   };
-  template <int W>
-  void run_batch(const FragmentSurface::Batch& batch, Buffers<W>& s);
+  void run_lanes(const FragmentSurface::Batch& batch, LaneBuffers& s);
+  void run_pair(uint32_t fragment, PairBuffers& s);
   void run(const FragmentSurface::Batch& batch, Scratch& s);
 
   std::vector<Point3> control_;

@@ -12,26 +12,44 @@ namespace sdb::fragments {
 
 constexpr int kLanes = 8;
 
-// One slot of W fragments, structure of arrays. W = kLanes for shapes many fragments share, 1
-// for the rest (a vertex patch's shape is often its own).
+// One slot of W fragments, structure of arrays.
 template <int W>
 struct Lanes {
   float x[W], y[W], z[W];
 };
 
+// One slot of a fragment whose shape is its own (a vertex patch's often is): its point twice,
+// relative to the control box's centre (what the output takes) and relative to its first control
+// point (what its tangents take, tables.h at_control_vertex), each padded with a zero. Both
+// refinements are then one 8-float vector operation per rule term, the same arithmetic per float
+// as kLanes lanes get, so the same bits.
+struct Pair {
+  float centred[4], local[4];
+};
+
 // parent: level d - 1's slots; child: level d's (table.num_slots). Catmull-Clark edge and vertex
-// rules read the face points just written to `child`.
-template <int W>
-void refine_level(const LevelTable& table, bool catmark, const Lanes<W>* parent, Lanes<W>* child);
+// rules read the face points just written to `child`. Slot: Lanes<kLanes> or Pair.
+template <class Slot>
+void refine_level(const LevelTable& table, bool catmark, const Slot* parent, Slot* child);
 
 // Limit position of every position entry and unit normal of every tangent entry, from the last
 // level's slots; with project = false the positions are the last level's points themselves (the
 // exactness oracle's side), the normals still the limit's. `net`: the level-0 slots relative to
-// the first (tables.h, net_tangents), read where the table has net tangents. `local_last`, where
-// not null: the last level refined from `net` instead, for the tangents of every entry but those
-// at control vertices (LimitTable::at_control_vertex).
-template <int W>
-void project_to_limit(const LimitTable& table, const Lanes<W>* last, const Lanes<W>* net, const Lanes<W>* local_last,
-                      bool project, Lanes<W>* position, Lanes<W>* normal);
+// the first (tables.h, net_tangents), read where the table has net tangents.
+void project_to_limit(const LimitTable& table, const Lanes<kLanes>* last, const Lanes<kLanes>* net, bool project,
+                      Lanes<kLanes>* position, Lanes<kLanes>* normal);
+
+// Copies the first `count` limit entries of `lanes` fragments, which take them in block order
+// (ShapeTables::block_in_order), into their output blocks pos[l], nrm[l], adding `origin` to the
+// positions.
+void write_blocks(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, uint32_t count, const float* origin,
+                  float* const* pos, float* const* nrm, uint32_t lanes);
+
+// The same for one fragment refined as Pairs: positions from the centred halves; tangents from
+// the local halves (net tangents, read from `net`, only at control vertices: streaming 2 x
+// net_size weights for every vertex made the bunny 33% slower), from the centred ones where the
+// shape has no net tangents. `level0`: the first level's slots (the patch polynomial's net).
+void project_to_limit(const LimitTable& table, const Pair* last, const Pair* level0, const Lanes<1>* net, bool project,
+                      Pair* position, Lanes<1>* normal);
 
 }  // namespace sdb::fragments
