@@ -77,6 +77,10 @@ class Buffer {
   const std::string& name() const { return name_; }
   explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
   BufferRange range(uint64_t offset = 0, uint64_t bytes = VK_WHOLE_SIZE) const { return {this, offset, bytes}; }
+  // The same range for a texel binding, viewed in `format`.
+  BufferRange texels(VkFormat format, uint64_t offset = 0, uint64_t bytes = VK_WHOLE_SIZE) const {
+    return {this, offset, bytes, format};
+  }
 
   // Host access to Upload and Readback buffers (std::logic_error for Device ones). Like the
   // commands that write a buffer, they are const: they change its contents, not the handle.

@@ -29,6 +29,12 @@ void check_storage_binding(const Context& ctx, uint64_t bytes, std::string_view 
                       ctx.info().name + " (" + gib_text(ctx.limits().max_storage_buffer_range) + ")");
 }
 
+void check_texel_binding(const Context& ctx, uint64_t texels, std::string_view name) {
+  if (texels > ctx.limits().max_texel_buffer_elements)
+    throw Unsupported("'" + std::string(name) + "' of " + std::to_string(texels) + " texels exceeds one texel view on " +
+                      ctx.info().name + " (" + std::to_string(ctx.limits().max_texel_buffer_elements) + ")");
+}
+
 void check_memory(const Context& ctx, const MemoryNeed& need, const std::string& what) {
   const VkPhysicalDeviceMemoryProperties& p = ctx.memory_properties();
   const int device_heap = heap_with(p, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);

@@ -28,6 +28,18 @@ std::string gib_text(uint64_t bytes);
 // Throws Unsupported naming `name` when `bytes` exceed one storage binding (maxStorageBufferRange).
 void check_storage_binding(const Context& ctx, uint64_t bytes, std::string_view name);
 
+// Throws Unsupported naming `name` when `texels` exceed one texel view (maxTexelBufferElements).
+void check_texel_binding(const Context& ctx, uint64_t texels, std::string_view name);
+
+// A UniformTexel device buffer holding `values` (one zero element when empty), uploaded blocking,
+// checked to fit one texel view of one T per texel first.
+template <class T>
+Buffer texel_table(Context& ctx, std::vector<T> values, std::string_view name) {
+  if (values.empty()) values.resize(1);
+  check_texel_binding(ctx, values.size(), name);
+  return device_buffer_with(ctx, values, BufferUsage::UniformTexel, name);
+}
+
 // A Storage device buffer holding `values` (one zero element when empty: Vulkan has no empty
 // buffers), uploaded blocking, checked to fit one storage binding first.
 template <class T>

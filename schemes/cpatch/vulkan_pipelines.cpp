@@ -13,11 +13,6 @@ using gpu::Binding;
 
 std::vector<Binding> storage_bindings(size_t count) { return std::vector<Binding>(count, Binding::StorageBuffer); }
 
-gpu::BufferRange texels(gpu::BufferRange r, VkFormat format) {
-  r.texel_format = format;
-  return r;
-}
-
 gpu::SpecConstant rate_constant(int rate) { return {0, static_cast<uint32_t>(rate)}; }
 
 // corner.vert's buffers (bindings 0-5) and the patch stages' (6-8), shared by cpatch-1pass and
@@ -88,11 +83,8 @@ std::vector<gpu::BufferRange> patches_pass_bindings(const DeviceMesh& m) {
 
 std::vector<gpu::BufferRange> evaluate_pass_bindings(const DeviceMesh& m, const DeviceOutput& out, const gpu::Chunk& c,
                                                      const gpu::Buffer& quad_lists) {
-  return {{&m.records, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT},
-          {&m.grid, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT},
-          texels(out.positions(c), VK_FORMAT_R32_SFLOAT),
-          texels(out.normals(c), VK_FORMAT_R32_SFLOAT),
-          quad_lists.range()};
+  return {m.records.texels(VK_FORMAT_R32G32B32A32_SFLOAT), m.grid.texels(VK_FORMAT_R32G32B32A32_SFLOAT),
+          out.position_texels(c), out.normal_texels(c), quad_lists.range()};
 }
 
 std::vector<gpu::BufferRange> grid_render_bindings(const DeviceMesh& m, const gpu::Buffer& camera, const gpu::Buffer* heat) {

@@ -25,7 +25,7 @@ constexpr uint32_t kCatmark = 1, kProject = 2;
 
 struct Push {
   uint32_t level = 0, levels = 0, first_batch = 0, src_base = 0, dst_base = 0, header_words = 0,
-           wave_first_vertex = 0, out_shift = 0, flags = 0, chunk = 0, part = 0, pad = 0;
+           wave_first_vertex = 0, out_shift = 0, chunk = 0, pad[3] = {0, 0, 0};
   float origin[4] = {0, 0, 0, 0};
 };
 
@@ -200,24 +200,6 @@ gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part) {
           {{0, kLocalSize}, {1, flags}, {2, static_cast<uint32_t>(part)}}};
 }
 
-void check_texels(const gpu::Context& c, uint64_t count, const std::string& what) {
-  if (count > c.limits().max_texel_buffer_elements)
-    throw gpu::Unsupported(what + " takes " + std::to_string(count) + " 32-bit texels; " + c.info().name +
-                           " views at most " + std::to_string(c.limits().max_texel_buffer_elements));
-}
-
-// A table of 32-bit words read through a texel view (at least one word: Vulkan has no empty buffers).
-gpu::Buffer texel_table(gpu::Context& c, std::vector<uint32_t> words, const std::string& name) {
-  if (words.empty()) words.resize(1);
-  check_texels(c, words.size(), name);
-  return gpu::device_buffer_with(c, words, BufferUsage::UniformTexel, name);
-}
-
-gpu::BufferRange texels(gpu::BufferRange r, VkFormat format) {
-  r.texel_format = format;
-  return r;
-}
-
 class VulkanFragmentEvaluation final : public Evaluation {
  public:
   VulkanFragmentEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool project,
@@ -240,8 +222,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
       throw gpu::Unsupported("the output's " + gpu::gib_text(output) + " of positions exceed one buffer on " +
                              ctx_->info().name);
     make_buffers(tables, scratch, output);
-    push_.flags = (rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0);
-    make_pipelines();  // the flags specialize them
+    make_pipelines((rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0));
     surface_.describe(out_);
     if (options.render_width > 0) make_renderer(options);
     const Bounds box = bounds_of(control_);
@@ -303,13 +284,13 @@ class VulkanFragmentEvaluation final : public Evaluation {
       batch_words.insert(batch_words.end(), {uint32_t(surface_.partition.fragments[surface_.order[b.begin]].shape),
                                              b.begin, b.count, plan_.scratch_offset[i]});
     }
-    tables_ = texel_table(c, tables.words, "fragments' pattern tables");
+    tables_ = gpu::texel_table(c, tables.words, "fragments' pattern tables");
     batches_buffer_ = gpu::storage_table(c, batch_words, "fragments' batches");
-    fragments_ = texel_table(c, tables.fragments, "fragment list");
+    fragments_ = gpu::texel_table(c, tables.fragments, "fragment list");
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
     control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::UniformTexel, "control points");
-    check_texels(c, 2 * scratch / sizeof(float), "the scratch");
+    gpu::check_texel_binding(c, 2 * scratch / sizeof(float), "fragments' scratch");
     scratch_ = gpu::Buffer::device(c, 2 * scratch, BufferUsage::UniformTexel | BufferUsage::StorageTexel,
                                    "scratch (two levels)");
     const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
@@ -340,21 +321,21 @@ class VulkanFragmentEvaluation final : public Evaluation {
     frame_timer_->end(cmd);
   }
 
-  void make_pipelines() {
-    gather_.emplace(*ctx_, pass("gather.comp", push_.flags, Part::Gather));
-    level_.emplace(*ctx_, pass("level.comp", push_.flags, Part::Faces));
-    level_edges_.emplace(*ctx_, pass("level.comp", push_.flags, Part::EdgesVertices));
-    limit_.emplace(*ctx_, pass("limit.comp", push_.flags, Part::Limit));
+  // `flags` (kCatmark | kProject) specialize every pipeline.
+  void make_pipelines(uint32_t flags) {
+    gather_.emplace(*ctx_, pass("gather.comp", flags, Part::Gather));
+    level_.emplace(*ctx_, pass("level.comp", flags, Part::Faces));
+    level_edges_.emplace(*ctx_, pass("level.comp", flags, Part::EdgesVertices));
+    limit_.emplace(*ctx_, pass("limit.comp", flags, Part::Limit));
   }
 
   gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w) const {
-    return gpu::DescriptorSet(p, {texels(tables_.range(), VK_FORMAT_R32_UINT), batches_buffer_.range(),
-                                  texels(fragments_.range(), VK_FORMAT_R32_UINT),
-                                  texels(control_buffer_.range(), VK_FORMAT_R32_SFLOAT),
-                                  texels(scratch_.range(), VK_FORMAT_R32_SFLOAT),
-                                  texels(positions_.range(w.bind_offset, w.bind_bytes), VK_FORMAT_R32_SFLOAT),
-                                  texels(normals_.range(w.bind_offset, w.bind_bytes), VK_FORMAT_R32_SFLOAT),
-                                  texels(scratch_.range(), VK_FORMAT_R32_SFLOAT)});
+    return gpu::DescriptorSet(p, {tables_.texels(VK_FORMAT_R32_UINT), batches_buffer_.range(),
+                                  fragments_.texels(VK_FORMAT_R32_UINT), control_buffer_.texels(VK_FORMAT_R32_SFLOAT),
+                                  scratch_.texels(VK_FORMAT_R32_SFLOAT),
+                                  positions_.texels(VK_FORMAT_R32_SFLOAT, w.bind_offset, w.bind_bytes),
+                                  normals_.texels(VK_FORMAT_R32_SFLOAT, w.bind_offset, w.bind_bytes),
+                                  scratch_.texels(VK_FORMAT_R32_SFLOAT)});
   }
 
   // Invocations take chunks of the pass's entries: x the chunk, y the batch (its work group's scratch).
@@ -367,7 +348,6 @@ class VulkanFragmentEvaluation final : public Evaluation {
     if (most == 0) return;
     Push push = push_;
     push.level = pass.level;
-    push.part = static_cast<uint32_t>(pass.part);
     push.chunk = pass.chunk;
     const uint32_t half = static_cast<uint32_t>(plan_.scratch_bytes / sizeof(float));
     const uint32_t made = pass.part == Part::Limit ? push_.levels + 1 : pass.level;  // the level this pass writes

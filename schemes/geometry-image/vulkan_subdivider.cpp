@@ -38,7 +38,7 @@ constexpr uint64_t kOutputPadding = 3 * sizeof(Point3);
 
 // A chunk's outputs as rgba32f texels, rounded up to whole texels (into the padding).
 gpu::BufferRange vec4_view(const gpu::Buffer& output, const gpu::Chunk& c) {
-  return {&output, c.byte_offset, (c.bytes + 15) / 16 * 16, VK_FORMAT_R32G32B32A32_SFLOAT};
+  return output.texels(VK_FORMAT_R32G32B32A32_SFLOAT, c.byte_offset, (c.bytes + 15) / 16 * 16);
 }
 
 uint64_t image_bytes(int side) { return uint64_t(side) * uint64_t(side) * 4 * sizeof(float); }
@@ -68,7 +68,7 @@ std::vector<int32_t> stencil_words(const std::array<CutVertexStencil, 4>& stenci
 }
 
 // Images are read through vec4 texel views (source_planes.glsl) and written through rgba32f
-// storage texel views (destination_planes.glsl); outputs through r32f views (output_grid.glsl);
+// storage texel views (destination_planes.glsl); outputs through rgba32f views (output_grid.glsl);
 // tables stay storage buffers.
 constexpr Binding kRead = Binding::UniformTexelBuffer, kWrite = Binding::StorageTexelBuffer,
                   kTable = Binding::StorageBuffer;
@@ -78,7 +78,7 @@ gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings)
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
 }
 
-gpu::BufferRange image_view(const gpu::Buffer& image) { return {&image, 0, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT}; }
+gpu::BufferRange image_view(const gpu::Buffer& image) { return image.texels(VK_FORMAT_R32G32B32A32_SFLOAT); }
 
 
 }  // namespace
@@ -98,12 +98,12 @@ std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx
   const std::vector<int> sides = image_sides(base_size, levels, plan);
   const int widest = *std::max_element(sides.begin(), sides.end());
   const uint64_t largest_buffer = std::min(limits.max_memory_allocation_size, limits.max_buffer_size);
-  const uint64_t texels = uint64_t(widest) * uint64_t(widest), plane = image_bytes(widest);
+  const uint64_t texels = uint64_t(widest) * uint64_t(widest), bytes = image_bytes(widest);
   const std::string image = "a " + std::to_string(base_size) + " x " + std::to_string(base_size) + " image at depth " +
                             std::to_string(levels);
-  if (plane > largest_buffer || texels > UINT32_MAX)
+  if (bytes > largest_buffer || texels > UINT32_MAX)
     return image + " needs padded images of " + std::to_string(widest) + " x " + std::to_string(widest) +
-           " vec4 (" + mib_text(plane) + ") in one buffer; " + device + " allocates at most " + mib_text(largest_buffer);
+           " vec4 (" + mib_text(bytes) + ") in one buffer; " + device + " allocates at most " + mib_text(largest_buffer);
   if (texels > limits.max_texel_buffer_elements)
     return image + " reads padded images of " + std::to_string(widest) + " x " + std::to_string(widest) +
            " texels through texel views; " + device + " allows " + std::to_string(limits.max_texel_buffer_elements) +

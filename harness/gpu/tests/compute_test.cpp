@@ -119,8 +119,8 @@ TEST_F(ComputeTest, TexelBuffersReadAndWriteThroughViews) {
                                    {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer}, 4});
   Buffer in = device_buffer_with(ctx(), values, BufferUsage::UniformTexel, "texels in");
   Buffer out = Buffer::device(ctx(), 4 * (count + skip), BufferUsage::StorageTexel, "texels out");
-  DescriptorSet set(pipeline, {{&in, 16 * skip, VK_WHOLE_SIZE, VK_FORMAT_R32G32B32A32_SFLOAT},
-                               {&out, 4 * skip, VK_WHOLE_SIZE, VK_FORMAT_R32_SFLOAT}});
+  DescriptorSet set(pipeline, {in.texels(VK_FORMAT_R32G32B32A32_SFLOAT, 16 * skip),
+                               out.texels(VK_FORMAT_R32_SFLOAT, 4 * skip)});
   ctx().run([&](Commands& cmd) {
     cmd.bind(pipeline, set);
     cmd.push(count);

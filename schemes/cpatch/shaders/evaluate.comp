@@ -23,8 +23,8 @@ layout(binding = 0) uniform samplerBuffer record_texels;  // conversion.h PatchR
 layout(binding = 1) uniform samplerBuffer grid_texels;    // vulkan_resources.cpp grid_table()
 // Per quad of this dispatch: its index << 4 | forward_sides (vulkan_resources.cpp quad_lists()).
 layout(std430, binding = 4) restrict readonly buffer QuadList { uint quad_list[]; };
-#define CUBIC_LOAD(i) texelFetch(grid_texels, i)
-#define QUARTIC_LOAD(i) texelFetch(grid_texels, i)
+#define RECORD_ENTRY(i) texelFetch(record_texels, i)
+#define GRID_LOAD(i) texelFetch(grid_texels, i)
 #include "record.glsl"
 
 layout(constant_id = 0) const int kRate = 2;
@@ -32,6 +32,7 @@ layout(constant_id = 1) const bool kCpatch = false;
 layout(constant_id = 2) const bool kBorderRow = false;
 layout(local_size_x_id = 3) in;
 #include "evaluate.glsl"
+#include "load_record.glsl"
 
 layout(push_constant) uniform Push {
   uint first_quad;   // of the output chunk: output vertex (q - first_quad) N^2 + j N + i
@@ -108,8 +109,7 @@ void main() {
   const uint forward_sides = entry & 15u;
   const int j = int(push.first_row + gl_WorkGroupID.z * push.row_step);
   vec3 record[kRecordSize];
-  [[unroll]] for (int e = 0; e < kRecordSize; ++e)  // an ordinary quad's X1, X2 are not stored: zero
-    record[e] = (!kCpatch && e % 7 > kX0) ? vec3(0.0) : texelFetch(record_texels, quad * kRecordSize + e).xyz;
+  load_record(quad, kCpatch, record);
   const PatchControl c = local_control(record);
   const int first = (quad - int(push.first_quad)) * kSamples + j * kRate;
   if (kCpatch)

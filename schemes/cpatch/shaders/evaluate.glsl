@@ -10,16 +10,13 @@
 // piece holding s (padded to 16): position at 2 N + 12 s + m / 4, component m mod 4, d/du 4 and
 // d/dv 8 vec4s further.
 const int kSamples = kRate * kRate;
-// An includer may read the table elsewhere: CUBIC_LOAD(i) for entries below 2 N, QUARTIC_LOAD(i) above.
-#ifndef CUBIC_LOAD
-#define CUBIC_LOAD(i) grid[i]
+// An includer may read the table elsewhere, through GRID_LOAD(i) (a vec4).
+#ifndef GRID_LOAD
+#define GRID_LOAD(i) grid[i]
 #endif
-#ifndef QUARTIC_LOAD
-#define QUARTIC_LOAD(i) grid[i]
-#endif
-vec4 cubic_weights(int i) { return CUBIC_LOAD(i); }
-vec4 cubic_derivatives(int i) { return CUBIC_LOAD(kRate + i); }
-vec4 quartic_weights(int table, int s, int quarter) { return QUARTIC_LOAD(2 * kRate + 12 * s + 4 * table + quarter); }
+vec4 cubic_weights(int i) { return GRID_LOAD(i); }
+vec4 cubic_derivatives(int i) { return GRID_LOAD(kRate + i); }
+vec4 quartic_weights(int table, int s, int quarter) { return GRID_LOAD(2 * kRate + 12 * s + 4 * table + quarter); }
 
 // patch_control.h PatchControl<float>: the record relative to p*_0.
 struct PatchControl {

@@ -39,10 +39,8 @@ layout(push_constant) uniform Push {
   uint header_words;
   uint wave_first_vertex;
   uint out_shift;      // floats from the output bindings' start to the wave's first vertex
-  uint flags;          // kCatmark | kProject
   uint chunk;          // entries of the pass per invocation (vulkan.cpp: llvmpipe's loop limit)
-  uint part;           // kGather, kFaces, kEdgesVertices, kLimit
-  uint pad0;
+  uint pad0, pad1, pad2;  // (the rule's flags and the pass's part are specialization constants)
   vec4 origin;         // the control box's centre: slots are relative to it
 } pc;
 
