@@ -4,6 +4,8 @@
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 
+#include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <vector>
 
@@ -136,6 +138,15 @@ bool far_tangent_masks_exact(const Far::TopologyLevel& l, int v, SubdivisionRule
   if (corner || sharp.size() > 2) return l.IsVertexBoundary(v) && faces == 1;
   if (sharp.size() == 2) return l.IsVertexBoundary(v) ? faces == side : faces == 2 * side && sharp[1] - sharp[0] == side;
   return sharp.empty() && edges >= 3;  // smooth; a dart (one sharp edge) is not
+}
+
+int limit_depth_for(const ControlMesh& mesh, int depth, int max_extra) {
+  float s = 0;
+  for (const EdgeCrease& c : mesh.creases)
+    if (c.sharpness < 10) s = std::max(s, c.sharpness);  // Far's infinitely sharp is 10
+  for (const VertexCorner& c : mesh.corners)
+    if (c.sharpness < 10) s = std::max(s, c.sharpness);
+  return std::clamp(static_cast<int>(std::ceil(s)), depth, depth + max_extra);
 }
 
 }  // namespace sdb

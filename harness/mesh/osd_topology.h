@@ -43,4 +43,11 @@ bool far_tangent_masks_exact(const OpenSubdiv::Far::TopologyLevel& level, int v,
 // positions interpolated by PrimvarRefiner. The refiner must have been refined uniformly to it.
 ControlMesh refined_level(const OpenSubdiv::Far::TopologyRefiner& refiner, const ControlMesh& base, int level);
 
+// The level to take limit masks at for output at `depth`: deep enough that no semi-sharp crease
+// or corner is left (Far's masks take any sharpness left as infinite, and a limit projected
+// there is not the limit), at most `max_extra` levels deeper. Recursive schemes refine this far
+// and sample `depth`'s grid.
+constexpr int kMaxExtraLimitDepth = 3;
+int limit_depth_for(const ControlMesh& mesh, int depth, int max_extra = kMaxExtraLimitDepth);
+
 }  // namespace sdb

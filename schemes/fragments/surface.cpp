@@ -1,5 +1,6 @@
 #include "schemes/fragments/surface.h"
 
+#include "harness/mesh/osd_topology.h"
 #include "schemes/fragments/kernel.h"
 
 #include <algorithm>
@@ -14,14 +15,7 @@ size_t output_vertices(const ControlMesh& mesh, SubdivisionRule rule, int depth)
 // Sharpness s decays by at least one a level (Uniform: exactly; Chaikin averages it with its
 // neighbours' first), so ceil(s) levels exhaust it. The same for every fragment: a point shared by
 // two fragments must come from the same level in both to be bit-identical.
-int inner_depth_for(const ControlMesh& mesh, int depth) {
-  float s = 0;
-  for (const EdgeCrease& c : mesh.creases)
-    if (c.sharpness < 10) s = std::max(s, c.sharpness);  // Far's infinitely sharp is 10
-  for (const VertexCorner& c : mesh.corners)
-    if (c.sharpness < 10) s = std::max(s, c.sharpness);
-  return std::clamp(static_cast<int>(std::ceil(s)), depth, depth + kExtraDepth);
-}
+int inner_depth_for(const ControlMesh& mesh, int depth) { return limit_depth_for(mesh, depth, kExtraDepth); }
 
 FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int d, int inner)
     : rule(r), depth(d), inner_depth(inner), partition(partition_mesh(mesh, r)) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "harness/core/tessellation.h"
+#include "harness/mesh/osd_topology.h"
 #include "schemes/fragments/fragments.h"
 #include "schemes/fragments/net.h"
 #include "schemes/fragments/tables.h"
@@ -38,7 +39,7 @@ struct FragmentSurface {
   FragmentStats stats() const;
 };
 
-constexpr int kExtraDepth = 3;
+constexpr int kExtraDepth = kMaxExtraLimitDepth;
 int inner_depth_for(const ControlMesh& mesh, int depth);
 
 // Output size before anything is built, for the size check in prepare.

@@ -27,15 +27,21 @@
 #include "harness/validate/watertight.h"
 #include "schemes/fragments/fragments.h"
 #include "schemes/fragments/surface.h"
-#include "schemes/fragments/tests/test_corpus.h"
+#include "harness/conformance/far_oracle.h"
+#include "harness/conformance/sweep_corpus.h"
 
 using namespace sdb;
 
 namespace {
 
 namespace Far = OpenSubdiv::Far;
-using fragments::testing::boundary_edges;
-using fragments::testing::sweep_shapes;
+using conformance::boundary_edges;
+using conformance::compare;
+using conformance::distance;
+using conformance::FarLevel;
+using conformance::grid_key;
+using conformance::Match;
+using conformance::sweep_shapes;
 
 const char* scheme_name(SubdivisionRule rule) {
   return rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc";
@@ -49,37 +55,6 @@ Tessellation run_fragments(const ControlMesh& accepted, SubdivisionRule rule, in
   return e->result();
 }
 
-using GridKey = std::tuple<uint32_t, int, int>;
-GridKey grid_key(const SurfaceCoord& c, int depth) {
-  const float s = static_cast<float>(1 << depth);
-  return {c.face, static_cast<int>(std::lround(c.u * s)), static_cast<int>(std::lround(c.v * s))};
-}
-
-// Far's level-d points (refined, or projected to the limit with normals) and the level-d vertex
-// at each ptex grid point it has a coord for.
-struct OsdLevel {
-  std::vector<Point3> points, normals;
-  std::map<GridKey, int> at;
-  std::vector<char> on_hole;  // the vertex's coord lies in a hole (no fragment output there)
-  std::vector<char> faceless;
-  std::vector<char> special;  // where Far's limit masks are not the exact limit (far_limit_is_exact)
-  std::vector<char> ours_special;  // where the fragments' limit position is not exact either
-  bool has_coord(size_t v) const { return !faceless[v]; }
-};
-
-// Far's limit masks (PrimvarRefiner::Limit, and so osd-uniform and the fragments' projection)
-// are exact at smooth vertices of valence 3 and more, at regular creases (two faces a side, or a
-// boundary vertex of two faces; Loop: three) and at a boundary corner of one face. Elsewhere
-// (darts, valence 2, creases and corners at extraordinary valence) they approximate, by up to
-// 0.9% of the diagonal at depth 2 on the corpus (README.md).
-bool far_limit_is_exact(const Far::TopologyLevel& l, int v, SubdivisionRule rule) {
-  // Sharpness left at the last level: Far's masks take it as infinite.
-  if (l.IsVertexSemiSharp(v)) return false;
-  for (int e : l.GetVertexEdges(v))
-    if (l.IsEdgeSemiSharp(e)) return false;
-  return far_tangent_masks_exact(l, v, rule);
-}
-
 // The fragments' limit positions are exact at every vertex where Far's masks are, and at darts
 // and smooth valence-2 vertices too (ring_limit.h); Far's crease and corner position masks are
 // exact at any valence (the crease curve and the corner do not depend on it). Left: vertices
@@ -91,61 +66,11 @@ bool fragments_position_is_exact(const Far::TopologyLevel& l, int v) {
   return true;
 }
 
-// Far's rules, accumulated in double: the oracle's own rounding stays far below the 1e-6 the
-// float fragments are held to (on a valence-360 pole a float oracle alone is off by 1e-6).
-using DoublePoint = PrimvarPointT<double>;
-
-OsdLevel osd_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit) {
-  auto r = make_refiner(m, rule);
-  Far::TopologyRefiner::UniformOptions options(depth);
-  options.fullTopologyInLastLevel = true;
-  r->RefineUniform(options);
-  std::vector<std::vector<DoublePoint>> levels(depth + 1);
-  for (int l = 0; l <= depth; ++l) levels[l].resize(r->GetLevel(l).GetNumVertices());
-  for (size_t v = 0; v < m.positions.size(); ++v)
-    for (int k = 0; k < 3; ++k) levels[0][v].p[k] = m.positions[v][k];
-  Far::PrimvarRefiner primvar(*r);
-  for (int l = 1; l <= depth; ++l) {
-    DoublePoint* dst = levels[l].data();
-    primvar.Interpolate(l, levels[l - 1].data(), dst);
-  }
-  OsdLevel out;
-  const size_t n = levels[depth].size();
-  std::vector<DoublePoint> pos = levels[depth], du(n), dv(n);
-  if (limit) {
-    DoublePoint *p = pos.data(), *a = du.data(), *b = dv.data();
-    primvar.Limit(levels[depth].data(), p, a, b);
-  }
-  std::vector<char> hole(m.face_sizes.size(), 0);
-  for (int f : m.holes) hole[f] = 1;
-  const std::vector<SurfaceCoord> coords = uniform_vertex_coords(*r, rule, depth);
-  const Far::TopologyLevel& last = r->GetLevel(depth);
-  for (size_t v = 0; v < n; ++v) {
-    out.points.push_back({float(pos[v].p[0]), float(pos[v].p[1]), float(pos[v].p[2])});
-    const float a[3] = {float(du[v].p[0]), float(du[v].p[1]), float(du[v].p[2])};
-    const float b[3] = {float(dv[v].p[0]), float(dv[v].p[1]), float(dv[v].p[2])};
-    out.normals.push_back(unit_cross(a, b));
-    if (last.GetVertexFaces(static_cast<int>(v)).size() > 0)  // a vertex in no face has no coord
-      out.at[grid_key(coords[v], depth)] = static_cast<int>(v);
-    out.on_hole.push_back(coords[v].face < hole.size() && hole[coords[v].face]);
-    out.faceless.push_back(last.GetVertexFaces(static_cast<int>(v)).size() == 0);
-    out.special.push_back(!far_limit_is_exact(last, static_cast<int>(v), rule));
-    out.ours_special.push_back(!fragments_position_is_exact(last, static_cast<int>(v)));
-  }
-  return out;
+FarLevel osd_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit) {
+  return conformance::far_level(m, rule, depth, limit, [](const Far::TopologyLevel& l, int v) {
+    return !fragments_position_is_exact(l, v);
+  });
 }
-
-double distance(const Point3& a, const Point3& b) {
-  return std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
-                   double(a[2] - b[2]) * (a[2] - b[2]));
-}
-
-struct Match {
-  double max_rel = 0;     // largest distance over the diagonal
-  double max_deg = 0;     // largest normal angle (limit only)
-  long uncovered = 0;     // Far vertices (not inside holes) no output vertex stands for
-  long unmatched = 0;     // output vertices at a grid point Far has no coord for (ptex borders)
-};
 
 double angle_deg(const Point3& a, const Point3d& b) {
   // atan2 of |a x b| and a . b: acos of a dot this close to 1 cannot resolve 0.01 degrees.
@@ -159,7 +84,7 @@ double angle_deg(const Point3& a, const Point3d& b) {
 // past the extra levels) are left out (counted in `special`), and so are reference normals of a
 // degenerate parametrization (du parallel to dv: the corner of a smooth boundary, where the
 // reference's du x dv has no direction).
-std::pair<double, double> against_reference(const Tessellation& t, const LimitEvaluator& ref, const OsdLevel& osd,
+std::pair<double, double> against_reference(const Tessellation& t, const LimitEvaluator& ref, const FarLevel& osd,
                                             int depth, double diagonal, size_t stride, long& special) {
   // Far's coords name one face per vertex; the copies in other faces' blocks are found by their
   // (bit-identical) position.
@@ -170,7 +95,7 @@ std::pair<double, double> against_reference(const Tessellation& t, const LimitEv
   for (size_t i = 0; i < t.positions.size(); i += stride) {
     if (!ref.has_limit(static_cast<int>(t.coords[i].face))) continue;  // boundary rule "none"
     auto it = by_position.find(t.positions[i]);
-    if (it == by_position.end() || osd.ours_special[it->second]) {
+    if (it == by_position.end() || osd.scheme_inexact[it->second]) {
       ++special;
       continue;
     }
@@ -191,34 +116,6 @@ std::pair<double, double> against_reference(const Tessellation& t, const LimitEv
                             diagonal);
   }
   return {deg, rel};
-}
-
-// skip_special: leave out the vertices where Far's limit masks approximate (the fragments' limit
-// is exact at some of them, so differs from Far's there).
-Match compare(const Tessellation& t, const OsdLevel& osd, int depth, double diagonal, bool normals,
-              bool skip_special = false) {
-  Match m;
-  std::vector<char> covered(osd.points.size(), 0);
-  for (size_t i = 0; i < t.positions.size(); ++i) {
-    auto it = osd.at.find(grid_key(t.coords[i], depth));
-    if (it == osd.at.end()) {
-      ++m.unmatched;
-      continue;
-    }
-    if (skip_special && osd.special[it->second]) continue;
-    covered[it->second] = 1;
-    m.max_rel = std::max(m.max_rel, distance(t.positions[i], osd.points[it->second]) / diagonal);
-    if (normals) {
-      const Point3 &a = t.normals[i], &b = osd.normals[it->second];
-      // atan2 of |a x b| and a . b: acos of a dot this close to 1 cannot resolve 0.01 degrees.
-      const double c[3] = {double(a[1]) * b[2] - double(a[2]) * b[1], double(a[2]) * b[0] - double(a[0]) * b[2],
-                           double(a[0]) * b[1] - double(a[1]) * b[0]};
-      const double dot = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
-      m.max_deg = std::max(m.max_deg, std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot) * 180 / M_PI);
-    }
-  }
-  for (size_t v = 0; v < covered.size(); ++v) m.uncovered += !covered[v] && !osd.on_hole[v] && osd.has_coord(v);
-  return m;
 }
 
 TEST(Fragments, RegularTorusEqualsFarRefinementAndLimit) {
@@ -273,7 +170,7 @@ void sweep(SubdivisionRule rule) {
   for (const std::string& name : shapes) {
     ControlMesh accepted;
     try {
-      accepted = fragments::testing::sweep_mesh(name, rule);
+      accepted = conformance::sweep_mesh(name, rule, scheme_name(rule));
     } catch (const InputError& e) {
       std::printf("  refused %s: %s\n", name.c_str(), e.what());
       ++refused;
@@ -310,7 +207,7 @@ void sweep(SubdivisionRule rule) {
       // points of Far's limit at that level.
       const int inner = fragments::inner_depth_for(accepted, depth);
       const Tessellation lt = run_fragments(accepted, rule, depth, true);
-      const OsdLevel osd_limit = osd_level(accepted, rule, inner, true);
+      const FarLevel osd_limit = osd_level(accepted, rule, inner, true);
       const Match l = compare(lt, osd_limit, inner, d, false, true);
       EXPECT_LE(l.max_rel, 1e-6) << name << " depth " << depth << " (limit)";
       if (reference) {
@@ -352,7 +249,7 @@ TEST(FragmentsSweep, WhereTheReferenceDisagreesFarsLimitIsTheLimit) {
     const LimitEvaluator ref(m, SubdivisionRule::CatmullClark);
     const int depth = 5, deep = 8;
     const Tessellation t = run_fragments(m, SubdivisionRule::CatmullClark, depth, true);
-    const OsdLevel fine = osd_level(m, SubdivisionRule::CatmullClark, deep, false);
+    const FarLevel fine = osd_level(m, SubdivisionRule::CatmullClark, deep, false);
     double ours = 0, bfr = 0;
     for (size_t k = 0; k < t.positions.size(); ++k) {
       const SurfaceCoord& c = t.coords[k];

@@ -14,7 +14,7 @@
 #include "harness/core/errors.h"
 #include "harness/mesh/osd_topology.h"
 #include "schemes/fragments/ring_limit.h"
-#include "schemes/fragments/tests/test_corpus.h"
+#include "harness/conformance/sweep_corpus.h"
 
 using namespace sdb;
 
@@ -181,13 +181,13 @@ class SpecialVertices {
 };
 
 void judge_corpus(SubdivisionRule rule) {
-  const std::vector<std::string> shapes = fragments::testing::sweep_shapes(rule);
+  const std::vector<std::string> shapes = conformance::sweep_shapes(rule);
   if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
   Judged j;
   for (const std::string& name : shapes) {
     ControlMesh m;
     try {
-      m = fragments::testing::sweep_mesh(name, rule);
+      m = conformance::sweep_mesh(name, rule, rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc");
     } catch (const InputError&) {
       continue;  // refused by the scheme (fragments_test lists why)
     }

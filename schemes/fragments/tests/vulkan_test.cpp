@@ -16,14 +16,14 @@
 #include "harness/mesh/osd_topology.h"
 #include "harness/validate/watertight.h"
 #include "schemes/fragments/fragments.h"
-#include "schemes/fragments/tests/test_corpus.h"
+#include "harness/conformance/sweep_corpus.h"
 #include "schemes/fragments/vulkan.h"
 
 using namespace sdb;
 
 namespace {
 
-using fragments::testing::boundary_edges;
+using conformance::boundary_edges;
 
 class FragmentsVulkan : public gpu::testing::VulkanTest {};
 
@@ -142,7 +142,7 @@ TEST_F(FragmentsVulkan, ManyWavesGiveTheOutputOfOne) {
 // Depths 1..5 while the output stays small for lavapipe (depth 1 always); 100,000 rays a run.
 // llvmpipe refuses the valence-360 poles (vulkan.cpp: its loop limit).
 void sweep(SubdivisionRule rule) {
-  const std::vector<std::string> shapes = fragments::testing::sweep_shapes(rule);
+  const std::vector<std::string> shapes = conformance::sweep_shapes(rule);
   if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
   const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
   size_t identical = 0, vertices = 0;
@@ -151,7 +151,7 @@ void sweep(SubdivisionRule rule) {
   for (const std::string& name : shapes) {
     ControlMesh accepted;
     try {
-      accepted = fragments::testing::sweep_mesh(name, rule);
+      accepted = conformance::sweep_mesh(name, rule, rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc");
       fragments::make_evaluation(accepted, rule, default_request(info, Backend::Cpu, 0));
     } catch (const InputError&) {
       continue;  // refused on the cpu too (fragments_test lists them)

@@ -1,4 +1,4 @@
-#include "schemes/fragments/tests/test_corpus.h"
+#include "harness/conformance/sweep_corpus.h"
 
 #include <algorithm>
 #include <map>
@@ -9,7 +9,7 @@
 #include "harness/mesh/facts.h"
 #include "harness/mesh/osd_topology.h"
 
-namespace sdb::fragments::testing {
+namespace sdb::conformance {
 
 std::vector<std::string> sweep_shapes(SubdivisionRule rule) {
   std::vector<std::string> names;
@@ -28,10 +28,10 @@ std::vector<std::string> sweep_shapes(SubdivisionRule rule) {
   return names;
 }
 
-ControlMesh sweep_mesh(const std::string& name, SubdivisionRule rule) {
+ControlMesh sweep_mesh(const std::string& name, SubdivisionRule rule, const std::string& scheme) {
   const ControlMesh m = load_mesh(name);
   make_refiner(m, rule);
-  return accept_mesh(m, find_scheme(rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc")->info());
+  return accept_mesh(m, find_scheme(scheme)->info());
 }
 
 long boundary_edges(const ControlMesh& m) {
@@ -50,4 +50,4 @@ long boundary_edges(const ControlMesh& m) {
   return n;
 }
 
-}  // namespace sdb::fragments::testing
+}  // namespace sdb::conformance

@@ -1,0 +1,75 @@
+#include "schemes/mipgh/cpu.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "harness/mesh/osd_topology.h"
+
+namespace sdb::mipgh {
+namespace {
+
+EdgeTags tags_of(const ControlMesh& mesh, const DAtlas& atlas, int depth) {
+  const auto refiner = make_refiner(mesh, SubdivisionRule::CatmullClark);
+  return build_tags(atlas, refiner->GetLevel(0), sdc_options(mesh), depth);
+}
+
+// Far makes holes of the faces it is told of, and under the boundary rule "none" of every face
+// at a boundary vertex: primitive compilation skips the same ones.
+void mark_far_holes(const ControlMesh& mesh, DAtlas& atlas) {
+  const auto refiner = make_refiner(mesh, SubdivisionRule::CatmullClark);
+  const auto& base = refiner->GetLevel(0);
+  for (int f = 0; f < atlas.num_facets(); ++f) atlas.facet_hole[f] |= base.IsFaceHole(f);
+}
+
+}  // namespace
+
+CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, int depth, bool multithreaded, int threads,
+                                       bool project_to_limit)
+    : control_(mesh.positions),
+      atlas_(build_atlas(mesh)),
+      lod_(atlas_, project_to_limit ? limit_depth_for(mesh, depth) : depth),
+      tags_(tags_of(mesh, atlas_, lod_.depth())),
+      shader_(sdc_options(mesh)),
+      processor_(atlas_, lod_, tags_, shader_),
+      multithreaded_(multithreaded),
+      project_(project_to_limit),
+      depth_(depth) {
+  if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
+  mark_far_holes(mesh, atlas_);
+  const Bounds box = bounds_of(control_);
+  for (int k = 0; k < 3; ++k) origin_[k] = static_cast<float>(box.centre(k));
+  const uint32_t inner_nodes = lod_.layout(lod_.depth()).num_nodes, nodes = lod_.layout(depth).num_nodes;
+  a_.resize(inner_nodes), b_.resize(inner_nodes);
+  if (lod_.depth() > depth) pick_ = same_points_at(atlas_, lod_, depth, lod_.depth()), limit_.resize(inner_nodes);
+  compile_primitives(atlas_, lod_, depth, out_);
+  out_.positions.resize(nodes);
+  out_.normals.resize(nodes);
+}
+
+void CpuMipghEvaluation::run() {
+  for (size_t v = 0; v < control_.size(); ++v)
+    a_[v] = {control_[v][0] - origin_[0], control_[v][1] - origin_[1], control_[v][2] - origin_[2]};
+  V3 *src = a_.data(), *dst = b_.data();
+  for (int sigma = 0; sigma < lod_.depth(); ++sigma) {
+    processor_.step(sigma, src, dst, multithreaded_);
+    std::swap(src, dst);
+  }
+  // The limit is written over the spare buffer and the normals straight into the output, or
+  // through limit_ where the depth's grid points are picked from a deeper level.
+  V3* normal = pick_.empty() ? reinterpret_cast<V3*>(out_.normals.data()) : limit_.data();
+  processor_.project(lod_.depth(), src, dst, normal, multithreaded_);
+  const V3* p = project_ ? dst : src;
+  const size_t n = out_.positions.size();
+  for (size_t i = 0; i < n; ++i) {
+    const size_t k = pick_.empty() ? i : pick_[i];
+    out_.positions[i] = {p[k].x + origin_[0], p[k].y + origin_[1], p[k].z + origin_[2]};
+    if (!pick_.empty()) out_.normals[i] = {limit_[k].x, limit_[k].y, limit_[k].z};
+  }
+}
+
+void CpuMipghEvaluation::execute() {
+  if (arena_) arena_->execute([&] { run(); });
+  else run();
+}
+
+}  // namespace sdb::mipgh

@@ -1,0 +1,45 @@
+// cpu and cpu-mt: the mesh processor on the host, one node after another (cpu) or the D-facets,
+// D-edges and D-vertices of each visit in parallel on TBB (cpu-mt).
+#pragma once
+
+#include <tbb/task_arena.h>
+
+#include <memory>
+#include <vector>
+
+#include "harness/core/scheme.h"
+#include "schemes/mipgh/atlas.h"
+#include "schemes/mipgh/lod.h"
+#include "schemes/mipgh/processor.h"
+#include "schemes/mipgh/shader.h"
+
+namespace sdb::mipgh {
+
+class CpuMipghEvaluation final : public Evaluation {
+ public:
+  CpuMipghEvaluation(const ControlMesh& mesh, int depth, bool multithreaded, int threads, bool project_to_limit);
+  void execute() override;
+  const Tessellation& result() override { return out_; }
+  size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+
+ private:
+  void run();
+
+  std::vector<Point3> control_;
+  float origin_[3];  // refined relative to the control box's centre: float keeps its precision
+  DAtlas atlas_;
+  DLoD lod_;
+  EdgeTags tags_;
+  CatmarkShader shader_;
+  MeshProcessor processor_;
+  bool multithreaded_, project_;
+  std::unique_ptr<tbb::task_arena> arena_;
+  int depth_;
+  // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
+  // depth's grid points: level-depth node i is inner node pick_[i] (empty: the same level).
+  std::vector<uint32_t> pick_;
+  std::vector<V3> a_, b_, limit_;
+  Tessellation out_;
+};
+
+}  // namespace sdb::mipgh

@@ -1,0 +1,131 @@
+#include "schemes/mipgh/lod.h"
+
+#include <opensubdiv/sdc/crease.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sdb::mipgh {
+
+namespace Sdc = OpenSubdiv::Sdc;
+
+LevelLayout level_layout(const DAtlas& atlas, int sigma) {
+  LevelLayout l;
+  l.n = (1 << sigma) + 1;
+  l.s = l.n - 2;
+  l.edge_base = static_cast<uint32_t>(atlas.num_vertices);
+  l.facet_base = l.edge_base + uint32_t(atlas.num_edges()) * l.s;
+  l.num_nodes = l.facet_base + uint32_t(atlas.num_facets()) * l.s * l.s;
+  return l;
+}
+
+double node_count(const DAtlas& atlas, int sigma) {
+  const double s = std::ldexp(1.0, sigma) - 1;
+  return atlas.num_vertices + atlas.num_edges() * s + atlas.num_facets() * s * s;
+}
+
+DLoD::DLoD(const DAtlas& atlas, int depth) {
+  for (int sigma = 0; sigma <= depth; ++sigma) {
+    const LevelLayout l = level_layout(atlas, sigma);
+    layouts_.push_back(l);
+    const int n = l.n, s = l.s;
+    std::vector<uint32_t> idx(size_t(atlas.num_facets()) * n * n);
+    for (int f = 0; f < atlas.num_facets(); ++f) {
+      uint32_t* d = idx.data() + size_t(f) * n * n;
+      for (int k = 0; k < 4; ++k) {
+        d[side_offset(k, n, 0, 0)] = static_cast<uint32_t>(atlas.facet_corners[f][k]);
+        const int e = atlas.facet_edges[f][k];
+        const bool minor = atlas.facet_side_minor[f][k];
+        for (int a = 1; a <= s; ++a) d[side_offset(k, n, a, 0)] = l.edge_node(e, minor ? s - a : a - 1);
+      }
+      const uint32_t inside = l.interior(f);
+      for (int i = 1; i <= s; ++i)
+        for (int j = 1; j <= s; ++j) d[i * n + j] = inside + uint32_t(i - 1) * s + (j - 1);
+    }
+    facets_.push_back(std::move(idx));
+  }
+}
+
+namespace {
+
+// The sharpness of every D-edge micro-edge meeting D-vertex v at level sigma (the one next to v).
+void sharpness_around(const DAtlas& atlas, const EdgeTags& tags, int sigma, int v, std::vector<float>& out) {
+  out.clear();
+  const int last = (1 << sigma) - 1;
+  auto near_v = [&](int f, int side, bool v_is_side_start) {
+    const int e = atlas.facet_edges[f][side];
+    const bool minor = atlas.facet_side_minor[f][side];
+    // v at the side's start is the major's start exactly when the side is the major halfedge
+    return tags.micro_edge(sigma, e, (v_is_side_start != minor) ? 0 : last);
+  };
+  for (int i = atlas.ring_offsets[v]; i < atlas.ring_offsets[v + 1]; ++i) out.push_back(near_v(atlas.ring[i].facet, atlas.ring[i].side, true));
+  if (atlas.vertex_boundary[v] && atlas.valence(v) > 0) {
+    const HalfEdge& lastf = atlas.ring[atlas.ring_offsets[v + 1] - 1];
+    out.push_back(near_v(lastf.facet, (lastf.side + 3) & 3, false));
+  }
+}
+
+}  // namespace
+
+EdgeTags build_tags(const DAtlas& atlas, const OpenSubdiv::Far::TopologyLevel& base, const Sdc::Options& options,
+                    int depth) {
+  EdgeTags t;
+  t.slot.assign(atlas.num_edges(), -1);
+  std::vector<float> level0;
+  for (int e = 0; e < atlas.num_edges(); ++e) {
+    const HalfEdge& h = atlas.edges[e].major;
+    const int far = base.FindEdge(atlas.facet_corners[h.facet][h.side], atlas.facet_corners[h.facet][(h.side + 1) & 3]);
+    const float s = far < 0 ? 0.0f : base.GetEdgeSharpness(far);
+    if (s > 0) t.slot[e] = static_cast<int32_t>(level0.size()), level0.push_back(s);
+  }
+  std::vector<float> vertex0(atlas.num_vertices, 0.0f);
+  for (int v = 0; v < atlas.num_vertices; ++v) vertex0[v] = base.GetVertexSharpness(v);
+  t.any = !level0.empty() || std::any_of(vertex0.begin(), vertex0.end(), [](float s) { return s > 0; });
+  if (!t.any) return t;
+  t.edge.push_back(std::move(level0));
+  t.vertex.push_back(std::move(vertex0));
+  const Sdc::Crease crease(options);
+  std::vector<float> around;
+  for (int sigma = 0; sigma < depth; ++sigma) {
+    const std::vector<float>& p = t.edge[sigma];
+    std::vector<float> c(p.size() * 2);
+    const int m = 1 << sigma;  // micro-edges per D-edge at sigma
+    // Chaikin reads the sharp edges around the end vertex each half keeps.
+    std::vector<std::vector<float>> at_vertex(atlas.num_vertices);
+    if (!crease.IsUniform())
+      for (int v = 0; v < atlas.num_vertices; ++v) sharpness_around(atlas, t, sigma, v, at_vertex[v]);
+    for (int e = 0; e < atlas.num_edges(); ++e) {
+      if (t.slot[e] < 0) continue;
+      const float* pe = p.data() + (size_t(t.slot[e]) << sigma);
+      float* ce = c.data() + (size_t(t.slot[e]) << (sigma + 1));
+      const DEdge& d = atlas.edges[e];
+      const int v0 = atlas.facet_corners[d.major.facet][d.major.side];
+      const int v1 = atlas.facet_corners[d.major.facet][(d.major.side + 1) & 3];
+      const int interior_valence = d.minor.null() ? 3 : 4;
+      for (int k = 0; k < m; ++k) {
+        if (crease.IsUniform() || Sdc::Crease::IsInfinite(pe[k])) {
+          ce[2 * k] = ce[2 * k + 1] = crease.SubdivideUniformSharpness(pe[k]);
+          continue;
+        }
+        // half 2k keeps node k's end, half 2k+1 node k+1's
+        for (int h = 0; h < 2; ++h) {
+          const int node = k + h;
+          if (node == 0 || node == m) {
+            const std::vector<float>& a = at_vertex[node == 0 ? v0 : v1];
+            ce[2 * k + h] = crease.SubdivideEdgeSharpnessAtVertex(pe[k], static_cast<int>(a.size()), a.data());
+          } else {
+            float a[4] = {pe[node - 1], pe[node], 0.0f, 0.0f};
+            ce[2 * k + h] = crease.SubdivideEdgeSharpnessAtVertex(pe[k], interior_valence, a);
+          }
+        }
+      }
+    }
+    t.edge.push_back(std::move(c));
+    std::vector<float> cv(atlas.num_vertices);
+    for (int v = 0; v < atlas.num_vertices; ++v) cv[v] = crease.SubdivideVertexSharpness(t.vertex[sigma][v]);
+    t.vertex.push_back(std::move(cv));
+  }
+  return t;
+}
+
+}  // namespace sdb::mipgh

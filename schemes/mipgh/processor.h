@@ -1,0 +1,57 @@
+// The mesh processor (Section 3.1, Figures 7, 8, 24): one mutation step visits every node of the
+// next level, in the order D-facets, D-edges, D-vertices, gathers its 1-disk from the current
+// level through the D-LoD's index arrays, and hands it to the mesh shader; the refinement itself
+// is the next level's layout (lod.h), fixed in prepare. Then the limit projection, a last visit
+// without refinement (Figure 24's bypassed case), and primitive compilation.
+//
+// Attributes are node-morphic: a node shared by D-facets has one slot, computed once, so the
+// output is watertight by construction (no welding, no symmetric evaluation needed).
+#pragma once
+
+#include <vector>
+
+#include "harness/core/tessellation.h"
+#include "schemes/mipgh/atlas.h"
+#include "schemes/mipgh/lod.h"
+#include "schemes/mipgh/shader.h"
+
+namespace sdb::mipgh {
+
+class MeshProcessor {
+ public:
+  MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const CatmarkShader& shader)
+      : atlas_(atlas), lod_(lod), tags_(tags), shader_(shader) {}
+
+  // Level sigma's nodes in `src`, level sigma + 1's written to `dst`.
+  void step(int sigma, const V3* src, V3* dst, bool parallel) const;
+  // Limit positions and unit normals of level sigma's nodes.
+  void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const;
+
+  // The parts of a step, public for the tests.
+  void visit_facet(int sigma, int f, const V3* src, V3* dst) const;
+  void visit_edge(int sigma, int e, const V3* src, V3* dst) const;
+  void visit_vertex(int sigma, int v, const V3* src, V3* dst) const;
+
+ private:
+  // D-vertex v's 1-disk at level sigma (and its tags at sigma and sigma + 1).
+  void gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk) const;
+  // The 1-disk of the node at `along` on D-edge e (1 <= along <= n - 2), tags included.
+  void gather_edge_node(int sigma, int e, int along, const V3* src, VertexDisk& disk) const;
+  void project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const;
+  void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const;
+
+  const DAtlas& atlas_;
+  const DLoD& lod_;
+  const EdgeTags& tags_;
+  const CatmarkShader& shader_;
+};
+
+// Primitive compilation at level sigma: two triangles per micro-facet of every D-facet that is not
+// a hole, and each node's SurfaceCoord in the D-facet that owns it (interior: its own; D-edge:
+// the major halfedge's; D-vertex: the first of its ring), in OpenSubdiv's (u, v) of that quad.
+void compile_primitives(const DAtlas& atlas, const DLoD& lod, int sigma, Tessellation& out);
+
+// For each node of level sigma, the node of the deeper level `inner` at the same grid point.
+std::vector<uint32_t> same_points_at(const DAtlas& atlas, const DLoD& lod, int sigma, int inner);
+
+}  // namespace sdb::mipgh

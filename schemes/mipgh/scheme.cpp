@@ -1,0 +1,89 @@
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "schemes/mipgh/atlas.h"
+#include "schemes/mipgh/cpu.h"
+#include "schemes/mipgh/lod.h"
+#include "schemes/mipgh/mipgh.h"
+
+namespace sdb::mipgh {
+namespace {
+
+constexpr int kMaxDepth = 8;
+// Two level buffers, the output's positions and normals, the D-LoD's indices: past this a
+// request is refused before anything is built.
+constexpr double kMaxBytes = 8e9;
+
+SchemeInfo make_info() {
+  SchemeInfo info;
+  info.name = "mipgh-cc";
+  info.paper = "Shiue, Goel, Peters 2003, Mesh Mutation in Programmable Graphics Hardware";
+  info.description = "D-atlas mesh processor with the Catmull-Clark mesh shader, limit projection";
+  info.role = SchemeRole::Method;
+  info.reference = SubdivisionRule::CatmullClark;
+  info.level_kind = LevelKind::Depth;
+  info.backends = {Backend::Cpu, Backend::CpuMt};
+  info.default_levels = {1, 2, 3, 4};
+  info.accepts.faces = MeshRequirements::Faces::QuadsOnly;
+  info.accepts.quadrangulate = true;  // R1: one Catmull-Clark step where a face is not a quad
+  info.accepts.manifold = true;
+  info.accepts.creases = true;
+  info.accepts.holes = true;
+  // Far's own limit masks at the last level (PrimvarRefiner::Limit): the bound the fragments
+  // hold, where the reference's limit and Far's agree.
+  info.bound = {1e-5, 0.01};
+  info.peer = "osd-uniform";
+  info.default_meshes = {"stein/sword_quad_dominant", "crane/spot_control", "pmp/fandisk_quads"};
+  info.headline_runs = {{"stein/sword_quad_dominant", Backend::Cpu, 4},
+                        {"stein/sword_quad_dominant", Backend::CpuMt, 4}};
+  return info;
+}
+
+class MipghScheme final : public Scheme {
+ public:
+  const SchemeInfo& info() const override { return info_; }
+
+  std::optional<std::string> unsupported(const RunRequest& r) const override {
+    if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
+    if (r.backend != Backend::Cpu && r.backend != Backend::CpuMt)
+      return info_.name + " runs on cpu and cpu-mt (its Vulkan passes are not built yet)";
+    return std::nullopt;
+  }
+
+  std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
+    return make_evaluation(mesh, r);
+  }
+
+ private:
+  SchemeInfo info_ = make_info();
+};
+
+std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
+  std::vector<std::unique_ptr<Scheme>> s;
+  s.push_back(std::make_unique<MipghScheme>());
+  return s;
+}
+
+SDB_REGISTER_SCHEMES(mipgh, make_mipgh_schemes);
+
+}  // namespace
+
+std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, const RunRequest& r, bool project_to_limit) {
+  const DAtlas atlas = build_atlas(mesh);
+  const double nodes = node_count(atlas, r.level);
+  const double bytes = nodes * (2 * sizeof(V3) + 2 * sizeof(Point3)) +
+                       atlas.num_facets() * std::ldexp(1.0, 2 * r.level) * 4 * 4.0 / 3 * 2;
+  if (bytes > kMaxBytes || nodes >= 4294967295.0) {
+    char why[160];
+    std::snprintf(why, sizeof why, "depth %d would take %.1f GB of nodes and indices, past the %.0f GB limit",
+                  r.level, bytes / 1e9, kMaxBytes / 1e9);
+    throw Unsupported(why);
+  }
+  return std::make_unique<CpuMipghEvaluation>(mesh, r.level, r.backend == Backend::CpuMt, r.threads,
+                                              project_to_limit);
+}
+
+}  // namespace sdb::mipgh

@@ -1,0 +1,150 @@
+#include "schemes/mipgh/shader.h"
+
+#include <opensubdiv/sdc/catmarkScheme.h>
+
+#include <cmath>
+
+namespace sdb::mipgh {
+
+namespace Sdc = OpenSubdiv::Sdc;
+
+V3 normalized(V3 a) {
+  const float l = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+  return l > 0 ? (1.0f / l) * a : a;
+}
+
+void VertexDisk::resize(int num_edges, int num_faces) {
+  edges = num_edges, faces = num_faces;
+  if (e.size() < size_t(num_edges)) e.resize(num_edges), edge_sharpness.resize(num_edges), child_edge_sharpness.resize(num_edges);
+  if (d.size() < size_t(num_faces)) d.resize(num_faces);
+}
+
+bool VertexDisk::smooth() const {
+  if (sharpness > 0 || child_sharpness > 0 || edges != faces) return false;
+  for (int i = 0; i < edges; ++i)
+    if (edge_sharpness[i] > 0) return false;
+  return true;
+}
+
+namespace {
+
+// The neighbourhood interfaces Sdc's mask queries read (what Far's Vtr gives PrimvarRefiner).
+class SdcVertex {
+ public:
+  explicit SdcVertex(const VertexDisk& d) : d_(d) {}
+  int GetNumEdges() const { return d_.edges; }
+  int GetNumFaces() const { return d_.faces; }
+  float GetSharpness() const { return d_.sharpness; }
+  float* GetSharpnessPerEdge(float s[]) const {
+    for (int i = 0; i < d_.edges; ++i) s[i] = d_.edge_sharpness[i];
+    return s;
+  }
+  float GetChildSharpness(const Sdc::Crease&) const { return d_.child_sharpness; }
+  float* GetChildSharpnessPerEdge(const Sdc::Crease&, float s[]) const {
+    for (int i = 0; i < d_.edges; ++i) s[i] = d_.child_edge_sharpness[i];
+    return s;
+  }
+
+ private:
+  const VertexDisk& d_;
+};
+
+class SdcEdge {
+ public:
+  explicit SdcEdge(const EdgeDisk& d) : d_(d) {}
+  int GetNumFaces() const { return d_.faces; }
+  float GetSharpness() const { return d_.sharpness; }
+  void GetChildSharpnesses(const Sdc::Crease&, float s[2]) const { s[0] = d_.child_sharpness[0], s[1] = d_.child_sharpness[1]; }
+  void GetNumVerticesPerFace(int counts[]) const { counts[0] = counts[1] = 4; }
+
+ private:
+  const EdgeDisk& d_;
+};
+
+class Mask {
+ public:
+  using Weight = float;
+  int GetNumVertexWeights() const { return nv_; }
+  int GetNumEdgeWeights() const { return ne_; }
+  int GetNumFaceWeights() const { return nf_; }
+  void SetNumVertexWeights(int n) { nv_ = n; }
+  void SetNumEdgeWeights(int n) { ne_ = n, grow(e_, n); }
+  void SetNumFaceWeights(int n) { nf_ = n, grow(f_, n); }
+  Weight const& VertexWeight(int i) const { return v_[i]; }
+  Weight const& EdgeWeight(int i) const { return e_[i]; }
+  Weight const& FaceWeight(int i) const { return f_[i]; }
+  Weight& VertexWeight(int i) { return v_[i]; }
+  Weight& EdgeWeight(int i) { return e_[i]; }
+  Weight& FaceWeight(int i) { return f_[i]; }
+  bool AreFaceWeightsForFaceCenters() const { return centres_; }
+  void SetFaceWeightsForFaceCenters(bool on) { centres_ = on; }
+
+  V3 apply(const VertexDisk& d) const {
+    V3 r = v_[0] * d.c;
+    for (int i = 0; i < ne_; ++i) r = r + e_[i] * d.e[i];
+    for (int i = 0; i < nf_; ++i) {
+      const V3 face = centres_ ? 0.25f * ((d.c + d.d[i]) + (d.e[i] + d.e[(i + 1) % d.edges])) : d.d[i];
+      r = r + f_[i] * face;
+    }
+    return r;
+  }
+  V3 apply(const EdgeDisk& d) const {
+    V3 r = v_[0] * d.v0 + v_[1] * d.v1;
+    for (int i = 0; i < nf_; ++i) r = r + f_[i] * (0.25f * ((d.v0 + d.f[i][1]) + (d.v1 + d.f[i][0])));
+    return r;
+  }
+
+ private:
+  static void grow(std::vector<Weight>& w, int n) {
+    if (w.size() < size_t(n)) w.resize(n);
+  }
+  Weight v_[2] = {0, 0};
+  std::vector<Weight> e_, f_;
+  int nv_ = 0, ne_ = 0, nf_ = 0;
+  bool centres_ = false;
+};
+
+thread_local Mask t_pos, t_tan1, t_tan2;
+
+}  // namespace
+
+V3 CatmarkShader::vertex_vertex_smooth(const VertexDisk& disk) {
+  const float n = static_cast<float>(disk.edges);
+  const float w = 4 * n * n, cw = w - 7 * n;
+  V3 es{0, 0, 0}, ds{0, 0, 0};
+  for (int i = 0; i < disk.edges; ++i) es = es + disk.e[i], ds = ds + disk.d[i];
+  return (cw / w) * disk.c + (6 / w) * es + (1 / w) * ds;
+}
+
+V3 CatmarkShader::vertex_vertex(const VertexDisk& disk) const {
+  if (disk.smooth()) return vertex_vertex_smooth(disk);
+  const Sdc::Scheme<Sdc::SCHEME_CATMARK> scheme(options_);
+  scheme.ComputeVertexVertexMask(SdcVertex(disk), t_pos);
+  return t_pos.apply(disk);
+}
+
+V3 CatmarkShader::edge_vertex(const EdgeDisk& disk) const {
+  const Sdc::Scheme<Sdc::SCHEME_CATMARK> scheme(options_);
+  scheme.ComputeEdgeVertexMask(SdcEdge(disk), t_pos);
+  return t_pos.apply(disk);
+}
+
+void CatmarkShader::limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal) {
+  position = (1.0f / 36) * (16.0f * c + 4.0f * ((e[0] + e[2]) + (e[1] + e[3])) + ((d[0] + d[2]) + (d[1] + d[3])));
+  // Figure 21: T1 towards e0, T2 towards e1; d[i] lies between e[i] and e[i + 1].
+  const V3 t1 = 4.0f * (e[0] - e[2]) + ((d[0] + d[3]) - (d[1] + d[2]));
+  const V3 t2 = 4.0f * (e[1] - e[3]) + ((d[0] + d[1]) - (d[2] + d[3]));
+  normal = normalized(cross(t1, t2));
+}
+
+void CatmarkShader::limit(const VertexDisk& disk, V3& position, V3& normal) const {
+  const Sdc::Crease crease(options_);
+  const Sdc::Crease::Rule rule =
+      crease.DetermineVertexVertexRule(disk.sharpness, disk.edges, disk.edge_sharpness.data());
+  const Sdc::Scheme<Sdc::SCHEME_CATMARK> scheme(options_);
+  scheme.ComputeVertexLimitMask(SdcVertex(disk), t_pos, t_tan1, t_tan2, rule);
+  position = t_pos.apply(disk);
+  normal = normalized(cross(t_tan1.apply(disk), t_tan2.apply(disk)));
+}
+
+}  // namespace sdb::mipgh

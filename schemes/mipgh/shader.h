@@ -1,0 +1,80 @@
+// The Catmull-Clark mesh shader (Section 5, Figure 20 and the paper's code; Figure 21 for the
+// limit): the only scheme-specific code. The mesh processor (processor.h) hands it a node's
+// 1-disk in Figure 24's enumeration (the centre, then the direct neighbours counter-clockwise,
+// then the diagonal ones) and the edge tags; it returns the target node.
+//
+// Nodes whose 1-disk carries no tag take the paper's stencils as written (the fast paths below).
+// Tagged nodes (creases, corners, global boundaries, whose edges Sdc makes infinitely sharp) take
+// Pixar's rules as OpenSubdiv applies them: the masks come from Sdc::Scheme<CATMARK> fed with
+// the tags, so every blend of fractional sharpness is OpenSubdiv's own.
+#pragma once
+
+#include <opensubdiv/sdc/crease.h>
+#include <opensubdiv/sdc/options.h>
+
+#include <vector>
+
+#include "harness/core/control_mesh.h"
+
+namespace sdb::mipgh {
+
+struct V3 {
+  float x, y, z;
+};
+inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(float w, V3 a) { return {w * a.x, w * a.y, w * a.z}; }
+inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+V3 normalized(V3 a);
+
+// Figure 20, the stencils of a tag-free regular 1-disk.
+inline V3 facet_vertex(V3 a, V3 b, V3 c, V3 d) { return 0.25f * ((a + c) + (b + d)); }
+// v0, v1 the edge's ends; f the four other corners of its two quads.
+inline V3 edge_vertex(V3 v0, V3 v1, V3 f0, V3 f1, V3 f2, V3 f3) {
+  return 0.375f * (v0 + v1) + 0.0625f * ((f0 + f1) + (f2 + f3));
+}
+// Valence 4: 36/64 centre, 6/64 direct, 1/64 diagonal neighbours.
+inline V3 vertex_vertex4(V3 c, V3 e0, V3 e1, V3 e2, V3 e3, V3 d0, V3 d1, V3 d2, V3 d3) {
+  return 0.5625f * c + 0.09375f * ((e0 + e2) + (e1 + e3)) + 0.015625f * ((d0 + d2) + (d1 + d3));
+}
+
+// A node's 1-disk and tags, gathered by the processor where the fast paths do not apply.
+// Vertex disk: e[i] the far end of edge i (counter-clockwise), d[i] the corner of face i opposite
+// the centre; face i lies between edges i and i + 1. On a global boundary edges = faces + 1.
+struct VertexDisk {
+  int edges = 0, faces = 0;
+  V3 c{};
+  std::vector<V3> e, d;
+  float sharpness = 0, child_sharpness = 0;
+  std::vector<float> edge_sharpness, child_edge_sharpness;
+  void resize(int num_edges, int num_faces);
+  bool smooth() const;  // no tag at all: the valence-n stencil of the paper's code
+};
+
+// Edge disk: the two ends, and for each of its (one or two) quads the two other corners, the one
+// next to v0 first.
+struct EdgeDisk {
+  int faces = 2;
+  V3 v0{}, v1{};
+  V3 f[2][2]{};
+  float sharpness = 0, child_sharpness[2] = {0, 0};
+};
+
+class CatmarkShader {
+ public:
+  explicit CatmarkShader(const OpenSubdiv::Sdc::Options& options) : options_(options) {}
+  // The paper's extraordinary vertex-vertex stencil, any valence, no tags.
+  static V3 vertex_vertex_smooth(const VertexDisk& disk);
+  V3 vertex_vertex(const VertexDisk& disk) const;
+  V3 edge_vertex(const EdgeDisk& disk) const;
+
+  // Limit projection: position and unit normal (T1 x T2, Figure 21 where regular).
+  static void limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal);
+  // Tagged or extraordinary: Sdc's limit masks for the rule the last level's tags give.
+  void limit(const VertexDisk& disk, V3& position, V3& normal) const;
+
+ private:
+  OpenSubdiv::Sdc::Options options_;
+};
+
+}  // namespace sdb::mipgh
