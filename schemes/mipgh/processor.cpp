@@ -2,6 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace sdb::mipgh {
 namespace {
 
@@ -16,49 +19,107 @@ void for_each(int count, bool parallel, int grain, F&& f) {
   });
 }
 
-// A D-facet's nodes of one level, gathered once through its index array (the work-group tile
-// a GPU would stage in shared memory).
+// A D-facet's nodes of one level, gathered once through its index array into three planes (the
+// work-group tile a GPU would stage in shared memory): the stencils below then run along rows,
+// one plane at a time, in SIMD lanes.
 struct Tile {
-  std::vector<V3> p;
+  std::vector<float> plane[3];
   int n = 0;
   void load(const uint32_t* idx, int size, const V3* src) {
     n = size;
-    p.resize(size_t(n) * n);
-    for (int i = 0; i < n * n; ++i) p[i] = src[idx[i]];
+    for (auto& p : plane) p.resize(size_t(n) * n);
+    float *x = plane[0].data(), *y = plane[1].data(), *z = plane[2].data();
+    for (int i = 0; i < n * n; ++i) {
+      const V3 p = src[idx[i]];
+      x[i] = p.x, y[i] = p.y, z[i] = p.z;
+    }
   }
-  const V3& at(int i, int j) const { return p[size_t(i) * n + j]; }
+};
+
+struct RowScratch {
+  std::vector<float> row[3], normal[3];
+  void fit(size_t size) {
+    for (int k = 0; k < 3; ++k) row[k].resize(size), normal[k].resize(size);
+  }
+};
+
+// The nodes along a D-edge and the rows next to it in its two D-facets, read once per visit:
+// a[t] on the edge, b[t] one in from the major side, c[t] one in from the minor side (t counted
+// from the major halfedge's first corner).
+struct Strip {
+  std::vector<V3> a, b, c;
 };
 
 thread_local Tile t_tile;
+thread_local Strip t_strip;
+thread_local RowScratch t_row;
 thread_local VertexDisk t_disk;
+
+// Target row r (1 <= r <= 2n - 3) of a D-facet's refined interior, one coordinate: out[c - 1] for
+// columns c = 1 .. 2n - 3. Facet points and vertical edge points on odd rows, horizontal edge
+// points and vertex points on even ones (Figure 20's stencils).
+void refine_row(const float* p, int n, int r, float* out) {
+  const int a = r >> 1;
+  if (r & 1) {
+    const float *top = p + size_t(a) * n, *bot = top + n;
+    for (int b = 0; b + 1 < n; ++b)  // c = 2b + 1
+      out[2 * b] = 0.25f * ((top[b] + bot[b + 1]) + (top[b + 1] + bot[b]));
+    for (int b = 1; b + 1 < n; ++b)  // c = 2b
+      out[2 * b - 1] = 0.375f * (top[b] + bot[b]) + 0.0625f * ((top[b - 1] + bot[b - 1]) + (top[b + 1] + bot[b + 1]));
+    return;
+  }
+  const float *mid = p + size_t(a) * n, *up = mid - n, *dn = mid + n;
+  for (int b = 0; b + 1 < n; ++b)
+    out[2 * b] = 0.375f * (mid[b] + mid[b + 1]) + 0.0625f * ((up[b] + up[b + 1]) + (dn[b] + dn[b + 1]));
+  for (int b = 1; b + 1 < n; ++b)
+    out[2 * b - 1] = 0.5625f * mid[b] + 0.09375f * ((mid[b + 1] + mid[b - 1]) + (dn[b] + up[b])) +
+                     0.015625f * ((dn[b + 1] + up[b - 1]) + (dn[b - 1] + up[b + 1]));
+}
+
+// Limit positions and normals of interior row i, Figure 21's stencils with T1 along the row and T2
+// across it; all three planes at once (the cross product needs them), written through `s`.
+void project_row(const Tile& t, int i, RowScratch& s) {
+  const int n = t.n;
+  float t1[3][64], t2[3][64];  // n <= 257 at depth 8: done in blocks of 64 columns
+  for (int j0 = 1; j0 + 1 < n; j0 += 64) {
+    const int count = std::min(64, n - 1 - j0);
+    for (int k = 0; k < 3; ++k) {
+      const float *mid = t.plane[k].data() + size_t(i) * n + j0, *up = mid - n, *dn = mid + n;
+      float* o = s.row[k].data() + (j0 - 1);
+      for (int j = 0; j < count; ++j) {
+        const float e0 = mid[j + 1], e1 = dn[j], e2 = mid[j - 1], e3 = up[j];
+        const float d0 = dn[j + 1], d1 = dn[j - 1], d2 = up[j - 1], d3 = up[j + 1];
+        o[j] = (1.0f / 36) * (16.0f * mid[j] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
+        t1[k][j] = 4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2));
+        t2[k][j] = 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3));
+      }
+    }
+    float *nx = s.normal[0].data() + (j0 - 1), *ny = s.normal[1].data() + (j0 - 1), *nz = s.normal[2].data() + (j0 - 1);
+    for (int j = 0; j < count; ++j) {
+      const float x = t1[1][j] * t2[2][j] - t1[2][j] * t2[1][j];
+      const float y = t1[2][j] * t2[0][j] - t1[0][j] * t2[2][j];
+      const float z = t1[0][j] * t2[1][j] - t1[1][j] * t2[0][j];
+      const float l = std::sqrt(x * x + y * y + z * z);
+      const float inv = l > 0 ? 1.0f / l : 1.0f;
+      nx[j] = x * inv, ny[j] = y * inv, nz[j] = z * inv;
+    }
+  }
+}
 
 }  // namespace
 
 void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const {
   const LevelLayout& to = lod_.layout(sigma + 1);
   Tile& t = t_tile;
-  t.load(lod_.facet(sigma, f), lod_.layout(sigma).n, src);
+  RowScratch& s = t_row;
+  const int n = lod_.layout(sigma).n, width = to.s;  // target rows and columns 1 .. width
+  t.load(lod_.facet(sigma, f), n, src);
+  s.fit(width);
   V3* out = dst + to.interior(f);
-  const int m = to.n - 1;  // target rows and columns 1 .. m - 1 are inside the D-facet
-  for (int r = 1; r < m; ++r) {
-    const int a = r >> 1;
-    if (r & 1) {  // between source rows a and a + 1: facet points and vertical edge points
-      for (int c = 1; c < m; ++c) {
-        const int b = c >> 1;
-        *out++ = (c & 1) ? facet_vertex(t.at(a, b), t.at(a, b + 1), t.at(a + 1, b + 1), t.at(a + 1, b))
-                         : edge_vertex(t.at(a, b), t.at(a + 1, b), t.at(a, b - 1), t.at(a + 1, b - 1),
-                                       t.at(a, b + 1), t.at(a + 1, b + 1));
-      }
-    } else {  // on source row a: horizontal edge points and vertex points
-      for (int c = 1; c < m; ++c) {
-        const int b = c >> 1;
-        *out++ = (c & 1) ? edge_vertex(t.at(a, b), t.at(a, b + 1), t.at(a - 1, b), t.at(a - 1, b + 1),
-                                       t.at(a + 1, b), t.at(a + 1, b + 1))
-                         : vertex_vertex4(t.at(a, b), t.at(a, b + 1), t.at(a + 1, b), t.at(a, b - 1), t.at(a - 1, b),
-                                          t.at(a + 1, b + 1), t.at(a + 1, b - 1), t.at(a - 1, b - 1),
-                                          t.at(a - 1, b + 1));
-      }
-    }
+  for (int r = 1; r <= width; ++r, out += width) {
+    for (int k = 0; k < 3; ++k) refine_row(t.plane[k].data(), n, r, s.row[k].data());
+    const float *x = s.row[0].data(), *y = s.row[1].data(), *z = s.row[2].data();
+    for (int c = 0; c < width; ++c) out[c] = {x[c], y[c], z[c]};
   }
 }
 
@@ -90,7 +151,41 @@ void MeshProcessor::gather_edge_node(int sigma, int e, int along, const V3* src,
   }
 }
 
+MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const CatmarkShader& shader)
+    : atlas_(atlas), lod_(lod), tags_(tags), shader_(shader), vertex_order_(atlas.num_vertices) {
+  // A D-vertex's ring lies in the D-facets around it, far apart in memory at fine levels: visited
+  // in the order of their first D-facet they follow the facets' storage instead of jumping.
+  auto first = [&](int v) { return atlas.valence(v) ? atlas.ring[atlas.ring_offsets[v]].facet : -1; };
+  for (int v = 0; v < atlas.num_vertices; ++v) vertex_order_[v] = v;
+  std::stable_sort(vertex_order_.begin(), vertex_order_.end(), [&](int a, int b) { return first(a) < first(b); });
+}
+
+void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
+  const int n = lod_.layout(sigma).n;
+  const DEdge& d = atlas_.edges[e];
+  Strip& s = t_strip;
+  s.a.resize(n), s.b.resize(n), s.c.resize(n);
+  const uint32_t* f = lod_.facet(sigma, d.major.facet);
+  for (int t = 0; t < n; ++t)
+    s.a[t] = src[f[side_offset(d.major.side, n, t, 0)]], s.b[t] = src[f[side_offset(d.major.side, n, t, 1)]];
+  if (d.minor.null()) return;
+  const uint32_t* g = lod_.facet(sigma, d.minor.facet);
+  for (int t = 0; t < n; ++t) s.c[t] = src[g[side_offset(d.minor.side, n, n - 1 - t, 1)]];
+}
+
 void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
+  const DEdge& de = atlas_.edges[e];
+  if (tags_.slot[e] < 0 && !de.minor.null()) {  // Figure 20's stencils along the strip
+    load_strip(sigma, e, src);
+    const V3 *A = t_strip.a.data(), *B = t_strip.b.data(), *C = t_strip.c.data();
+    const LevelLayout& to = lod_.layout(sigma + 1);
+    V3* out = dst + to.edge_node(e, 0);
+    const int n = lod_.layout(sigma).n;
+    for (int t = 0; t + 1 < n; ++t) out[2 * t] = edge_vertex(A[t], A[t + 1], B[t], B[t + 1], C[t], C[t + 1]);
+    for (int t = 1; t + 1 < n; ++t)
+      out[2 * t - 1] = vertex_vertex4(A[t], A[t + 1], B[t], A[t - 1], C[t], B[t + 1], B[t - 1], C[t - 1], C[t + 1]);
+    return;
+  }
   const LevelLayout& to = lod_.layout(sigma + 1);
   const int n = lod_.layout(sigma).n;
   const DEdge& d = atlas_.edges[e];
@@ -177,41 +272,52 @@ void MeshProcessor::visit_vertex(int sigma, int v, const V3* src, V3* dst) const
 void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const {
   for_each(atlas_.num_facets(), parallel, 64, [&](int f) { visit_facet(sigma, f, src, dst); });
   for_each(atlas_.num_edges(), parallel, 256, [&](int e) { visit_edge(sigma, e, src, dst); });
-  for_each(atlas_.num_vertices, parallel, 512, [&](int v) { visit_vertex(sigma, v, src, dst); });
+  for_each(atlas_.num_vertices, parallel, 512, [&](int i) { visit_vertex(sigma, vertex_order_[i], src, dst); });
 }
 
 void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
   Tile& t = t_tile;
+  RowScratch& s = t_row;
   t.load(lod_.facet(sigma, f), l.n, src);
+  s.fit(l.s);
   const uint32_t first = l.interior(f);
-  for (int i = 1; i <= l.s; ++i)
-    for (int j = 1; j <= l.s; ++j) {
-      const V3 e[4] = {t.at(i, j + 1), t.at(i + 1, j), t.at(i, j - 1), t.at(i - 1, j)};
-      const V3 d[4] = {t.at(i + 1, j + 1), t.at(i + 1, j - 1), t.at(i - 1, j - 1), t.at(i - 1, j + 1)};
-      const uint32_t node = first + uint32_t(i - 1) * l.s + (j - 1);
-      CatmarkShader::limit_regular(t.at(i, j), e, d, position[node], normal[node]);
+  for (int i = 1; i <= l.s; ++i) {
+    project_row(t, i, s);
+    V3 *p = position + first + size_t(i - 1) * l.s, *q = normal + first + size_t(i - 1) * l.s;
+    for (int j = 0; j < l.s; ++j) {
+      p[j] = {s.row[0][j], s.row[1][j], s.row[2][j]};
+      q[j] = {s.normal[0][j], s.normal[1][j], s.normal[2][j]};
     }
+  }
 }
 
 void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
-  const bool tagged = tags_.slot.size() && tags_.slot[e] >= 0;
-  VertexDisk& disk = t_disk;
-  for (int k = 0; k < l.s; ++k) {
-    gather_edge_node(sigma, e, k + 1, src, disk);
-    const uint32_t node = l.edge_node(e, k);
-    if (tagged)
-      shader_.limit(disk, position[node], normal[node]);
-    else
-      CatmarkShader::limit_regular(disk.c, disk.e.data(), disk.d.data(), position[node], normal[node]);
+  const DEdge& d = atlas_.edges[e];
+  if (tags_.slot[e] >= 0 || d.minor.null()) {
+    VertexDisk& disk = t_disk;
+    for (int k = 0; k < l.s; ++k) {
+      gather_edge_node(sigma, e, k + 1, src, disk);
+      shader_.limit(disk, position[l.edge_node(e, k)], normal[l.edge_node(e, k)]);
+    }
+    return;
+  }
+  load_strip(sigma, e, src);
+  const V3 *A = t_strip.a.data(), *B = t_strip.b.data(), *C = t_strip.c.data();
+  for (int t = 1; t <= l.s; ++t) {
+    // counter-clockwise seen from the major D-facet, as gather_edge_node orders them
+    const V3 ring[4] = {A[t + 1], B[t], A[t - 1], C[t]};
+    const V3 diag[4] = {B[t + 1], B[t - 1], C[t - 1], C[t + 1]};
+    CatmarkShader::limit_regular(A[t], ring, diag, position[l.edge_node(e, t - 1)], normal[l.edge_node(e, t - 1)]);
   }
 }
 
 void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const {
   for_each(atlas_.num_facets(), parallel, 64, [&](int f) { project_facet(sigma, f, src, position, normal); });
   for_each(atlas_.num_edges(), parallel, 256, [&](int e) { project_edge(sigma, e, src, position, normal); });
-  for_each(atlas_.num_vertices, parallel, 512, [&](int v) {
+  for_each(atlas_.num_vertices, parallel, 512, [&](int i) {
+    const int v = vertex_order_[i];
     if (atlas_.valence(v) == 0) {
       position[v] = src[v], normal[v] = {0, 0, 0};
       return;
@@ -241,6 +347,7 @@ void compile_primitives(const DAtlas& atlas, const DLoD& lod, int depth, Tessell
       own(h.facet, side_offset(h.side, n, 0, 0));
     }
   out.triangles.clear();
+  out.triangles.reserve(size_t(atlas.num_facets()) * 6 * (n - 1) * (n - 1));
   for (int f = 0; f < atlas.num_facets(); ++f) {
     if (atlas.facet_hole[f]) continue;
     const uint32_t* idx = lod.facet(depth, f);

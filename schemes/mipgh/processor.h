@@ -19,8 +19,7 @@ namespace sdb::mipgh {
 
 class MeshProcessor {
  public:
-  MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const CatmarkShader& shader)
-      : atlas_(atlas), lod_(lod), tags_(tags), shader_(shader) {}
+  MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const CatmarkShader& shader);
 
   // Level sigma's nodes in `src`, level sigma + 1's written to `dst`.
   void step(int sigma, const V3* src, V3* dst, bool parallel) const;
@@ -37,6 +36,8 @@ class MeshProcessor {
   void gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk) const;
   // The 1-disk of the node at `along` on D-edge e (1 <= along <= n - 2), tags included.
   void gather_edge_node(int sigma, int e, int along, const V3* src, VertexDisk& disk) const;
+  // Reads D-edge e's strip (processor.cpp, Strip) into the thread's scratch.
+  void load_strip(int sigma, int e, const V3* src) const;
   void project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const;
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const;
 
@@ -44,6 +45,7 @@ class MeshProcessor {
   const DLoD& lod_;
   const EdgeTags& tags_;
   const CatmarkShader& shader_;
+  std::vector<int> vertex_order_;
 };
 
 // Primitive compilation at level sigma: two triangles per micro-facet of every D-facet that is not

@@ -129,14 +129,6 @@ V3 CatmarkShader::edge_vertex(const EdgeDisk& disk) const {
   return t_pos.apply(disk);
 }
 
-void CatmarkShader::limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal) {
-  position = (1.0f / 36) * (16.0f * c + 4.0f * ((e[0] + e[2]) + (e[1] + e[3])) + ((d[0] + d[2]) + (d[1] + d[3])));
-  // Figure 21: T1 towards e0, T2 towards e1; d[i] lies between e[i] and e[i + 1].
-  const V3 t1 = 4.0f * (e[0] - e[2]) + ((d[0] + d[3]) - (d[1] + d[2]));
-  const V3 t2 = 4.0f * (e[1] - e[3]) + ((d[0] + d[1]) - (d[2] + d[3]));
-  normal = normalized(cross(t1, t2));
-}
-
 void CatmarkShader::limit(const VertexDisk& disk, V3& position, V3& normal) const {
   const Sdc::Crease crease(options_);
   const Sdc::Crease::Rule rule =
