@@ -11,6 +11,7 @@ uint64_t directed(int32_t a, int32_t b) { return (uint64_t(uint32_t(a)) << 32) |
 
 struct Builder {
   const ControlMesh& m;
+  FacetKinds kinds;
   DAtlas a;
   std::unordered_map<uint64_t, HalfEdge> by_direction;  // (from, to) -> the side running so
 
@@ -18,16 +19,27 @@ struct Builder {
     const int nf = num_faces(m);
     a.num_vertices = num_vertices(m);
     a.facet_corners.resize(nf);
+    a.facet_size.resize(nf);
+    a.quads_before.assign(nf + 1, 0);
     a.facet_hole.assign(nf, 0);
     for (int f : m.holes) a.facet_hole[f] = 1;
     by_direction.reserve(size_t(nf) * 4);
+    size_t first = 0;
     for (int f = 0; f < nf; ++f) {
-      if (m.face_sizes[f] != 4)
-        throw InputError(face_location(m, f), "MiPGH's Catmull-Clark atlas takes quads only (R1), this face has " +
-                                                  std::to_string(m.face_sizes[f]) + " vertices");
-      for (int k = 0; k < 4; ++k) a.facet_corners[f][k] = m.face_vertices[size_t(f) * 4 + k];
-      for (int k = 0; k < 4; ++k) {
-        const int32_t from = a.facet_corners[f][k], to = a.facet_corners[f][(k + 1) & 3];
+      const int size = m.face_sizes[f];
+      const bool ok = (size == 4 && kinds != FacetKinds::Triangles) || (size == 3 && kinds != FacetKinds::Quads);
+      if (!ok)
+        throw InputError(face_location(m, f), std::string("MiPGH's atlas here takes ") +
+                                                  (kinds == FacetKinds::Quads       ? "quads"
+                                                   : kinds == FacetKinds::Triangles ? "triangles"
+                                                                                    : "quads and triangles") +
+                                                  " only (R1), this face has " + std::to_string(size) + " vertices");
+      a.facet_size[f] = static_cast<uint8_t>(size);
+      a.quads_before[f + 1] = a.quads_before[f] + (size == 4);
+      for (int k = 0; k < size; ++k) a.facet_corners[f][k] = m.face_vertices[first + k];
+      first += size;
+      for (int k = 0; k < size; ++k) {
+        const int32_t from = a.facet_corners[f][k], to = a.facet_corners[f][a.next(f, k)];
         if (from == to) throw InputError(face_location(m, f), "a quad with a repeated vertex");
         if (!by_direction.emplace(directed(from, to), HalfEdge{f, k}).second)
           throw InputError(face_location(m, f), "edge " + std::to_string(from) + "-" + std::to_string(to) +
@@ -41,8 +53,8 @@ struct Builder {
     a.facet_edges.resize(nf);
     a.facet_side_minor.resize(nf);
     for (int f = 0; f < nf; ++f)
-      for (int k = 0; k < 4; ++k) {
-        const int32_t from = a.facet_corners[f][k], to = a.facet_corners[f][(k + 1) & 3];
+      for (int k = 0; k < a.facet_size[f]; ++k) {
+        const int32_t from = a.facet_corners[f][k], to = a.facet_corners[f][a.next(f, k)];
         auto twin = by_direction.find(directed(to, from));
         if (twin != by_direction.end() && twin->second.facet < f) continue;  // made from the twin
         const int32_t e = static_cast<int32_t>(a.edges.size());
@@ -66,11 +78,11 @@ struct Builder {
     std::vector<int32_t> incidences(nv + 1, 0);
     std::vector<HalfEdge> first(nv), boundary_start(nv);
     for (int f = 0; f < nf; ++f)
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < a.facet_size[f]; ++k) {
         const int32_t v = a.facet_corners[f][k];
         ++incidences[v];
         if (first[v].null()) first[v] = {f, k};
-        const int32_t next = a.facet_corners[f][(k + 1) & 3];
+        const int32_t next = a.facet_corners[f][a.next(f, k)];
         if (!by_direction.count(directed(next, v))) boundary_start[v] = {f, k};
       }
     a.ring_offsets.assign(nv + 1, 0);
@@ -85,7 +97,7 @@ struct Builder {
       for (int count = 0;; ++count) {
         if (count == incidences[v]) throw nonmanifold(v);
         a.ring.push_back(at);
-        const int32_t prev = a.facet_corners[at.facet][(at.side + 3) & 3];
+        const int32_t prev = a.facet_corners[at.facet][a.prev(at.facet, at.side)];
         auto across = by_direction.find(directed(v, prev));
         if (across == by_direction.end()) break;  // the other boundary edge
         at = {across->second.facet, across->second.side};
@@ -104,8 +116,8 @@ struct Builder {
 
 }  // namespace
 
-DAtlas build_atlas(const ControlMesh& quads) {
-  Builder b{quads, {}, {}};
+DAtlas build_atlas(const ControlMesh& mesh, FacetKinds kinds) {
+  Builder b{mesh, kinds, {}, {}};
   b.facets();
   b.edges();
   b.rings();

@@ -1,6 +1,6 @@
 // The D-atlas (Shiue, Goel, Peters 2003, Section 3.2, Figures 9-12): the input mesh's connectivity
-// as charts, fixed after initialization. One D-facet per input quad, D-edges as pairs of
-// halfedges, D-vertices as rings of (D-facet, corner) pairs. Plain data; nothing here knows
+// as charts, fixed after initialization. One D-facet per input quad or triangle, D-edges as pairs
+// of halfedges, D-vertices as rings of (D-facet, corner) pairs. Plain data; nothing here knows
 // positions or levels (lod.h lays the levels out).
 #pragma once
 
@@ -28,6 +28,8 @@ struct DEdge {
 
 struct DAtlas {
   int num_vertices = 0;  // D-vertices: one per input vertex, same index
+  std::vector<uint8_t> facet_size;                    // 4: quad, 3: triangle
+  std::vector<int32_t> quads_before;                  // quads among D-facets 0 .. f - 1 (size + 1)
   std::vector<std::array<int32_t, 4>> facet_corners;  // input vertex at corner k, counter-clockwise
   std::vector<std::array<int32_t, 4>> facet_edges;    // the D-edge of side k
   std::vector<std::array<uint8_t, 4>> facet_side_minor;  // 1 where side k is its edge's minor halfedge
@@ -43,12 +45,18 @@ struct DAtlas {
   std::vector<uint8_t> vertex_boundary;
 
   int num_facets() const { return static_cast<int>(facet_corners.size()); }
+  int next(int f, int k) const { return k + 1 == facet_size[f] ? 0 : k + 1; }
+  int prev(int f, int k) const { return k == 0 ? facet_size[f] - 1 : k - 1; }
   int num_edges() const { return static_cast<int>(edges.size()); }
   int valence(int v) const { return ring_offsets[v + 1] - ring_offsets[v]; }
 };
 
-// Throws InputError naming the face's line where the mesh is not an oriented manifold of quads
-// (the harness quadrangulates first; this is the scheme's own check of its R1 restriction).
-DAtlas build_atlas(const ControlMesh& quads);
+// Which D-facets a mesh shader takes (R1): the harness quadrangulates or refuses first; this is
+// the scheme's own check.
+enum class FacetKinds { Quads, Triangles, QuadsAndTriangles };
+
+// Throws InputError naming the face's line where the mesh is not an oriented manifold of the
+// facets `kinds` allows.
+DAtlas build_atlas(const ControlMesh& mesh, FacetKinds kinds = FacetKinds::Quads);
 
 }  // namespace sdb::mipgh

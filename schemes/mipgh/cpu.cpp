@@ -8,34 +8,34 @@
 namespace sdb::mipgh {
 namespace {
 
-EdgeTags tags_of(const ControlMesh& mesh, const DAtlas& atlas, int depth) {
-  const auto refiner = make_refiner(mesh, SubdivisionRule::CatmullClark);
+EdgeTags tags_of(const ControlMesh& mesh, SubdivisionRule rule, const DAtlas& atlas, int depth) {
+  const auto refiner = make_refiner(mesh, rule);
   return build_tags(atlas, refiner->GetLevel(0), sdc_options(mesh), depth);
 }
 
 // Far makes holes of the faces it is told of, and under the boundary rule "none" of every face
 // at a boundary vertex: primitive compilation skips the same ones.
-void mark_far_holes(const ControlMesh& mesh, DAtlas& atlas) {
-  const auto refiner = make_refiner(mesh, SubdivisionRule::CatmullClark);
+void mark_far_holes(const ControlMesh& mesh, SubdivisionRule rule, DAtlas& atlas) {
+  const auto refiner = make_refiner(mesh, rule);
   const auto& base = refiner->GetLevel(0);
   for (int f = 0; f < atlas.num_facets(); ++f) atlas.facet_hole[f] |= base.IsFaceHole(f);
 }
 
 }  // namespace
 
-CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, int depth, bool multithreaded, int threads,
-                                       bool project_to_limit)
+CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool multithreaded,
+                                       int threads, bool project_to_limit)
     : control_(mesh.positions),
-      atlas_(build_atlas(mesh)),
+      atlas_(build_atlas(mesh, rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads)),
       lod_(atlas_, project_to_limit ? limit_depth_for(mesh, depth) : depth),
-      tags_(tags_of(mesh, atlas_, lod_.depth())),
-      shader_(sdc_options(mesh)),
-      processor_(atlas_, lod_, tags_, shader_),
+      tags_(tags_of(mesh, rule, atlas_, lod_.depth())),
+      shader_(make_shader(rule, sdc_options(mesh))),
+      processor_(atlas_, lod_, tags_, *shader_),
       multithreaded_(multithreaded),
       project_(project_to_limit),
       depth_(depth) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
-  mark_far_holes(mesh, atlas_);
+  mark_far_holes(mesh, rule, atlas_);
   const Bounds box = bounds_of(control_);
   for (int k = 0; k < 3; ++k) origin_[k] = static_cast<float>(box.centre(k));
   const uint32_t inner_nodes = lod_.layout(lod_.depth()).num_nodes, nodes = lod_.layout(depth).num_nodes;

@@ -17,7 +17,8 @@ namespace sdb::mipgh {
 
 class CpuMipghEvaluation final : public Evaluation {
  public:
-  CpuMipghEvaluation(const ControlMesh& mesh, int depth, bool multithreaded, int threads, bool project_to_limit);
+  CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool multithreaded, int threads,
+                     bool project_to_limit);
   void execute() override;
   const Tessellation& result() override { return out_; }
   size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
@@ -30,7 +31,7 @@ class CpuMipghEvaluation final : public Evaluation {
   DAtlas atlas_;
   DLoD lod_;
   EdgeTags tags_;
-  CatmarkShader shader_;
+  std::unique_ptr<MeshShader> shader_;
   MeshProcessor processor_;
   bool multithreaded_, project_;
   std::unique_ptr<tbb::task_arena> arena_;

@@ -15,34 +15,36 @@ LevelLayout level_layout(const DAtlas& atlas, int sigma) {
   l.s = l.n - 2;
   l.edge_base = static_cast<uint32_t>(atlas.num_vertices);
   l.facet_base = l.edge_base + uint32_t(atlas.num_edges()) * l.s;
-  l.num_nodes = l.facet_base + uint32_t(atlas.num_facets()) * l.s * l.s;
+  l.quads_before = atlas.quads_before.data();
+  l.num_nodes = l.interior(atlas.num_facets());
   return l;
 }
 
 double node_count(const DAtlas& atlas, int sigma) {
-  const double s = std::ldexp(1.0, sigma) - 1;
-  return atlas.num_vertices + atlas.num_edges() * s + atlas.num_facets() * s * s;
+  const double s = std::ldexp(1.0, sigma) - 1, quads = atlas.quads_before.back();
+  return atlas.num_vertices + atlas.num_edges() * s + quads * s * s + (atlas.num_facets() - quads) * s * (s - 1) / 2;
 }
 
-DLoD::DLoD(const DAtlas& atlas, int depth) {
+DLoD::DLoD(const DAtlas& atlas, int depth) : quads_before_(atlas.quads_before.data()) {
+  const size_t quads = atlas.quads_before.back(), tris = atlas.num_facets() - quads;
   for (int sigma = 0; sigma <= depth; ++sigma) {
     const LevelLayout l = level_layout(atlas, sigma);
     layouts_.push_back(l);
     const int n = l.n, s = l.s;
-    std::vector<uint32_t> idx(size_t(atlas.num_facets()) * n * n);
+    facets_.emplace_back(quads * n * n + tris * (size_t(n) * (n + 1) / 2));
     for (int f = 0; f < atlas.num_facets(); ++f) {
-      uint32_t* d = idx.data() + size_t(f) * n * n;
-      for (int k = 0; k < 4; ++k) {
-        d[side_offset(k, n, 0, 0)] = static_cast<uint32_t>(atlas.facet_corners[f][k]);
+      uint32_t* d = const_cast<uint32_t*>(facet(sigma, f));
+      const int size = atlas.facet_size[f];
+      for (int k = 0; k < size; ++k) {
+        d[facet_side_offset(size, k, n, 0, 0)] = static_cast<uint32_t>(atlas.facet_corners[f][k]);
         const int e = atlas.facet_edges[f][k];
         const bool minor = atlas.facet_side_minor[f][k];
-        for (int a = 1; a <= s; ++a) d[side_offset(k, n, a, 0)] = l.edge_node(e, minor ? s - a : a - 1);
+        for (int a = 1; a <= s; ++a) d[facet_side_offset(size, k, n, a, 0)] = l.edge_node(e, minor ? s - a : a - 1);
       }
-      const uint32_t inside = l.interior(f);
+      uint32_t inside = l.interior(f);  // row-major, as the D-facet visit writes them
       for (int i = 1; i <= s; ++i)
-        for (int j = 1; j <= s; ++j) d[i * n + j] = inside + uint32_t(i - 1) * s + (j - 1);
+        for (int j = 1; size == 4 ? j <= s : i + j <= s; ++j) d[size == 4 ? i * n + j : tri_offset(n, i, j)] = inside++;
     }
-    facets_.push_back(std::move(idx));
   }
 }
 
@@ -61,7 +63,7 @@ void sharpness_around(const DAtlas& atlas, const EdgeTags& tags, int sigma, int 
   for (int i = atlas.ring_offsets[v]; i < atlas.ring_offsets[v + 1]; ++i) out.push_back(near_v(atlas.ring[i].facet, atlas.ring[i].side, true));
   if (atlas.vertex_boundary[v] && atlas.valence(v) > 0) {
     const HalfEdge& lastf = atlas.ring[atlas.ring_offsets[v + 1] - 1];
-    out.push_back(near_v(lastf.facet, (lastf.side + 3) & 3, false));
+    out.push_back(near_v(lastf.facet, atlas.prev(lastf.facet, lastf.side), false));
   }
 }
 
@@ -74,7 +76,7 @@ EdgeTags build_tags(const DAtlas& atlas, const OpenSubdiv::Far::TopologyLevel& b
   std::vector<float> level0;
   for (int e = 0; e < atlas.num_edges(); ++e) {
     const HalfEdge& h = atlas.edges[e].major;
-    const int far = base.FindEdge(atlas.facet_corners[h.facet][h.side], atlas.facet_corners[h.facet][(h.side + 1) & 3]);
+    const int far = base.FindEdge(atlas.facet_corners[h.facet][h.side], atlas.facet_corners[h.facet][atlas.next(h.facet, h.side)]);
     const float s = far < 0 ? 0.0f : base.GetEdgeSharpness(far);
     if (s > 0) t.slot[e] = static_cast<int32_t>(level0.size()), level0.push_back(s);
   }
@@ -100,8 +102,11 @@ EdgeTags build_tags(const DAtlas& atlas, const OpenSubdiv::Far::TopologyLevel& b
       float* ce = c.data() + (size_t(t.slot[e]) << (sigma + 1));
       const DEdge& d = atlas.edges[e];
       const int v0 = atlas.facet_corners[d.major.facet][d.major.side];
-      const int v1 = atlas.facet_corners[d.major.facet][(d.major.side + 1) & 3];
-      const int interior_valence = d.minor.null() ? 3 : 4;
+      const int v1 = atlas.facet_corners[d.major.facet][atlas.next(d.major.facet, d.major.side)];
+      // A node inside a D-edge has 4 edges between quads, 6 between triangles (one fewer each
+      // way on a boundary); only the two along the D-edge can be sharp.
+      auto inner_edges = [&](const HalfEdge& h) { return h.null() ? 0 : atlas.facet_size[h.facet] == 4 ? 1 : 2; };
+      const int interior_valence = 2 + inner_edges(d.major) + inner_edges(d.minor);
       for (int k = 0; k < m; ++k) {
         if (crease.IsUniform() || Sdc::Crease::IsInfinite(pe[k])) {
           ce[2 * k] = ce[2 * k + 1] = crease.SubdivideUniformSharpness(pe[k]);
@@ -114,7 +119,7 @@ EdgeTags build_tags(const DAtlas& atlas, const OpenSubdiv::Far::TopologyLevel& b
             const std::vector<float>& a = at_vertex[node == 0 ? v0 : v1];
             ce[2 * k + h] = crease.SubdivideEdgeSharpnessAtVertex(pe[k], static_cast<int>(a.size()), a.data());
           } else {
-            float a[4] = {pe[node - 1], pe[node], 0.0f, 0.0f};
+            float a[6] = {pe[node - 1], pe[node], 0.0f, 0.0f, 0.0f, 0.0f};
             ce[2 * k + h] = crease.SubdivideEdgeSharpnessAtVertex(pe[k], interior_valence, a);
           }
         }

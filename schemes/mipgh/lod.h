@@ -16,40 +16,65 @@ namespace sdb::mipgh {
 
 struct LevelLayout {
   int n = 2;  // nodes along a D-facet's side: 2^sigma + 1
-  int s = 0;  // nodes strictly inside a D-edge: n - 2 (s^2 inside a D-facet)
+  int s = 0;  // nodes strictly inside a D-edge: n - 2 (s^2 inside a quad, s(s-1)/2 a triangle)
   uint32_t edge_base = 0, facet_base = 0, num_nodes = 0;
+  const int32_t* quads_before = nullptr;  // the atlas's
 
   uint32_t edge_node(int e, int k) const { return edge_base + uint32_t(e) * s + k; }
-  uint32_t interior(int f) const { return facet_base + uint32_t(f) * s * s; }
+  uint32_t interior(int f) const {
+    const uint32_t q = quads_before[f], t = uint32_t(f) - q;
+    return facet_base + q * s * s + t * (s * (s - 1) / 2);
+  }
 };
+
+// A triangular D-facet's row-major array (Figure 10): row i holds n - i nodes.
+inline int tri_offset(int n, int i, int j) { return i * n - i * (i - 1) / 2 + j; }
 
 LevelLayout level_layout(const DAtlas& atlas, int sigma);
 // Nodes at level sigma, in double: for size checks before anything is allocated.
 double node_count(const DAtlas& atlas, int sigma);
 
-// Row-major (row i, column j) <-> (along a, depth b) on side k: side k's frame has a = 0 at
-// corner k, a = n - 1 at corner k + 1, b counting into the facet.
-inline int side_offset(int side, int n, int a, int b) {
-  switch (side & 3) {
-    case 0: return b * n + a;
-    case 1: return a * n + (n - 1 - b);
-    case 2: return (n - 1 - b) * n + (n - 1 - a);
-    default: return (n - 1 - a) * n + b;
+// (along a, depth b) on side k -> (row i, column j) of a D-facet's array. Side k's frame has a = 0
+// at corner k, a = n - 1 at corner k + 1, b counting into the facet. A quad's rows run along side
+// 0 from corner 0; a triangle's too (row i holds n - i nodes, column j along side 0, row along
+// side 2 back to corner 0), and its frames are used at b = 0 and 1 only: the row one in from a
+// side has n - 1 nodes, node a of it next to the side's nodes a and a + 1 (the strip a D-edge
+// visit reads).
+struct RowColumn {
+  int i, j;
+};
+inline RowColumn side_ij(int size, int side, int n, int a, int b) {
+  if (size == 4) switch (side) {
+      case 0: return {b, a};
+      case 1: return {a, n - 1 - b};
+      case 2: return {n - 1 - b, n - 1 - a};
+      default: return {n - 1 - a, b};
+    }
+  switch (side) {
+    case 0: return {b, a};
+    case 1: return {a, n - 1 - b - a};
+    default: return {n - 1 - b - a, b};
   }
 }
+inline int facet_offset(int size, int n, RowColumn p) { return size == 4 ? p.i * n + p.j : tri_offset(n, p.i, p.j); }
+inline int facet_side_offset(int size, int side, int n, int a, int b) {
+  return facet_offset(size, n, side_ij(size, side, n, a, b));
+}
+inline int side_offset(int side, int n, int a, int b) { return facet_side_offset(4, side, n, a, b); }
 
 class DLoD {
  public:
   DLoD(const DAtlas& atlas, int depth);
   const LevelLayout& layout(int sigma) const { return layouts_[sigma]; }
-  // D-facet f's n x n node indices at level sigma.
+  // D-facet f's node indices at level sigma: n x n for a quad, n(n+1)/2 for a triangle.
   const uint32_t* facet(int sigma, int f) const {
-    const int n = layouts_[sigma].n;
-    return facets_[sigma].data() + size_t(f) * n * n;
+    const size_t n = layouts_[sigma].n, q = quads_before_[f], t = size_t(f) - q;
+    return facets_[sigma].data() + q * n * n + t * (n * (n + 1) / 2);
   }
   int depth() const { return static_cast<int>(layouts_.size()) - 1; }
 
  private:
+  const int32_t* quads_before_;
   std::vector<LevelLayout> layouts_;
   std::vector<std::vector<uint32_t>> facets_;
 };

@@ -12,7 +12,7 @@ namespace sdb::mipgh {
 
 // project_to_limit = false returns the last level's refined nodes (the exactness oracle's side);
 // normals stay the limit normals.
-std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, const RunRequest& request,
+std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& request,
                                             bool project_to_limit = true);
 
 }  // namespace sdb::mipgh

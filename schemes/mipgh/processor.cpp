@@ -25,14 +25,23 @@ void for_each(int count, bool parallel, int grain, F&& f) {
 struct Tile {
   std::vector<float> plane[3];
   int n = 0;
-  void load(const uint32_t* idx, int size, const V3* src) {
+  // A triangle's rows (n - i nodes each) go to the square's lower-left half.
+  void load(const uint32_t* idx, int size, const V3* src, bool quad) {
     n = size;
     for (auto& p : plane) p.resize(size_t(n) * n);
     float *x = plane[0].data(), *y = plane[1].data(), *z = plane[2].data();
-    for (int i = 0; i < n * n; ++i) {
-      const V3 p = src[idx[i]];
-      x[i] = p.x, y[i] = p.y, z[i] = p.z;
+    if (quad) {
+      for (int i = 0; i < n * n; ++i) {
+        const V3 p = src[idx[i]];
+        x[i] = p.x, y[i] = p.y, z[i] = p.z;
+      }
+      return;
     }
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        const V3 p = src[*idx++];
+        x[i * n + j] = p.x, y[i * n + j] = p.y, z[i * n + j] = p.z;
+      }
   }
 };
 
@@ -48,6 +57,7 @@ struct RowScratch {
 // from the major halfedge's first corner).
 struct Strip {
   std::vector<V3> a, b, c;
+  bool quad_major = true, quad_minor = true;
 };
 
 thread_local Tile t_tile;
@@ -106,16 +116,42 @@ void project_row(const Tile& t, int i, RowScratch& s) {
   }
 }
 
+// Loop's refined interior of a triangular D-facet, one node at a time: target (r, c) with
+// r, c >= 1 and r + c <= 2n - 3, row-major as the layout stores them. p is the tile's plane k at
+// (i, j) = p[i * n + j] (the triangle's nodes in the square's lower-left half).
+void refine_triangle(const Tile& t, V3* out) {
+  const int n = t.n, m = 2 * n - 2;
+  auto P = [&](int i, int j) {
+    const size_t o = size_t(i) * n + j;
+    return V3{t.plane[0][o], t.plane[1][o], t.plane[2][o]};
+  };
+  for (int r = 1; r < m; ++r)
+    for (int c = 1; r + c < m; ++c) {
+      const int a = r >> 1, b = c >> 1;
+      if (!(r & 1) && !(c & 1))
+        *out++ = loop_vertex6(P(a, b), P(a, b + 1), P(a + 1, b), P(a + 1, b - 1), P(a, b - 1), P(a - 1, b),
+                              P(a - 1, b + 1));
+      else if (!(r & 1))  // (a, b)-(a, b+1)
+        *out++ = loop_edge_vertex(P(a, b), P(a, b + 1), P(a + 1, b), P(a - 1, b + 1));
+      else if (!(c & 1))  // (a, b)-(a+1, b)
+        *out++ = loop_edge_vertex(P(a, b), P(a + 1, b), P(a, b + 1), P(a + 1, b - 1));
+      else  // the diagonal (a, b+1)-(a+1, b)
+        *out++ = loop_edge_vertex(P(a, b + 1), P(a + 1, b), P(a, b), P(a + 1, b + 1));
+    }
+}
+
 }  // namespace
 
 void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const {
   const LevelLayout& to = lod_.layout(sigma + 1);
-  Tile& t = t_tile;
-  RowScratch& s = t_row;
   const int n = lod_.layout(sigma).n, width = to.s;  // target rows and columns 1 .. width
-  t.load(lod_.facet(sigma, f), n, src);
-  s.fit(width);
+  Tile& t = t_tile;
+  const bool quad = atlas_.facet_size[f] == 4;
+  t.load(lod_.facet(sigma, f), n, src, quad);
   V3* out = dst + to.interior(f);
+  if (!quad) return refine_triangle(t, out);
+  RowScratch& s = t_row;
+  s.fit(width);
   for (int r = 1; r <= width; ++r, out += width) {
     for (int k = 0; k < 3; ++k) refine_row(t.plane[k].data(), n, r, s.row[k].data());
     const float *x = s.row[0].data(), *y = s.row[1].data(), *z = s.row[2].data();
@@ -123,35 +159,7 @@ void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const 
   }
 }
 
-void MeshProcessor::gather_edge_node(int sigma, int e, int along, const V3* src, VertexDisk& disk) const {
-  const int n = lod_.layout(sigma).n;
-  const DEdge& d = atlas_.edges[e];
-  const uint32_t* f = lod_.facet(sigma, d.major.facet);
-  auto A = [&](int t) { return src[f[side_offset(d.major.side, n, t, 0)]]; };
-  auto B = [&](int t) { return src[f[side_offset(d.major.side, n, t, 1)]]; };
-  const bool boundary = d.minor.null();
-  disk.resize(boundary ? 3 : 4, boundary ? 2 : 4);
-  // Counter-clockwise seen from the major D-facet: along +, into it, along -, into the minor one.
-  disk.c = A(along);
-  disk.e[0] = A(along + 1), disk.e[1] = B(along), disk.e[2] = A(along - 1);
-  disk.d[0] = B(along + 1), disk.d[1] = B(along - 1);
-  if (!boundary) {
-    const uint32_t* g = lod_.facet(sigma, d.minor.facet);
-    auto C = [&](int t) { return src[g[side_offset(d.minor.side, n, n - 1 - t, 1)]]; };
-    disk.e[3] = C(along);
-    disk.d[2] = C(along - 1), disk.d[3] = C(along + 1);
-  }
-  disk.sharpness = disk.child_sharpness = 0;
-  for (int i = 0; i < disk.edges; ++i) disk.edge_sharpness[i] = disk.child_edge_sharpness[i] = 0;
-  disk.edge_sharpness[0] = tags_.micro_edge(sigma, e, along);
-  disk.edge_sharpness[2] = tags_.micro_edge(sigma, e, along - 1);
-  if (sigma < lod_.depth()) {
-    disk.child_edge_sharpness[0] = tags_.micro_edge(sigma + 1, e, 2 * along);
-    disk.child_edge_sharpness[2] = tags_.micro_edge(sigma + 1, e, 2 * along - 1);
-  }
-}
-
-MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const CatmarkShader& shader)
+MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const MeshShader& shader)
     : atlas_(atlas), lod_(lod), tags_(tags), shader_(shader), vertex_order_(atlas.num_vertices) {
   // A D-vertex's ring lies in the D-facets around it, far apart in memory at fine levels: visited
   // in the order of their first D-facet they follow the facets' storage instead of jumping.
@@ -165,64 +173,90 @@ void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
   const DEdge& d = atlas_.edges[e];
   Strip& s = t_strip;
   s.a.resize(n), s.b.resize(n), s.c.resize(n);
+  const int fs = atlas_.facet_size[d.major.facet];
   const uint32_t* f = lod_.facet(sigma, d.major.facet);
-  for (int t = 0; t < n; ++t)
-    s.a[t] = src[f[side_offset(d.major.side, n, t, 0)]], s.b[t] = src[f[side_offset(d.major.side, n, t, 1)]];
+  for (int t = 0; t < n; ++t) s.a[t] = src[f[facet_side_offset(fs, d.major.side, n, t, 0)]];
+  // the row one in: n nodes in a quad, n - 1 in a triangle (node t next to a[t] and a[t + 1])
+  for (int t = 0; t < n - (fs == 3); ++t) s.b[t] = src[f[facet_side_offset(fs, d.major.side, n, t, 1)]];
+  s.quad_major = fs == 4;
   if (d.minor.null()) return;
+  const int gs = atlas_.facet_size[d.minor.facet];
   const uint32_t* g = lod_.facet(sigma, d.minor.facet);
-  for (int t = 0; t < n; ++t) s.c[t] = src[g[side_offset(d.minor.side, n, n - 1 - t, 1)]];
+  s.quad_minor = gs == 4;
+  // c[t] runs the major's way: a quad's node across from a[t]; a triangle's between a[t], a[t + 1]
+  const int last = gs == 4 ? n - 1 : n - 2;
+  for (int t = 0; t <= last; ++t) s.c[t] = src[g[facet_side_offset(gs, d.minor.side, n, last - t, 1)]];
+}
+
+// The 1-disk of the strip's node t, counter-clockwise seen from the major D-facet: along +, the
+// major side's inner nodes, along -, the minor side's.
+void MeshProcessor::strip_disk(int sigma, int e, int t, VertexDisk& disk) const {
+  const Strip& s = t_strip;
+  const bool boundary = atlas_.edges[e].minor.null();
+  const int major_edges = s.quad_major ? 1 : 2, minor_edges = boundary ? 0 : s.quad_minor ? 1 : 2;
+  disk.resize(2 + major_edges + minor_edges, 1 + major_edges + (boundary ? 0 : minor_edges + 1));
+  disk.c = s.a[t];
+  int k = 0, q = 0;
+  disk.e[k++] = s.a[t + 1];
+  if (s.quad_major) {
+    disk.d[q++] = s.b[t + 1], disk.e[k++] = s.b[t], disk.d[q++] = s.b[t - 1];
+  } else {
+    disk.d[q++] = s.a[t], disk.e[k++] = s.b[t], disk.d[q++] = s.a[t], disk.e[k++] = s.b[t - 1], disk.d[q++] = s.a[t];
+  }
+  const int back = k;
+  disk.e[k++] = s.a[t - 1];
+  if (!boundary) {
+    if (s.quad_minor) {
+      disk.d[q++] = s.c[t - 1], disk.e[k++] = s.c[t], disk.d[q++] = s.c[t + 1];
+    } else {
+      disk.d[q++] = s.a[t], disk.e[k++] = s.c[t - 1], disk.d[q++] = s.a[t], disk.e[k++] = s.c[t], disk.d[q++] = s.a[t];
+    }
+  }
+  disk.sharpness = disk.child_sharpness = 0;
+  for (int i = 0; i < disk.edges; ++i) disk.edge_sharpness[i] = disk.child_edge_sharpness[i] = 0;
+  disk.edge_sharpness[0] = tags_.micro_edge(sigma, e, t);
+  disk.edge_sharpness[back] = tags_.micro_edge(sigma, e, t - 1);
+  if (sigma < lod_.depth()) {
+    disk.child_edge_sharpness[0] = tags_.micro_edge(sigma + 1, e, 2 * t);
+    disk.child_edge_sharpness[back] = tags_.micro_edge(sigma + 1, e, 2 * t - 1);
+  }
 }
 
 void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
-  const DEdge& de = atlas_.edges[e];
-  if (tags_.slot[e] < 0 && !de.minor.null()) {  // Figure 20's stencils along the strip
-    load_strip(sigma, e, src);
-    const V3 *A = t_strip.a.data(), *B = t_strip.b.data(), *C = t_strip.c.data();
-    const LevelLayout& to = lod_.layout(sigma + 1);
-    V3* out = dst + to.edge_node(e, 0);
-    const int n = lod_.layout(sigma).n;
-    for (int t = 0; t + 1 < n; ++t) out[2 * t] = edge_vertex(A[t], A[t + 1], B[t], B[t + 1], C[t], C[t + 1]);
-    for (int t = 1; t + 1 < n; ++t)
-      out[2 * t - 1] = vertex_vertex4(A[t], A[t + 1], B[t], A[t - 1], C[t], B[t + 1], B[t - 1], C[t - 1], C[t + 1]);
+  const DEdge& d = atlas_.edges[e];
+  load_strip(sigma, e, src);
+  const Strip& s = t_strip;
+  const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
+  const int n = lod_.layout(sigma).n;
+  V3* out = dst + lod_.layout(sigma + 1).edge_node(e, 0);
+  const bool boundary = d.minor.null();
+  if (tags_.slot[e] < 0 && !boundary && s.quad_major == s.quad_minor) {  // tag-free: the fast paths
+    if (s.quad_major) {  // Figure 20
+      for (int t = 0; t + 1 < n; ++t) out[2 * t] = edge_vertex(A[t], A[t + 1], B[t], B[t + 1], C[t], C[t + 1]);
+      for (int t = 1; t + 1 < n; ++t)
+        out[2 * t - 1] = vertex_vertex4(A[t], A[t + 1], B[t], A[t - 1], C[t], B[t + 1], B[t - 1], C[t - 1], C[t + 1]);
+    } else {  // Loop
+      for (int t = 0; t + 1 < n; ++t) out[2 * t] = loop_edge_vertex(A[t], A[t + 1], B[t], C[t]);
+      for (int t = 1; t + 1 < n; ++t)
+        out[2 * t - 1] = loop_vertex6(A[t], A[t + 1], B[t], B[t - 1], A[t - 1], C[t - 1], C[t]);
+    }
     return;
   }
-  const LevelLayout& to = lod_.layout(sigma + 1);
-  const int n = lod_.layout(sigma).n;
-  const DEdge& d = atlas_.edges[e];
-  const uint32_t* f = lod_.facet(sigma, d.major.facet);
-  auto A = [&](int t) { return src[f[side_offset(d.major.side, n, t, 0)]]; };
-  auto B = [&](int t) { return src[f[side_offset(d.major.side, n, t, 1)]]; };
-  const uint32_t* g = d.minor.null() ? nullptr : lod_.facet(sigma, d.minor.facet);
-  auto C = [&](int t) { return src[g[side_offset(d.minor.side, n, n - 1 - t, 1)]]; };
-  const bool tagged = tags_.slot.size() && tags_.slot[e] >= 0;
-  V3* out = dst + to.edge_node(e, 0);
-  for (int k = 0; k < to.s; ++k) {
-    const int tt = k + 1;  // position along the edge at sigma + 1
-    if (tt & 1) {
-      const int t = tt >> 1;
-      if (!tagged) {
-        out[k] = edge_vertex(A(t), A(t + 1), B(t), B(t + 1), C(t), C(t + 1));
-        continue;
-      }
-      EdgeDisk disk;
-      disk.faces = g ? 2 : 1;
-      disk.v0 = A(t), disk.v1 = A(t + 1);
-      disk.f[0][0] = B(t), disk.f[0][1] = B(t + 1);
-      if (g) disk.f[1][0] = C(t), disk.f[1][1] = C(t + 1);
-      disk.sharpness = tags_.micro_edge(sigma, e, t);
-      disk.child_sharpness[0] = tags_.micro_edge(sigma + 1, e, 2 * t);
-      disk.child_sharpness[1] = tags_.micro_edge(sigma + 1, e, 2 * t + 1);
-      out[k] = shader_.edge_vertex(disk);
-    } else {
-      const int t = tt >> 1;
-      if (!tagged) {
-        out[k] = vertex_vertex4(A(t), A(t + 1), B(t), A(t - 1), C(t), B(t + 1), B(t - 1), C(t - 1), C(t + 1));
-        continue;
-      }
-      VertexDisk& disk = t_disk;
-      gather_edge_node(sigma, e, t, src, disk);
-      out[k] = shader_.vertex_vertex(disk);
-    }
+  for (int t = 0; t + 1 < n; ++t) {
+    EdgeDisk disk;
+    disk.faces = boundary ? 1 : 2;
+    disk.v0 = A[t], disk.v1 = A[t + 1];
+    disk.f[0][0] = B[t], disk.f[0][1] = s.quad_major ? B[t + 1] : B[t];
+    if (!boundary) disk.f[1][0] = C[t], disk.f[1][1] = s.quad_minor ? C[t + 1] : C[t];
+    disk.sharpness = tags_.micro_edge(sigma, e, t);
+    disk.child_sharpness[0] = tags_.micro_edge(sigma + 1, e, 2 * t);
+    disk.child_sharpness[1] = tags_.micro_edge(sigma + 1, e, 2 * t + 1);
+    out[2 * t] = shader_.edge_vertex(disk);
+  }
+  VertexDisk& disk = t_disk;
+  for (int t = 1; t + 1 < n; ++t) {
+    strip_disk(sigma, e, t, disk);
+    out[2 * t - 1] = shader_.vertex_vertex(disk);
   }
 }
 
@@ -243,15 +277,17 @@ void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& d
   for (int i = 0; i < faces; ++i) {
     const HalfEdge& h = atlas_.ring[begin + i];
     const uint32_t* idx = lod_.facet(sigma, h.facet);
-    disk.e[i] = src[idx[side_offset(h.side, n, 1, 0)]];
-    disk.d[i] = src[idx[side_offset(h.side, n, 1, 1)]];
+    const int size = atlas_.facet_size[h.facet];
+    disk.e[i] = src[idx[facet_side_offset(size, h.side, n, 1, 0)]];
+    // a quad's corner across from v (a triangle has none: Loop's masks weigh no faces)
+    disk.d[i] = size == 4 ? src[idx[side_offset(h.side, n, 1, 1)]] : disk.c;
     disk.edge_sharpness[i] = tags_.any ? sharpness(sigma, h.facet, h.side, true) : 0.0f;
     disk.child_edge_sharpness[i] = child ? sharpness(sigma + 1, h.facet, h.side, true) : 0.0f;
   }
   if (boundary) {
     const HalfEdge& h = atlas_.ring[begin + faces - 1];
-    const int side = (h.side + 3) & 3;
-    disk.e[faces] = src[lod_.facet(sigma, h.facet)[side_offset(side, n, n - 2, 0)]];
+    const int size = atlas_.facet_size[h.facet], side = atlas_.prev(h.facet, h.side);
+    disk.e[faces] = src[lod_.facet(sigma, h.facet)[facet_side_offset(size, side, n, n - 2, 0)]];
     disk.edge_sharpness[faces] = tags_.any ? sharpness(sigma, h.facet, side, false) : 0.0f;
     disk.child_edge_sharpness[faces] = child ? sharpness(sigma + 1, h.facet, side, false) : 0.0f;
   }
@@ -278,10 +314,25 @@ void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const
 void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
   Tile& t = t_tile;
-  RowScratch& s = t_row;
-  t.load(lod_.facet(sigma, f), l.n, src);
-  s.fit(l.s);
+  const bool quad = atlas_.facet_size[f] == 4;
+  t.load(lod_.facet(sigma, f), l.n, src, quad);
   const uint32_t first = l.interior(f);
+  if (!quad) {  // Loop's regular limit at every interior node, row-major
+    const int n = l.n;
+    auto P = [&](int i, int j) {
+      const size_t o = size_t(i) * n + j;
+      return V3{t.plane[0][o], t.plane[1][o], t.plane[2][o]};
+    };
+    uint32_t node = first;
+    for (int i = 1; i < n; ++i)
+      for (int j = 1; i + j < n - 1; ++j, ++node) {
+        const V3 e[6] = {P(i, j + 1), P(i + 1, j), P(i + 1, j - 1), P(i, j - 1), P(i - 1, j), P(i - 1, j + 1)};
+        loop_limit_regular(P(i, j), e, position[node], normal[node]);
+      }
+    return;
+  }
+  RowScratch& s = t_row;
+  s.fit(l.s);
   for (int i = 1; i <= l.s; ++i) {
     project_row(t, i, s);
     V3 *p = position + first + size_t(i - 1) * l.s, *q = normal + first + size_t(i - 1) * l.s;
@@ -295,21 +346,27 @@ void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position,
 void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
   const DEdge& d = atlas_.edges[e];
-  if (tags_.slot[e] >= 0 || d.minor.null()) {
+  load_strip(sigma, e, src);
+  const Strip& s = t_strip;
+  if (tags_.slot[e] >= 0 || d.minor.null() || s.quad_major != s.quad_minor) {
     VertexDisk& disk = t_disk;
-    for (int k = 0; k < l.s; ++k) {
-      gather_edge_node(sigma, e, k + 1, src, disk);
-      shader_.limit(disk, position[l.edge_node(e, k)], normal[l.edge_node(e, k)]);
+    for (int t = 1; t <= l.s; ++t) {
+      strip_disk(sigma, e, t, disk);
+      shader_.limit(disk, position[l.edge_node(e, t - 1)], normal[l.edge_node(e, t - 1)]);
     }
     return;
   }
-  load_strip(sigma, e, src);
-  const V3 *A = t_strip.a.data(), *B = t_strip.b.data(), *C = t_strip.c.data();
+  const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
   for (int t = 1; t <= l.s; ++t) {
-    // counter-clockwise seen from the major D-facet, as gather_edge_node orders them
-    const V3 ring[4] = {A[t + 1], B[t], A[t - 1], C[t]};
-    const V3 diag[4] = {B[t + 1], B[t - 1], C[t - 1], C[t + 1]};
-    CatmarkShader::limit_regular(A[t], ring, diag, position[l.edge_node(e, t - 1)], normal[l.edge_node(e, t - 1)]);
+    V3 &p = position[l.edge_node(e, t - 1)], &q = normal[l.edge_node(e, t - 1)];
+    if (s.quad_major) {  // counter-clockwise seen from the major D-facet, as strip_disk orders them
+      const V3 ring[4] = {A[t + 1], B[t], A[t - 1], C[t]};
+      const V3 diag[4] = {B[t + 1], B[t - 1], C[t - 1], C[t + 1]};
+      catmark_limit_regular(A[t], ring, diag, p, q);
+    } else {
+      const V3 ring[6] = {A[t + 1], B[t], B[t - 1], A[t - 1], C[t - 1], C[t]};
+      loop_limit_regular(A[t], ring, p, q);
+    }
   }
 }
 
@@ -328,33 +385,58 @@ void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, 
   });
 }
 
+namespace {
+
+// Calls f(offset, i, j) for every node of a D-facet's array at level n: row-major (i, j).
+template <class F>
+void for_each_node(int size, int n, F&& f) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; size == 4 ? j < n : i + j < n; ++j) f(size == 4 ? i * n + j : tri_offset(n, i, j), i, j);
+}
+
+}  // namespace
+
 void compile_primitives(const DAtlas& atlas, const DLoD& lod, int depth, Tessellation& out) {
   const LevelLayout& l = lod.layout(depth);
   const int n = l.n;
   const float step = 1.0f / float(n - 1);
   out.coords.assign(l.num_nodes, SurfaceCoord{});
-  auto own = [&](int f, int offset) {
-    out.coords[lod.facet(depth, f)[offset]] = {uint32_t(f), float(offset % n) * step, float(offset / n) * step};
+  // Each node's coord in the D-facet that owns it: interior nodes their own, D-edge nodes the
+  // major halfedge's, D-vertices the first of their ring's.
+  auto own = [&](int f, RowColumn p) {
+    const uint32_t node = lod.facet(depth, f)[facet_offset(atlas.facet_size[f], n, p)];
+    out.coords[node] = {uint32_t(f), float(p.j) * step, float(p.i) * step};
   };
   for (int f = 0; f < atlas.num_facets(); ++f)
-    for (int i = 1; i <= l.s; ++i)
-      for (int j = 1; j <= l.s; ++j) own(f, i * n + j);
+    for_each_node(atlas.facet_size[f], n, [&](int o, int i, int j) {
+      if (lod.facet(depth, f)[o] >= l.facet_base) own(f, {i, j});
+    });
   for (const DEdge& e : atlas.edges)
-    for (int a = 1; a <= l.s; ++a) own(e.major.facet, side_offset(e.major.side, n, a, 0));
+    for (int a = 1; a <= l.s; ++a) own(e.major.facet, side_ij(atlas.facet_size[e.major.facet], e.major.side, n, a, 0));
   for (int v = 0; v < atlas.num_vertices; ++v)
     if (atlas.valence(v) > 0) {
       const HalfEdge& h = atlas.ring[atlas.ring_offsets[v]];
-      own(h.facet, side_offset(h.side, n, 0, 0));
+      own(h.facet, side_ij(atlas.facet_size[h.facet], h.side, n, 0, 0));
     }
   out.triangles.clear();
   out.triangles.reserve(size_t(atlas.num_facets()) * 6 * (n - 1) * (n - 1));
   for (int f = 0; f < atlas.num_facets(); ++f) {
     if (atlas.facet_hole[f]) continue;
     const uint32_t* idx = lod.facet(depth, f);
+    if (atlas.facet_size[f] == 4) {
+      for (int i = 0; i + 1 < n; ++i)
+        for (int j = 0; j + 1 < n; ++j) {
+          const uint32_t a = idx[i * n + j], b = idx[i * n + j + 1], c = idx[(i + 1) * n + j + 1],
+                         d = idx[(i + 1) * n + j];
+          out.triangles.insert(out.triangles.end(), {a, b, c, a, c, d});
+        }
+      continue;
+    }
     for (int i = 0; i + 1 < n; ++i)
-      for (int j = 0; j + 1 < n; ++j) {
-        const uint32_t a = idx[i * n + j], b = idx[i * n + j + 1], c = idx[(i + 1) * n + j + 1], d = idx[(i + 1) * n + j];
-        out.triangles.insert(out.triangles.end(), {a, b, c, a, c, d});
+      for (int j = 0; i + j + 1 < n; ++j) {
+        const uint32_t a = idx[tri_offset(n, i, j)], b = idx[tri_offset(n, i, j + 1)], d = idx[tri_offset(n, i + 1, j)];
+        out.triangles.insert(out.triangles.end(), {a, b, d});
+        if (i + j + 2 < n) out.triangles.insert(out.triangles.end(), {b, idx[tri_offset(n, i + 1, j + 1)], d});
       }
   }
 }
@@ -364,9 +446,12 @@ std::vector<uint32_t> same_points_at(const DAtlas& atlas, const DLoD& lod, int s
   std::vector<uint32_t> to(lod.layout(sigma).num_nodes);
   for (int v = 0; v < atlas.num_vertices; ++v) to[v] = v;  // D-vertices (bare ones included) keep their slot
   for (int f = 0; f < atlas.num_facets(); ++f) {
+    const int size = atlas.facet_size[f];
     const uint32_t *coarse = lod.facet(sigma, f), *fine = lod.facet(inner, f);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) to[coarse[i * n + j]] = fine[(i << shift) * m + (j << shift)];
+    for_each_node(size, n, [&](int o, int i, int j) {
+      const int fi = i << shift, fj = j << shift;
+      to[coarse[o]] = fine[size == 4 ? fi * m + fj : tri_offset(m, fi, fj)];
+    });
   }
   return to;
 }

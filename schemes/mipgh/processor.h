@@ -19,7 +19,7 @@ namespace sdb::mipgh {
 
 class MeshProcessor {
  public:
-  MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const CatmarkShader& shader);
+  MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const MeshShader& shader);
 
   // Level sigma's nodes in `src`, level sigma + 1's written to `dst`.
   void step(int sigma, const V3* src, V3* dst, bool parallel) const;
@@ -34,8 +34,9 @@ class MeshProcessor {
  private:
   // D-vertex v's 1-disk at level sigma (and its tags at sigma and sigma + 1).
   void gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk) const;
-  // The 1-disk of the node at `along` on D-edge e (1 <= along <= n - 2), tags included.
-  void gather_edge_node(int sigma, int e, int along, const V3* src, VertexDisk& disk) const;
+  // The 1-disk of the strip's node t on D-edge e (1 <= t <= n - 2), tags included; after
+  // load_strip.
+  void strip_disk(int sigma, int e, int t, VertexDisk& disk) const;
   // Reads D-edge e's strip (processor.cpp, Strip) into the thread's scratch.
   void load_strip(int sigma, int e, const V3* src) const;
   void project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const;
@@ -44,7 +45,7 @@ class MeshProcessor {
   const DAtlas& atlas_;
   const DLoD& lod_;
   const EdgeTags& tags_;
-  const CatmarkShader& shader_;
+  const MeshShader& shader_;
   std::vector<int> vertex_order_;
 };
 

@@ -17,33 +17,39 @@ constexpr int kMaxDepth = 8;
 // request is refused before anything is built.
 constexpr double kMaxBytes = 8e9;
 
-SchemeInfo make_info() {
+SchemeInfo make_info(SubdivisionRule rule) {
+  const bool loop = rule == SubdivisionRule::Loop;
   SchemeInfo info;
-  info.name = "mipgh-cc";
+  info.name = loop ? "mipgh-loop" : "mipgh-cc";
   info.paper = "Shiue, Goel, Peters 2003, Mesh Mutation in Programmable Graphics Hardware";
-  info.description = "D-atlas mesh processor with the Catmull-Clark mesh shader, limit projection";
+  info.description = loop ? "D-atlas mesh processor with the Loop mesh shader, limit projection"
+                          : "D-atlas mesh processor with the Catmull-Clark mesh shader, limit projection";
   info.role = SchemeRole::Method;
-  info.reference = SubdivisionRule::CatmullClark;
+  info.reference = rule;
   info.level_kind = LevelKind::Depth;
   info.backends = {Backend::Cpu, Backend::CpuMt};
   info.default_levels = {1, 2, 3, 4};
-  info.accepts.faces = MeshRequirements::Faces::QuadsOnly;
-  info.accepts.quadrangulate = true;  // R1: one Catmull-Clark step where a face is not a quad
+  info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::QuadsOnly;
+  info.accepts.quadrangulate = !loop;  // R1: one Catmull-Clark step where a face is not a quad
   info.accepts.manifold = true;
   info.accepts.creases = true;
   info.accepts.holes = true;
   // Far's own limit masks at the last level (PrimvarRefiner::Limit): the bound the fragments
   // hold, where the reference's limit and Far's agree.
   info.bound = {1e-5, 0.01};
-  info.peer = "osd-uniform";
-  info.default_meshes = {"stein/sword_quad_dominant", "crane/spot_control", "pmp/fandisk_quads"};
-  info.headline_runs = {{"stein/sword_quad_dominant", Backend::Cpu, 4},
-                        {"stein/sword_quad_dominant", Backend::CpuMt, 4}};
+  info.peer = loop ? "osd-uniform-loop" : "osd-uniform";
+  const std::string headline = loop ? "stanford/bunny" : "stein/sword_quad_dominant";
+  info.default_meshes = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",
+                                                        "pmp/icosahedron_subdiv"}
+                             : std::vector<std::string>{"stein/sword_quad_dominant", "crane/spot_control",
+                                                        "pmp/fandisk_quads"};
+  info.headline_runs = {{headline, Backend::Cpu, 4}, {headline, Backend::CpuMt, 4}};
   return info;
 }
 
 class MipghScheme final : public Scheme {
  public:
+  explicit MipghScheme(SubdivisionRule rule) : rule_(rule), info_(make_info(rule)) {}
   const SchemeInfo& info() const override { return info_; }
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
@@ -54,16 +60,18 @@ class MipghScheme final : public Scheme {
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
-    return make_evaluation(mesh, r);
+    return make_evaluation(mesh, rule_, r);
   }
 
  private:
-  SchemeInfo info_ = make_info();
+  SubdivisionRule rule_;
+  SchemeInfo info_;
 };
 
 std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
   std::vector<std::unique_ptr<Scheme>> s;
-  s.push_back(std::make_unique<MipghScheme>());
+  s.push_back(std::make_unique<MipghScheme>(SubdivisionRule::CatmullClark));
+  s.push_back(std::make_unique<MipghScheme>(SubdivisionRule::Loop));
   return s;
 }
 
@@ -71,8 +79,9 @@ SDB_REGISTER_SCHEMES(mipgh, make_mipgh_schemes);
 
 }  // namespace
 
-std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, const RunRequest& r, bool project_to_limit) {
-  const DAtlas atlas = build_atlas(mesh);
+std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& r,
+                                            bool project_to_limit) {
+  const DAtlas atlas = build_atlas(mesh, rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads);
   const double nodes = node_count(atlas, r.level);
   const double bytes = nodes * (2 * sizeof(V3) + 2 * sizeof(Point3)) +
                        atlas.num_facets() * std::ldexp(1.0, 2 * r.level) * 4 * 4.0 / 3 * 2;
@@ -82,7 +91,7 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, const RunRe
                   r.level, bytes / 1e9, kMaxBytes / 1e9);
     throw Unsupported(why);
   }
-  return std::make_unique<CpuMipghEvaluation>(mesh, r.level, r.backend == Backend::CpuMt, r.threads,
+  return std::make_unique<CpuMipghEvaluation>(mesh, rule, r.level, r.backend == Backend::CpuMt, r.threads,
                                               project_to_limit);
 }
 

@@ -1,6 +1,7 @@
 #include "schemes/mipgh/shader.h"
 
 #include <opensubdiv/sdc/catmarkScheme.h>
+#include <opensubdiv/sdc/loopScheme.h>
 
 #include <cmath>
 
@@ -51,14 +52,21 @@ class SdcVertex {
 
 class SdcEdge {
  public:
-  explicit SdcEdge(const EdgeDisk& d) : d_(d) {}
+  SdcEdge(const EdgeDisk& d, int facet_size) : d_(d), size_(facet_size) {}
   int GetNumFaces() const { return d_.faces; }
   float GetSharpness() const { return d_.sharpness; }
   void GetChildSharpnesses(const Sdc::Crease&, float s[2]) const { s[0] = d_.child_sharpness[0], s[1] = d_.child_sharpness[1]; }
-  void GetNumVerticesPerFace(int counts[]) const { counts[0] = counts[1] = 4; }
+  void GetNumVerticesPerFace(int counts[]) const { counts[0] = counts[1] = size_; }
 
  private:
   const EdgeDisk& d_;
+  int size_;
+};
+
+struct Sum {
+  double x = 0, y = 0, z = 0;
+  void add(double w, V3 p) { x += w * p.x, y += w * p.y, z += w * p.z; }
+  V3 get() const { return {float(x), float(y), float(z)}; }
 };
 
 class Mask {
@@ -79,19 +87,34 @@ class Mask {
   bool AreFaceWeightsForFaceCenters() const { return centres_; }
   void SetFaceWeightsForFaceCenters(bool on) { centres_ = on; }
 
+  // In double: a pole's ring of 360 terms summed in float is off by 1e-6 of the diagonal.
   V3 apply(const VertexDisk& d) const {
-    V3 r = v_[0] * d.c;
-    for (int i = 0; i < ne_; ++i) r = r + e_[i] * d.e[i];
+    Sum r;
+    r.add(v_[0], d.c);
+    for (int i = 0; i < ne_; ++i) r.add(e_[i], d.e[i]);
     for (int i = 0; i < nf_; ++i) {
-      const V3 face = centres_ ? 0.25f * ((d.c + d.d[i]) + (d.e[i] + d.e[(i + 1) % d.edges])) : d.d[i];
-      r = r + f_[i] * face;
+      if (!centres_) {
+        r.add(f_[i], d.d[i]);
+        continue;
+      }
+      const V3 corners[4] = {d.c, d.e[i], d.d[i], d.e[(i + 1) % d.edges]};
+      for (const V3& p : corners) r.add(0.25 * f_[i], p);
     }
-    return r;
+    return r.get();
   }
   V3 apply(const EdgeDisk& d) const {
-    V3 r = v_[0] * d.v0 + v_[1] * d.v1;
-    for (int i = 0; i < nf_; ++i) r = r + f_[i] * (0.25f * ((d.v0 + d.f[i][1]) + (d.v1 + d.f[i][0])));
-    return r;
+    Sum r;
+    r.add(v_[0], d.v0);
+    r.add(v_[1], d.v1);
+    for (int i = 0; i < nf_; ++i) {
+      if (!centres_) {  // a triangle's opposite corner (Loop)
+        r.add(f_[i], d.f[i][0]);
+        continue;
+      }
+      const V3 corners[4] = {d.v0, d.v1, d.f[i][0], d.f[i][1]};
+      for (const V3& p : corners) r.add(0.25 * f_[i], p);
+    }
+    return r.get();
   }
 
  private:
@@ -108,7 +131,7 @@ thread_local Mask t_pos, t_tan1, t_tan2;
 
 }  // namespace
 
-V3 CatmarkShader::vertex_vertex_smooth(const VertexDisk& disk) {
+V3 catmark_vertex_smooth(const VertexDisk& disk) {
   const float n = static_cast<float>(disk.edges);
   const float w = 4 * n * n, cw = w - 7 * n;
   V3 es{0, 0, 0}, ds{0, 0, 0};
@@ -116,27 +139,44 @@ V3 CatmarkShader::vertex_vertex_smooth(const VertexDisk& disk) {
   return (cw / w) * disk.c + (6 / w) * es + (1 / w) * ds;
 }
 
-V3 CatmarkShader::vertex_vertex(const VertexDisk& disk) const {
-  if (disk.smooth()) return vertex_vertex_smooth(disk);
-  const Sdc::Scheme<Sdc::SCHEME_CATMARK> scheme(options_);
-  scheme.ComputeVertexVertexMask(SdcVertex(disk), t_pos);
-  return t_pos.apply(disk);
-}
+namespace {
 
-V3 CatmarkShader::edge_vertex(const EdgeDisk& disk) const {
-  const Sdc::Scheme<Sdc::SCHEME_CATMARK> scheme(options_);
-  scheme.ComputeEdgeVertexMask(SdcEdge(disk), t_pos);
-  return t_pos.apply(disk);
-}
+template <Sdc::SchemeType kType>
+class SdcShader final : public MeshShader {
+ public:
+  explicit SdcShader(const Sdc::Options& options) : options_(options) {}
 
-void CatmarkShader::limit(const VertexDisk& disk, V3& position, V3& normal) const {
-  const Sdc::Crease crease(options_);
-  const Sdc::Crease::Rule rule =
-      crease.DetermineVertexVertexRule(disk.sharpness, disk.edges, disk.edge_sharpness.data());
-  const Sdc::Scheme<Sdc::SCHEME_CATMARK> scheme(options_);
-  scheme.ComputeVertexLimitMask(SdcVertex(disk), t_pos, t_tan1, t_tan2, rule);
-  position = t_pos.apply(disk);
-  normal = normalized(cross(t_tan1.apply(disk), t_tan2.apply(disk)));
+  V3 vertex_vertex(const VertexDisk& disk) const override {
+    if (kType == Sdc::SCHEME_CATMARK && disk.smooth()) return catmark_vertex_smooth(disk);
+    const Sdc::Scheme<kType> scheme(options_);
+    scheme.ComputeVertexVertexMask(SdcVertex(disk), t_pos);
+    return t_pos.apply(disk);
+  }
+
+  V3 edge_vertex(const EdgeDisk& disk) const override {
+    const Sdc::Scheme<kType> scheme(options_);
+    scheme.ComputeEdgeVertexMask(SdcEdge(disk, kType == Sdc::SCHEME_CATMARK ? 4 : 3), t_pos);
+    return t_pos.apply(disk);
+  }
+
+  void limit(const VertexDisk& disk, V3& position, V3& normal) const override {
+    const Sdc::Crease crease(options_);
+    const Sdc::Crease::Rule rule = crease.DetermineVertexVertexRule(disk.sharpness, disk.edges, disk.edge_sharpness.data());
+    const Sdc::Scheme<kType> scheme(options_);
+    scheme.ComputeVertexLimitMask(SdcVertex(disk), t_pos, t_tan1, t_tan2, rule);
+    position = t_pos.apply(disk);
+    normal = normalized(cross(t_tan1.apply(disk), t_tan2.apply(disk)));
+  }
+
+ private:
+  Sdc::Options options_;
+};
+
+}  // namespace
+
+std::unique_ptr<MeshShader> make_shader(SubdivisionRule rule, const Sdc::Options& options) {
+  if (rule == SubdivisionRule::Loop) return std::make_unique<SdcShader<Sdc::SCHEME_LOOP>>(options);
+  return std::make_unique<SdcShader<Sdc::SCHEME_CATMARK>>(options);
 }
 
 }  // namespace sdb::mipgh

@@ -1,5 +1,5 @@
-// The Catmull-Clark mesh shader (Section 5, Figure 20 and the paper's code; Figure 21 for the
-// limit): the only scheme-specific code. The mesh processor (processor.h) hands it a node's
+// The mesh shaders (Section 5): Catmull-Clark (Figure 20 and the paper's code; Figure 21 for the
+// limit) and Loop, the only scheme-specific code. The mesh processor (processor.h) hands it a node's
 // 1-disk in Figure 24's enumeration (the centre, then the direct neighbours counter-clockwise,
 // then the diagonal ones) and the edge tags; it returns the target node.
 //
@@ -12,6 +12,7 @@
 #include <opensubdiv/sdc/crease.h>
 #include <opensubdiv/sdc/options.h>
 
+#include <memory>
 #include <vector>
 
 #include "harness/core/control_mesh.h"
@@ -37,6 +38,12 @@ inline V3 edge_vertex(V3 v0, V3 v1, V3 f0, V3 f1, V3 f2, V3 f3) {
 inline V3 vertex_vertex4(V3 c, V3 e0, V3 e1, V3 e2, V3 e3, V3 d0, V3 d1, V3 d2, V3 d3) {
   return 0.5625f * c + 0.09375f * ((e0 + e2) + (e1 + e3)) + 0.015625f * ((d0 + d2) + (d1 + d3));
 }
+// Loop on a tag-free regular triangle 1-disk: the edge's ends 3/8, the two opposite corners 1/8;
+// a valence-6 vertex 10/16 and 1/16 per neighbour.
+inline V3 loop_edge_vertex(V3 v0, V3 v1, V3 o0, V3 o1) { return 0.375f * (v0 + v1) + 0.125f * (o0 + o1); }
+inline V3 loop_vertex6(V3 c, V3 e0, V3 e1, V3 e2, V3 e3, V3 e4, V3 e5) {
+  return 0.625f * c + 0.0625f * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
+}
 
 // A node's 1-disk and tags, gathered by the processor where the fast paths do not apply.
 // Vertex disk: e[i] the far end of edge i (counter-clockwise), d[i] the corner of face i opposite
@@ -51,8 +58,8 @@ struct VertexDisk {
   bool smooth() const;  // no tag at all: the valence-n stencil of the paper's code
 };
 
-// Edge disk: the two ends, and for each of its (one or two) quads the two other corners, the one
-// next to v0 first.
+// Edge disk: the two ends, and for each of its (one or two) facets the other corners: a quad's
+// two, the one next to v0 first; a triangle's one, in f[i][0].
 struct EdgeDisk {
   int faces = 2;
   V3 v0{}, v1{};
@@ -60,28 +67,37 @@ struct EdgeDisk {
   float sharpness = 0, child_sharpness[2] = {0, 0};
 };
 
-class CatmarkShader {
+// What the mesh processor calls for a 1-disk its fast paths do not cover.
+class MeshShader {
  public:
-  explicit CatmarkShader(const OpenSubdiv::Sdc::Options& options) : options_(options) {}
-  // The paper's extraordinary vertex-vertex stencil, any valence, no tags.
-  static V3 vertex_vertex_smooth(const VertexDisk& disk);
-  V3 vertex_vertex(const VertexDisk& disk) const;
-  V3 edge_vertex(const EdgeDisk& disk) const;
-
-  // Limit projection: position and unit normal (T1 x T2, Figure 21 where regular).
-  static void limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal);
-  // Tagged or extraordinary: Sdc's limit masks for the rule the last level's tags give.
-  void limit(const VertexDisk& disk, V3& position, V3& normal) const;
-
- private:
-  OpenSubdiv::Sdc::Options options_;
+  virtual ~MeshShader() = default;
+  virtual V3 vertex_vertex(const VertexDisk& disk) const = 0;
+  virtual V3 edge_vertex(const EdgeDisk& disk) const = 0;
+  // Limit position and unit normal (T1 x T2) by Sdc's limit masks for the rule the tags give.
+  virtual void limit(const VertexDisk& disk, V3& position, V3& normal) const = 0;
 };
 
-inline void CatmarkShader::limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal) {
+// Sdc's masks for Catmull-Clark or Loop, fed with the 1-disk's tags.
+std::unique_ptr<MeshShader> make_shader(SubdivisionRule rule, const OpenSubdiv::Sdc::Options& options);
+
+// The paper's extraordinary vertex-vertex stencil (Section 5's code), any valence, no tags.
+V3 catmark_vertex_smooth(const VertexDisk& disk);
+
+// Limit projection of a tag-free regular node: Catmull-Clark's (16, 4, 1)/36 and Figure 21's
+// derivative stencils; Loop's 1/2 and 1/12 per neighbour and its regular tangent masks.
+inline void catmark_limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal) {
   position = (1.0f / 36) * (16.0f * c + 4.0f * ((e[0] + e[2]) + (e[1] + e[3])) + ((d[0] + d[2]) + (d[1] + d[3])));
   // Figure 21: T1 towards e0, T2 towards e1; d[i] lies between e[i] and e[i + 1].
   const V3 t1 = 4.0f * (e[0] - e[2]) + ((d[0] + d[3]) - (d[1] + d[2]));
   const V3 t2 = 4.0f * (e[1] - e[3]) + ((d[0] + d[1]) - (d[2] + d[3]));
+  normal = normalized(cross(t1, t2));
+}
+
+inline void loop_limit_regular(V3 c, const V3 e[6], V3& position, V3& normal) {
+  position = 0.5f * c + (1.0f / 12) * (((e[0] + e[3]) + (e[1] + e[4])) + (e[2] + e[5]));
+  // Sdc's valence-6 tangents: cos and sin of 60-degree steps (the sqrt(3)/2 factor cancels).
+  const V3 t1 = (e[0] - e[3]) + 0.5f * ((e[1] - e[2]) - (e[4] - e[5]));
+  const V3 t2 = (e[1] + e[2]) - (e[4] + e[5]);
   normal = normalized(cross(t1, t2));
 }
 

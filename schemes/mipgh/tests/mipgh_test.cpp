@@ -32,9 +32,13 @@ namespace {
 
 constexpr SubdivisionRule kCC = SubdivisionRule::CatmullClark;
 
-Tessellation run_mipgh(const ControlMesh& m, int depth, bool limit, Backend backend = Backend::Cpu) {
-  const SchemeInfo& info = find_scheme("mipgh-cc")->info();
-  auto e = make_evaluation(m, default_request(info, backend, depth), limit);
+const char* scheme_name(SubdivisionRule rule) { return rule == SubdivisionRule::Loop ? "mipgh-loop" : "mipgh-cc"; }
+FacetKinds kinds(SubdivisionRule rule) { return rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads; }
+
+Tessellation run_mipgh(const ControlMesh& m, int depth, bool limit, Backend backend = Backend::Cpu,
+                       SubdivisionRule rule = kCC) {
+  const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
+  auto e = make_evaluation(m, rule, default_request(info, backend, depth), limit);
   e->execute();
   return e->result();
 }
@@ -43,9 +47,10 @@ Tessellation run_mipgh(const ControlMesh& m, int depth, bool limit, Backend back
 // coords name one face per vertex. Each node takes the occurrence Far has a vertex for.
 // (Nodes a D-facet holds always have one: the test fails on `uncovered` otherwise.)
 // `far` is Far's level `far_depth` (deeper than `depth` where the limit is projected from deeper).
-void map_to_far(const ControlMesh& m, int depth, const FarLevel& far, Tessellation& t, int far_depth = -1) {
+void map_to_far(const ControlMesh& m, int depth, const FarLevel& far, Tessellation& t, int far_depth = -1,
+                SubdivisionRule rule = kCC) {
   if (far_depth < 0) far_depth = depth;
-  const DAtlas atlas = build_atlas(m);
+  const DAtlas atlas = build_atlas(m, kinds(rule));
   const DLoD lod(atlas, depth);
   const int n = lod.layout(depth).n;
   const float step = 1.0f / float(n - 1);
@@ -53,17 +58,19 @@ void map_to_far(const ControlMesh& m, int depth, const FarLevel& far, Tessellati
   for (SurfaceCoord& c : t.coords) c.face = UINT32_MAX;
   for (int f = 0; f < atlas.num_facets(); ++f) {
     const uint32_t* idx = lod.facet(depth, f);
-    for (int i = 0; i < n * n; ++i) {
-      const SurfaceCoord c{uint32_t(f), float(i % n) * step, float(i / n) * step};
-      if (far.at.count(conformance::grid_key(c, far_depth))) t.coords[idx[i]] = c;
-    }
+    const bool quad = atlas.facet_size[f] == 4;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; quad ? j < n : i + j < n; ++j) {
+        const SurfaceCoord c{uint32_t(f), float(j) * step, float(i) * step};
+        if (far.at.count(conformance::grid_key(c, far_depth))) t.coords[idx[facet_offset(quad ? 4 : 3, n, {i, j})]] = c;
+      }
   }
 }
 
-Match against_far(const ControlMesh& m, int depth, bool limit) {
-  Tessellation t = run_mipgh(m, depth, limit);
-  const FarLevel far = conformance::far_level(m, kCC, depth, limit);
-  map_to_far(m, depth, far, t);
+Match against_far(const ControlMesh& m, int depth, bool limit, SubdivisionRule rule = kCC) {
+  Tessellation t = run_mipgh(m, depth, limit, Backend::Cpu, rule);
+  const FarLevel far = conformance::far_level(m, rule, depth, limit);
+  map_to_far(m, depth, far, t, depth, rule);
   return conformance::compare(t, far, depth, bounds_of(m.positions).diagonal(), limit, limit);
 }
 
@@ -160,6 +167,21 @@ TEST(Mipgh, CubeEqualsFarAndIsClosed) {
   }
 }
 
+TEST(Mipgh, LoopIcosphereEqualsFarAndIsClosed) {
+  const ControlMesh m = gen::icosphere(1);
+  for (int depth = 0; depth <= 4; ++depth) {
+    const Match refined = against_far(m, depth, false, SubdivisionRule::Loop);
+    EXPECT_LE(refined.max_rel, 1e-6) << depth;
+    EXPECT_EQ(refined.uncovered, 0) << depth;
+    const Match limit = against_far(m, depth, true, SubdivisionRule::Loop);
+    EXPECT_LE(limit.max_rel, 1e-6) << depth;
+    EXPECT_LE(limit.max_deg, 0.01) << depth;
+    const Tessellation t = run_mipgh(m, depth, true, Backend::Cpu, SubdivisionRule::Loop);
+    EXPECT_EQ(count_open_edges(t), 0) << depth;
+    EXPECT_EQ(t.num_triangles(), size_t(num_faces(m)) << (2 * depth));
+  }
+}
+
 TEST(Mipgh, CpuMtEqualsCpuBitForBit) {
   const ControlMesh m = gen::torus(12, 9);
   for (bool limit : {false, true}) {
@@ -171,9 +193,9 @@ TEST(Mipgh, CpuMtEqualsCpuBitForBit) {
 
 // Chaikin creases and interior valence-2 vertices: Bfr is off there (fragments' README), so
 // the limit is judged by Far's alone.
-bool reference_is_right(const ControlMesh& m) {
+bool reference_is_right(const ControlMesh& m, SubdivisionRule rule) {
   if (m.crease_method == CreaseMethod::Chaikin) return false;
-  const auto r = make_refiner(m, kCC);
+  const auto r = make_refiner(m, rule);
   const auto& l = r->GetLevel(0);
   for (int v = 0; v < l.GetNumVertices(); ++v)
     if (!l.IsVertexBoundary(v) && l.GetVertexEdges(v).size() == 2) return false;
@@ -182,8 +204,8 @@ bool reference_is_right(const ControlMesh& m) {
 
 // Under the boundary rule "none" Far makes a hole of every face at a boundary vertex, and so does
 // primitive compilation: the open edges expected are those of the mesh with Far's holes.
-ControlMesh with_far_holes(ControlMesh m) {
-  const auto r = make_refiner(m, kCC);
+ControlMesh with_far_holes(ControlMesh m, SubdivisionRule rule) {
+  const auto r = make_refiner(m, rule);
   m.holes.clear();
   for (int f = 0; f < num_faces(m); ++f)
     if (r->GetLevel(0).IsFaceHole(f)) m.holes.push_back(f);
@@ -203,15 +225,15 @@ double from_reference(const Tessellation& t, const FarLevel& far, int depth, dou
   return worst;
 }
 
-TEST(MipghSweep, CatmullClarkCorpusEqualsFarRefinement) {
-  const std::vector<std::string> shapes = conformance::sweep_shapes(kCC);
+void sweep(SubdivisionRule rule) {
+  const std::vector<std::string> shapes = conformance::sweep_shapes(rule);
   if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
   int exact = 0, refused = 0;
   for (const std::string& name : shapes) {
     ControlMesh m;
     try {
-      m = conformance::sweep_mesh(name, kCC, "mipgh-cc");
-      build_atlas(m);
+      m = conformance::sweep_mesh(name, rule, scheme_name(rule));
+      build_atlas(m, kinds(rule));
     } catch (const InputError& e) {
       std::printf("  refused %s: %s\n", name.c_str(), e.what());
       ++refused;
@@ -220,19 +242,20 @@ TEST(MipghSweep, CatmullClarkCorpusEqualsFarRefinement) {
     const double d = bounds_of(m.positions).diagonal();
     std::unique_ptr<LimitEvaluator> reference;
     try {
-      if (reference_is_right(m)) reference = std::make_unique<LimitEvaluator>(m, kCC);
+      if (reference_is_right(m, rule)) reference = std::make_unique<LimitEvaluator>(m, rule);
     } catch (const Unsupported&) {
     }
     const bool closed = compute_facts(m).closed && m.holes.empty();
-    const long open_edges = conformance::boundary_edges(with_far_holes(m));
+    const long open_edges = conformance::boundary_edges(with_far_holes(m, rule));
+    const long per_face = rule == SubdivisionRule::Loop ? 1 : 2;
     double worst = 0, worst_limit = 0, worst_ref = 0, worst_deg = 0;
     long rays = 0, cracks = 0;
     int depth = 1;
     for (; depth <= 5; ++depth) {
-      if (depth > 1 && (long(num_faces(m)) * 2L << (2 * depth)) > 400000) break;
-      Tessellation t = run_mipgh(m, depth, false);
-      const FarLevel far = conformance::far_level(m, kCC, depth, false);
-      map_to_far(m, depth, far, t);
+      if (depth > 1 && (long(num_faces(m)) * per_face << (2 * depth)) > 400000) break;
+      Tessellation t = run_mipgh(m, depth, false, Backend::Cpu, rule);
+      const FarLevel far = conformance::far_level(m, rule, depth, false);
+      map_to_far(m, depth, far, t, depth, rule);
       const Match r = conformance::compare(t, far, depth, d, false);
       EXPECT_LE(r.max_rel, 1e-6) << name << " depth " << depth;
       EXPECT_EQ(r.uncovered, 0) << name << " depth " << depth;
@@ -241,9 +264,9 @@ TEST(MipghSweep, CatmullClarkCorpusEqualsFarRefinement) {
       // Projected from a deeper level where semi-sharp creases outlast the depth: the same grid
       // points of Far's limit at that level.
       const int inner = limit_depth_for(m, depth);
-      Tessellation lt = run_mipgh(m, depth, true);
-      const FarLevel far_limit = conformance::far_level(m, kCC, inner, true);
-      map_to_far(m, depth, far_limit, lt, inner);
+      Tessellation lt = run_mipgh(m, depth, true, Backend::Cpu, rule);
+      const FarLevel far_limit = conformance::far_level(m, rule, inner, true);
+      map_to_far(m, depth, far_limit, lt, inner, rule);
       const Match l = conformance::compare(lt, far_limit, inner, d, true, true);
       EXPECT_LE(l.max_rel, 1e-6) << name << " depth " << depth << " (limit)";
       // Normals: float refinement leaves each node's absolute rounding (~1e-7 of its distance from
@@ -269,7 +292,10 @@ TEST(MipghSweep, CatmullClarkCorpusEqualsFarRefinement) {
                 name.c_str(), depth - 1, worst, worst_limit, worst_deg, worst_ref, rays, cracks);
     exact += worst <= 1e-6;
   }
-  std::printf("mipgh-cc: %zu shapes, %d exact, %d refused\n", shapes.size(), exact, refused);
+  std::printf("%s: %zu shapes, %d exact, %d refused\n", scheme_name(rule), shapes.size(), exact, refused);
 }
+
+TEST(MipghSweep, CatmullClarkCorpusEqualsFarRefinement) { sweep(kCC); }
+TEST(MipghSweep, LoopCorpusEqualsFarRefinement) { sweep(SubdivisionRule::Loop); }
 
 }  // namespace
