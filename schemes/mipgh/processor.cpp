@@ -116,28 +116,55 @@ void project_row(const Tile& t, int i, RowScratch& s) {
   }
 }
 
-// Loop's refined interior of a triangular D-facet, one node at a time: target (r, c) with
-// r, c >= 1 and r + c <= 2n - 3, row-major as the layout stores them. p is the tile's plane k at
-// (i, j) = p[i * n + j] (the triangle's nodes in the square's lower-left half).
-void refine_triangle(const Tile& t, V3* out) {
-  const int n = t.n, m = 2 * n - 2;
-  auto P = [&](int i, int j) {
-    const size_t o = size_t(i) * n + j;
-    return V3{t.plane[0][o], t.plane[1][o], t.plane[2][o]};
-  };
-  for (int r = 1; r < m; ++r)
-    for (int c = 1; r + c < m; ++c) {
-      const int a = r >> 1, b = c >> 1;
-      if (!(r & 1) && !(c & 1))
-        *out++ = loop_vertex6(P(a, b), P(a, b + 1), P(a + 1, b), P(a + 1, b - 1), P(a, b - 1), P(a - 1, b),
-                              P(a - 1, b + 1));
-      else if (!(r & 1))  // (a, b)-(a, b+1)
-        *out++ = loop_edge_vertex(P(a, b), P(a, b + 1), P(a + 1, b), P(a - 1, b + 1));
-      else if (!(c & 1))  // (a, b)-(a+1, b)
-        *out++ = loop_edge_vertex(P(a, b), P(a + 1, b), P(a, b + 1), P(a + 1, b - 1));
-      else  // the diagonal (a, b+1)-(a+1, b)
-        *out++ = loop_edge_vertex(P(a, b + 1), P(a + 1, b), P(a, b), P(a + 1, b + 1));
+// Loop's refined interior of a triangular D-facet, target row r (1 <= r <= 2n - 4), one
+// coordinate: out[c - 1] for columns c = 1 .. 2n - 3 - r. p holds the triangle's nodes in the
+// square's lower-left half, (i, j) at p[i * n + j]. Even rows: horizontal edge points and vertex
+// points; odd rows: diagonal and vertical edge points.
+void refine_triangle_row(const float* p, int n, int r, float* out) {
+  const int a = r >> 1, end = 2 * n - 3 - r;  // last column
+  if (!(r & 1)) {
+    const float *mid = p + size_t(a) * n, *up = mid + n, *dn = mid - n;  // rows a, a + 1, a - 1
+    for (int b = 0; 2 * b + 1 <= end; ++b)  // c = 2b + 1: (a, b)-(a, b+1)
+      out[2 * b] = 0.375f * (mid[b] + mid[b + 1]) + 0.125f * (up[b] + dn[b + 1]);
+    for (int b = 1; 2 * b <= end; ++b)  // c = 2b: vertex (a, b)
+      out[2 * b - 1] = 0.625f * mid[b] +
+                       0.0625f * (((mid[b + 1] + mid[b - 1]) + (up[b] + dn[b])) + (up[b - 1] + dn[b + 1]));
+    return;
+  }
+  const float *lo = p + size_t(a) * n, *hi = lo + n;  // rows a, a + 1
+  for (int b = 0; 2 * b + 1 <= end; ++b)  // c = 2b + 1: (a, b+1)-(a+1, b)
+    out[2 * b] = 0.375f * (lo[b + 1] + hi[b]) + 0.125f * (lo[b] + hi[b + 1]);
+  for (int b = 1; 2 * b <= end; ++b)  // c = 2b: (a, b)-(a+1, b)
+    out[2 * b - 1] = 0.375f * (lo[b] + hi[b]) + 0.125f * (lo[b + 1] + hi[b - 1]);
+}
+
+// Loop's regular limit along interior row i of a triangle (columns 1 .. n - 2 - i), as
+// loop_limit_regular: ring (i, j+1), (i+1, j), (i+1, j-1), (i, j-1), (i-1, j), (i-1, j+1).
+void project_triangle_row(const Tile& t, int i, RowScratch& s) {
+  const int n = t.n, count = n - 2 - i;
+  float t1[3][64], t2[3][64];
+  for (int j0 = 1; j0 <= count; j0 += 64) {
+    const int c = std::min(64, count - j0 + 1);
+    for (int k = 0; k < 3; ++k) {
+      const float *mid = t.plane[k].data() + size_t(i) * n + j0, *up = mid + n, *dn = mid - n;
+      float* o = s.row[k].data() + (j0 - 1);
+      for (int j = 0; j < c; ++j) {
+        const float e0 = mid[j + 1], e1 = up[j], e2 = up[j - 1], e3 = mid[j - 1], e4 = dn[j], e5 = dn[j + 1];
+        o[j] = 0.5f * mid[j] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
+        t1[k][j] = (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5));
+        t2[k][j] = (e1 + e2) - (e4 + e5);
+      }
     }
+    float *nx = s.normal[0].data() + (j0 - 1), *ny = s.normal[1].data() + (j0 - 1), *nz = s.normal[2].data() + (j0 - 1);
+    for (int j = 0; j < c; ++j) {
+      const float x = t1[1][j] * t2[2][j] - t1[2][j] * t2[1][j];
+      const float y = t1[2][j] * t2[0][j] - t1[0][j] * t2[2][j];
+      const float z = t1[0][j] * t2[1][j] - t1[1][j] * t2[0][j];
+      const float l = std::sqrt(x * x + y * y + z * z);
+      const float inv = l > 0 ? 1.0f / l : 1.0f;
+      nx[j] = x * inv, ny[j] = y * inv, nz[j] = z * inv;
+    }
+  }
 }
 
 }  // namespace
@@ -149,13 +176,16 @@ void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const 
   const bool quad = atlas_.facet_size[f] == 4;
   t.load(lod_.facet(sigma, f), n, src, quad);
   V3* out = dst + to.interior(f);
-  if (!quad) return refine_triangle(t, out);
   RowScratch& s = t_row;
   s.fit(width);
-  for (int r = 1; r <= width; ++r, out += width) {
-    for (int k = 0; k < 3; ++k) refine_row(t.plane[k].data(), n, r, s.row[k].data());
+  for (int r = 1; r <= width; ++r) {
+    const int count = quad ? width : width - r;  // a triangle's row r holds 2n - 3 - r interior nodes
+    for (int k = 0; k < 3; ++k)
+      quad ? refine_row(t.plane[k].data(), n, r, s.row[k].data())
+           : refine_triangle_row(t.plane[k].data(), n, r, s.row[k].data());
     const float *x = s.row[0].data(), *y = s.row[1].data(), *z = s.row[2].data();
-    for (int c = 0; c < width; ++c) out[c] = {x[c], y[c], z[c]};
+    for (int c = 0; c < count; ++c) out[c] = {x[c], y[c], z[c]};
+    out += count;
   }
 }
 
@@ -318,17 +348,18 @@ void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position,
   t.load(lod_.facet(sigma, f), l.n, src, quad);
   const uint32_t first = l.interior(f);
   if (!quad) {  // Loop's regular limit at every interior node, row-major
-    const int n = l.n;
-    auto P = [&](int i, int j) {
-      const size_t o = size_t(i) * n + j;
-      return V3{t.plane[0][o], t.plane[1][o], t.plane[2][o]};
-    };
-    uint32_t node = first;
-    for (int i = 1; i < n; ++i)
-      for (int j = 1; i + j < n - 1; ++j, ++node) {
-        const V3 e[6] = {P(i, j + 1), P(i + 1, j), P(i + 1, j - 1), P(i, j - 1), P(i - 1, j), P(i - 1, j + 1)};
-        loop_limit_regular(P(i, j), e, position[node], normal[node]);
+    RowScratch& s = t_row;
+    s.fit(l.s);
+    V3 *p = position + first, *q = normal + first;
+    for (int i = 1; i + 2 < l.n; ++i) {
+      project_triangle_row(t, i, s);
+      const int count = l.n - 2 - i;
+      for (int j = 0; j < count; ++j) {
+        p[j] = {s.row[0][j], s.row[1][j], s.row[2][j]};
+        q[j] = {s.normal[0][j], s.normal[1][j], s.normal[2][j]};
       }
+      p += count, q += count;
+    }
     return;
   }
   RowScratch& s = t_row;

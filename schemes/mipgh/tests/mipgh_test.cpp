@@ -123,6 +123,13 @@ TEST(MipghAtlas, RefusesWhatR1AndManifoldnessExclude) {
   const std::vector<int> first(fin.face_vertices.begin(), fin.face_vertices.begin() + 2);
   fin.face_vertices.insert(fin.face_vertices.end(), {first[0], first[1], 8, 9});
   EXPECT_THROW(build_atlas(fin), InputError);
+  ControlMesh bowtie;  // two quads meeting at vertex 0 only: a D-vertex is one ring (Figure 12)
+  bowtie.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0, 0}, {-1, -1, 0}, {0, -1, 0}};
+  bowtie.face_sizes = {4, 4};
+  bowtie.face_vertices = {0, 1, 2, 3, 0, 4, 5, 6};
+  EXPECT_THROW(build_atlas(bowtie), InputError);
+  EXPECT_THROW(build_atlas(gen::cube(), FacetKinds::Triangles), InputError);
+  EXPECT_NO_THROW(build_atlas(gen::icosphere(0), FacetKinds::Triangles));
 }
 
 TEST(MipghLoD, NodesAreStoredOnceAndSharedAcrossDFacets) {
