@@ -54,15 +54,18 @@ void CpuMipghEvaluation::run() {
     processor_.step(sigma, src, dst, multithreaded_);
     std::swap(src, dst);
   }
+  const size_t n = out_.positions.size();
+  if (!project_) {  // the last step's nodes; no normals (the paper's mutation steps alone)
+    for (size_t i = 0; i < n; ++i) out_.positions[i] = {src[i].x + origin_[0], src[i].y + origin_[1], src[i].z + origin_[2]};
+    return;
+  }
   // The limit is written over the spare buffer and the normals straight into the output, or
   // through limit_ where the depth's grid points are picked from a deeper level.
   V3* normal = pick_.empty() ? reinterpret_cast<V3*>(out_.normals.data()) : limit_.data();
   processor_.project(lod_.depth(), src, dst, normal, multithreaded_);
-  const V3* p = project_ ? dst : src;
-  const size_t n = out_.positions.size();
   for (size_t i = 0; i < n; ++i) {
     const size_t k = pick_.empty() ? i : pick_[i];
-    out_.positions[i] = {p[k].x + origin_[0], p[k].y + origin_[1], p[k].z + origin_[2]};
+    out_.positions[i] = {dst[k].x + origin_[0], dst[k].y + origin_[1], dst[k].z + origin_[2]};
     if (!pick_.empty()) out_.normals[i] = {limit_[k].x, limit_[k].y, limit_[k].z};
   }
 }

@@ -10,8 +10,8 @@
 
 namespace sdb::mipgh {
 
-// project_to_limit = false returns the last level's refined nodes (the exactness oracle's side);
-// normals stay the limit normals.
+// project_to_limit = false returns the last level's refined nodes (the exactness oracle's side,
+// and the paper's mutation steps alone: the `limit=0` parameter); the normals are left zero.
 std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& request,
                                             bool project_to_limit = true);
 

@@ -44,6 +44,10 @@ SchemeInfo make_info(SubdivisionRule rule) {
                              : std::vector<std::string>{"stein/sword_quad_dominant", "crane/spot_control",
                                                         "pmp/fandisk_quads"};
   info.headline_runs = {{headline, Backend::Cpu, 4}, {headline, Backend::CpuMt, 4}};
+  // The paper's mutation steps alone (its cost claim, paper/cost.cpp): the last step's nodes are
+  // the output, not the limit surface, so such a row lies off the limit by design.
+  info.parameters = {{"limit", "1: project the last level to the limit surface; 0: output the last mutation step's nodes",
+                      true, 1, 0, 1, 1}};
   return info;
 }
 
@@ -60,13 +64,19 @@ class MipghScheme final : public Scheme {
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
-    return make_evaluation(mesh, rule_, r);
+    return make_evaluation(mesh, rule_, r, r.parameters.integer("limit") == 1);
   }
 
  private:
   SubdivisionRule rule_;
   SchemeInfo info_;
 };
+
+}  // namespace
+
+std::vector<PaperTable> mipgh_paper_tables();  // paper/cost.cpp
+
+namespace {
 
 std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
   std::vector<std::unique_ptr<Scheme>> s;
@@ -76,6 +86,7 @@ std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
 }
 
 SDB_REGISTER_SCHEMES(mipgh, make_mipgh_schemes);
+SDB_REGISTER_PAPER_TABLES(mipgh, mipgh_paper_tables);
 
 }  // namespace
 
