@@ -20,16 +20,20 @@ void for_each(int count, bool parallel, int grain, F&& f) {
 }
 
 // A D-facet's nodes of one level, gathered once through its index array into three planes (the
-// work-group tile a GPU would stage in shared memory): the stencils below then run along rows,
-// one plane at a time, in SIMD lanes.
+// work-group tile a GPU would stage in shared memory). A plane is the n x n square, a triangle in
+// its lower-left half (row i holds n - i nodes), with n + 1 floats of padding on either side: the
+// stencils then run over the whole square as one long SIMD loop with fixed neighbour offsets
+// (+-1 along a row, +-n across), and the values at squares no target uses are dropped.
 struct Tile {
-  std::vector<float> plane[3];
+  std::vector<float> storage[3];
   int n = 0;
-  // A triangle's rows (n - i nodes each) go to the square's lower-left half.
+  float* plane(int k) { return storage[k].data() + n + 1; }
+  const float* plane(int k) const { return storage[k].data() + n + 1; }
   void load(const uint32_t* idx, int size, const V3* src, bool quad) {
+    if (n != size)
+      for (auto& s : storage) s.assign(size_t(size) * size + 2 * (size + 1), 0.0f);
     n = size;
-    for (auto& p : plane) p.resize(size_t(n) * n);
-    float *x = plane[0].data(), *y = plane[1].data(), *z = plane[2].data();
+    float *x = plane(0), *y = plane(1), *z = plane(2);
     if (quad) {
       for (int i = 0; i < n * n; ++i) {
         const V3 p = src[idx[i]];
@@ -45,10 +49,14 @@ struct Tile {
   }
 };
 
-struct RowScratch {
-  std::vector<float> row[3], normal[3];
+// The stencils' results over a tile's square: four classes of target per source square L = (a, b)
+// (the target at (2a + r, 2b + c) for class 2r + c), or the limit position and two tangents.
+struct Planes {
+  std::vector<float> v[4][3], normal[3];
   void fit(size_t size) {
-    for (int k = 0; k < 3; ++k) row[k].resize(size), normal[k].resize(size);
+    for (auto& c : v)
+      for (auto& p : c) p.resize(size);
+    for (auto& p : normal) p.resize(size);
   }
 };
 
@@ -60,132 +68,95 @@ struct Strip {
   bool quad_major = true, quad_minor = true;
 };
 
+// The tile's loops in AVX2 lanes where the CPU has them, SSE2 otherwise (as the fragments' kernel).
+#define SDB_TILE_CLONES __attribute__((target_clones("avx2", "default")))
+
 thread_local Tile t_tile;
 thread_local Strip t_strip;
-thread_local RowScratch t_row;
+thread_local Planes t_planes;
 thread_local VertexDisk t_disk;
 
-// Target row r (1 <= r <= 2n - 3) of a D-facet's refined interior, one coordinate: out[c - 1] for
-// columns c = 1 .. 2n - 3. Facet points and vertical edge points on odd rows, horizontal edge
-// points and vertex points on even ones (Figure 20's stencils).
-void refine_row(const float* p, int n, int r, float* out) {
-  const int a = r >> 1;
-  if (r & 1) {
-    const float *top = p + size_t(a) * n, *bot = top + n;
-    for (int b = 0; b + 1 < n; ++b)  // c = 2b + 1
-      out[2 * b] = 0.25f * ((top[b] + bot[b + 1]) + (top[b + 1] + bot[b]));
-    for (int b = 1; b + 1 < n; ++b)  // c = 2b
-      out[2 * b - 1] = 0.375f * (top[b] + bot[b]) + 0.0625f * ((top[b - 1] + bot[b - 1]) + (top[b + 1] + bot[b + 1]));
-    return;
-  }
-  const float *mid = p + size_t(a) * n, *up = mid - n, *dn = mid + n;
-  for (int b = 0; b + 1 < n; ++b)
-    out[2 * b] = 0.375f * (mid[b] + mid[b + 1]) + 0.0625f * ((up[b] + up[b + 1]) + (dn[b] + dn[b + 1]));
-  for (int b = 1; b + 1 < n; ++b)
-    out[2 * b - 1] = 0.5625f * mid[b] + 0.09375f * ((mid[b + 1] + mid[b - 1]) + (dn[b] + up[b])) +
-                     0.015625f * ((dn[b + 1] + up[b - 1]) + (dn[b - 1] + up[b + 1]));
-}
-
-// Limit positions and normals of interior row i, Figure 21's stencils with T1 along the row and T2
-// across it; all three planes at once (the cross product needs them), written through `s`.
-void project_row(const Tile& t, int i, RowScratch& s) {
-  const int n = t.n;
-  float t1[3][64], t2[3][64];  // n <= 257 at depth 8: done in blocks of 64 columns
-  for (int j0 = 1; j0 + 1 < n; j0 += 64) {
-    const int count = std::min(64, n - 1 - j0);
-    for (int k = 0; k < 3; ++k) {
-      const float *mid = t.plane[k].data() + size_t(i) * n + j0, *up = mid - n, *dn = mid + n;
-      float* o = s.row[k].data() + (j0 - 1);
-      for (int j = 0; j < count; ++j) {
-        const float e0 = mid[j + 1], e1 = dn[j], e2 = mid[j - 1], e3 = up[j];
-        const float d0 = dn[j + 1], d1 = dn[j - 1], d2 = up[j - 1], d3 = up[j + 1];
-        o[j] = (1.0f / 36) * (16.0f * mid[j] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
-        t1[k][j] = 4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2));
-        t2[k][j] = 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3));
-      }
-    }
-    float *nx = s.normal[0].data() + (j0 - 1), *ny = s.normal[1].data() + (j0 - 1), *nz = s.normal[2].data() + (j0 - 1);
-    for (int j = 0; j < count; ++j) {
-      const float x = t1[1][j] * t2[2][j] - t1[2][j] * t2[1][j];
-      const float y = t1[2][j] * t2[0][j] - t1[0][j] * t2[2][j];
-      const float z = t1[0][j] * t2[1][j] - t1[1][j] * t2[0][j];
-      const float l = std::sqrt(x * x + y * y + z * z);
-      const float inv = l > 0 ? 1.0f / l : 1.0f;
-      nx[j] = x * inv, ny[j] = y * inv, nz[j] = z * inv;
-    }
+// Figure 20's stencils at every square of one coordinate's plane: vertex points (class 0),
+// horizontal edge points (1), vertical ones (2), facet points (3).
+SDB_TILE_CLONES void quad_classes(const float* __restrict P, int n, float* __restrict vv, float* __restrict eh,
+                  float* __restrict ev, float* __restrict fv) {
+  for (int L = 0; L < n * n; ++L) {
+    vv[L] = 0.5625f * P[L] + 0.09375f * ((P[L + 1] + P[L - 1]) + (P[L + n] + P[L - n])) +
+            0.015625f * ((P[L + n + 1] + P[L - n - 1]) + (P[L + n - 1] + P[L - n + 1]));
+    eh[L] = 0.375f * (P[L] + P[L + 1]) + 0.0625f * ((P[L - n] + P[L - n + 1]) + (P[L + n] + P[L + n + 1]));
+    ev[L] = 0.375f * (P[L] + P[L + n]) + 0.0625f * ((P[L - 1] + P[L + n - 1]) + (P[L + 1] + P[L + n + 1]));
+    fv[L] = 0.25f * ((P[L] + P[L + n + 1]) + (P[L + 1] + P[L + n]));
   }
 }
 
-// Loop's refined interior of a triangular D-facet, target row r (1 <= r <= 2n - 4), one
-// coordinate: out[c - 1] for columns c = 1 .. 2n - 3 - r. p holds the triangle's nodes in the
-// square's lower-left half, (i, j) at p[i * n + j]. Even rows: horizontal edge points and vertex
-// points; odd rows: diagonal and vertical edge points.
-void refine_triangle_row(const float* p, int n, int r, float* out) {
-  const int a = r >> 1, end = 2 * n - 3 - r;  // last column
-  if (!(r & 1)) {
-    const float *mid = p + size_t(a) * n, *up = mid + n, *dn = mid - n;  // rows a, a + 1, a - 1
-    for (int b = 0; 2 * b + 1 <= end; ++b)  // c = 2b + 1: (a, b)-(a, b+1)
-      out[2 * b] = 0.375f * (mid[b] + mid[b + 1]) + 0.125f * (up[b] + dn[b + 1]);
-    for (int b = 1; 2 * b <= end; ++b)  // c = 2b: vertex (a, b)
-      out[2 * b - 1] = 0.625f * mid[b] +
-                       0.0625f * (((mid[b + 1] + mid[b - 1]) + (up[b] + dn[b])) + (up[b - 1] + dn[b + 1]));
-    return;
+// Loop's, in a triangle's square: vertex points (class 0), edge points of (a, b)-(a, b+1) (1),
+// (a, b)-(a+1, b) (2) and the diagonal (a, b+1)-(a+1, b) (3).
+SDB_TILE_CLONES void triangle_classes(const float* __restrict P, int n, float* __restrict vv, float* __restrict eh,
+                      float* __restrict ev, float* __restrict ed) {
+  for (int L = 0; L < n * n; ++L) {
+    vv[L] = 0.625f * P[L] + 0.0625f * (((P[L + 1] + P[L - 1]) + (P[L + n] + P[L - n])) + (P[L + n - 1] + P[L - n + 1]));
+    eh[L] = 0.375f * (P[L] + P[L + 1]) + 0.125f * (P[L + n] + P[L - n + 1]);
+    ev[L] = 0.375f * (P[L] + P[L + n]) + 0.125f * (P[L + 1] + P[L + n - 1]);
+    ed[L] = 0.375f * (P[L + 1] + P[L + n]) + 0.125f * (P[L] + P[L + n + 1]);
   }
-  const float *lo = p + size_t(a) * n, *hi = lo + n;  // rows a, a + 1
-  for (int b = 0; 2 * b + 1 <= end; ++b)  // c = 2b + 1: (a, b+1)-(a+1, b)
-    out[2 * b] = 0.375f * (lo[b + 1] + hi[b]) + 0.125f * (lo[b] + hi[b + 1]);
-  for (int b = 1; 2 * b <= end; ++b)  // c = 2b: (a, b)-(a+1, b)
-    out[2 * b - 1] = 0.375f * (lo[b] + hi[b]) + 0.125f * (lo[b + 1] + hi[b - 1]);
 }
 
-// Loop's regular limit along interior row i of a triangle (columns 1 .. n - 2 - i), as
-// loop_limit_regular: ring (i, j+1), (i+1, j), (i+1, j-1), (i, j-1), (i-1, j), (i-1, j+1).
-void project_triangle_row(const Tile& t, int i, RowScratch& s) {
-  const int n = t.n, count = n - 2 - i;
-  float t1[3][64], t2[3][64];
-  for (int j0 = 1; j0 <= count; j0 += 64) {
-    const int c = std::min(64, count - j0 + 1);
-    for (int k = 0; k < 3; ++k) {
-      const float *mid = t.plane[k].data() + size_t(i) * n + j0, *up = mid + n, *dn = mid - n;
-      float* o = s.row[k].data() + (j0 - 1);
-      for (int j = 0; j < c; ++j) {
-        const float e0 = mid[j + 1], e1 = up[j], e2 = up[j - 1], e3 = mid[j - 1], e4 = dn[j], e5 = dn[j + 1];
-        o[j] = 0.5f * mid[j] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
-        t1[k][j] = (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5));
-        t2[k][j] = (e1 + e2) - (e4 + e5);
-      }
-    }
-    float *nx = s.normal[0].data() + (j0 - 1), *ny = s.normal[1].data() + (j0 - 1), *nz = s.normal[2].data() + (j0 - 1);
-    for (int j = 0; j < c; ++j) {
-      const float x = t1[1][j] * t2[2][j] - t1[2][j] * t2[1][j];
-      const float y = t1[2][j] * t2[0][j] - t1[0][j] * t2[2][j];
-      const float z = t1[0][j] * t2[1][j] - t1[1][j] * t2[0][j];
-      const float l = std::sqrt(x * x + y * y + z * z);
-      const float inv = l > 0 ? 1.0f / l : 1.0f;
-      nx[j] = x * inv, ny[j] = y * inv, nz[j] = z * inv;
-    }
+// The limit position (class 0) and the two tangents (1, 2) at every square: Catmull-Clark's
+// (16, 4, 1)/36 and Figure 21's stencils (T1 along a row, T2 across), or Loop's 1/2, 1/12 and its
+// regular tangents, as catmark_limit_regular and loop_limit_regular compute them.
+SDB_TILE_CLONES void quad_limit(const float* __restrict P, int n, float* __restrict pos, float* __restrict t1, float* __restrict t2) {
+  for (int L = 0; L < n * n; ++L) {
+    const float e0 = P[L + 1], e1 = P[L + n], e2 = P[L - 1], e3 = P[L - n];
+    const float d0 = P[L + n + 1], d1 = P[L + n - 1], d2 = P[L - n - 1], d3 = P[L - n + 1];
+    pos[L] = (1.0f / 36) * (16.0f * P[L] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
+    t1[L] = 4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2));
+    t2[L] = 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3));
+  }
+}
+SDB_TILE_CLONES void triangle_limit(const float* __restrict P, int n, float* __restrict pos, float* __restrict t1,
+                    float* __restrict t2) {
+  for (int L = 0; L < n * n; ++L) {
+    const float e0 = P[L + 1], e1 = P[L + n], e2 = P[L + n - 1], e3 = P[L - 1], e4 = P[L - n], e5 = P[L - n + 1];
+    pos[L] = 0.5f * P[L] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
+    t1[L] = (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5));
+    t2[L] = (e1 + e2) - (e4 + e5);
+  }
+}
+
+// Unit T1 x T2 at every square.
+SDB_TILE_CLONES void unit_normals(const float* __restrict ax, const float* __restrict ay, const float* __restrict az,
+                                  const float* __restrict bx, const float* __restrict by, const float* __restrict bz,
+                                  float* __restrict nx, float* __restrict ny, float* __restrict nz, int count) {
+  for (int L = 0; L < count; ++L) {
+    const float x = ay[L] * bz[L] - az[L] * by[L], y = az[L] * bx[L] - ax[L] * bz[L], z = ax[L] * by[L] - ay[L] * bx[L];
+    const float l2 = x * x + y * y + z * z;
+    const float inv = 1.0f / std::sqrt(l2 + 1e-37f);  // a zero normal stays zero; no branch, so SIMD lanes
+    nx[L] = x * inv, ny[L] = y * inv, nz[L] = z * inv;
   }
 }
 
 }  // namespace
 
 void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const {
-  const LevelLayout& to = lod_.layout(sigma + 1);
-  const int n = lod_.layout(sigma).n, width = to.s;  // target rows and columns 1 .. width
-  Tile& t = t_tile;
+  const int n = lod_.layout(sigma).n, width = lod_.layout(sigma + 1).s;  // target rows, columns 1 .. width
   const bool quad = atlas_.facet_size[f] == 4;
+  Tile& t = t_tile;
+  Planes& s = t_planes;
   t.load(lod_.facet(sigma, f), n, src, quad);
-  V3* out = dst + to.interior(f);
-  RowScratch& s = t_row;
-  s.fit(width);
+  s.fit(size_t(n) * n);
+  for (int k = 0; k < 3; ++k)
+    (quad ? quad_classes : triangle_classes)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data(),
+                                             s.v[3][k].data());
+  V3* out = dst + lod_.layout(sigma + 1).interior(f);
   for (int r = 1; r <= width; ++r) {
-    const int count = quad ? width : width - r;  // a triangle's row r holds 2n - 3 - r interior nodes
-    for (int k = 0; k < 3; ++k)
-      quad ? refine_row(t.plane[k].data(), n, r, s.row[k].data())
-           : refine_triangle_row(t.plane[k].data(), n, r, s.row[k].data());
-    const float *x = s.row[0].data(), *y = s.row[1].data(), *z = s.row[2].data();
-    for (int c = 0; c < count; ++c) out[c] = {x[c], y[c], z[c]};
-    out += count;
+    // columns alternate between two classes: odd columns from `a`, even ones from `b`
+    const int row = (r >> 1) * n, odd = (r & 1) << 1, end = quad ? width : width - r;
+    const float *ax = s.v[odd | 1][0].data() + row, *ay = s.v[odd | 1][1].data() + row, *az = s.v[odd | 1][2].data() + row;
+    const float *bx = s.v[odd][0].data() + row, *by = s.v[odd][1].data() + row, *bz = s.v[odd][2].data() + row;
+    for (int c = 1; c <= end; ++c) {
+      const int L = c >> 1;
+      *out++ = (c & 1) ? V3{ax[L], ay[L], az[L]} : V3{bx[L], by[L], bz[L]};
+    }
   }
 }
 
@@ -196,6 +167,20 @@ MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTag
   auto first = [&](int v) { return atlas.valence(v) ? atlas.ring[atlas.ring_offsets[v]].facet : -1; };
   for (int v = 0; v < atlas.num_vertices; ++v) vertex_order_[v] = v;
   std::stable_sort(vertex_order_.begin(), vertex_order_.end(), [&](int a, int b) { return first(a) < first(b); });
+  // Offsets of the rows along each side (depth 0 and 1) in a D-facet's array, every level:
+  // a triangle's three sides, then a quad's four.
+  for (int sigma = 0; sigma <= lod.depth(); ++sigma) {
+    const int n = lod.layout(sigma).n;
+    std::vector<int32_t> rows(size_t(7) * 2 * n, 0);
+    for (int kind = 0; kind < 7; ++kind)
+      for (int depth = 0; depth < 2; ++depth)
+        for (int a = 0; a < n; ++a) {
+          const int size = kind < 3 ? 3 : 4, side = kind < 3 ? kind : kind - 3;
+          if (size == 3 && a + depth >= n) continue;  // a triangle's inner row is one shorter
+          rows[(kind * 2 + depth) * n + a] = facet_side_offset(size, side, n, a, depth);
+        }
+    side_rows_.push_back(std::move(rows));
+  }
 }
 
 void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
@@ -205,17 +190,24 @@ void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
   s.a.resize(n), s.b.resize(n), s.c.resize(n);
   const int fs = atlas_.facet_size[d.major.facet];
   const uint32_t* f = lod_.facet(sigma, d.major.facet);
-  for (int t = 0; t < n; ++t) s.a[t] = src[f[facet_side_offset(fs, d.major.side, n, t, 0)]];
+  const int32_t* on = side_rows(sigma, fs, d.major.side, 0);
+  const int32_t* in = side_rows(sigma, fs, d.major.side, 1);
+  for (int t = 0; t < n; ++t) s.a[t] = src[f[on[t]]];
   // the row one in: n nodes in a quad, n - 1 in a triangle (node t next to a[t] and a[t + 1])
-  for (int t = 0; t < n - (fs == 3); ++t) s.b[t] = src[f[facet_side_offset(fs, d.major.side, n, t, 1)]];
+  for (int t = 0; t < n - (fs == 3); ++t) s.b[t] = src[f[in[t]]];
   s.quad_major = fs == 4;
   if (d.minor.null()) return;
   const int gs = atlas_.facet_size[d.minor.facet];
   const uint32_t* g = lod_.facet(sigma, d.minor.facet);
+  const int32_t* across = side_rows(sigma, gs, d.minor.side, 1);
   s.quad_minor = gs == 4;
   // c[t] runs the major's way: a quad's node across from a[t]; a triangle's between a[t], a[t + 1]
   const int last = gs == 4 ? n - 1 : n - 2;
-  for (int t = 0; t <= last; ++t) s.c[t] = src[g[facet_side_offset(gs, d.minor.side, n, last - t, 1)]];
+  for (int t = 0; t <= last; ++t) s.c[t] = src[g[across[last - t]]];
+}
+
+const int32_t* MeshProcessor::side_rows(int sigma, int size, int side, int depth) const {
+  return side_rows_[sigma].data() + ((size == 4 ? 3 + side : side) * 2 + depth) * lod_.layout(sigma).n;
 }
 
 // The 1-disk of the strip's node t, counter-clockwise seen from the major D-facet: along +, the
@@ -343,35 +335,26 @@ void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const
 
 void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
-  Tile& t = t_tile;
+  const int n = l.n;
   const bool quad = atlas_.facet_size[f] == 4;
-  t.load(lod_.facet(sigma, f), l.n, src, quad);
+  Tile& t = t_tile;
+  Planes& s = t_planes;
+  t.load(lod_.facet(sigma, f), n, src, quad);
+  s.fit(size_t(n) * n);
+  for (int k = 0; k < 3; ++k)
+    (quad ? quad_limit : triangle_limit)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data());
+  unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
+               s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), n * n);
   const uint32_t first = l.interior(f);
-  if (!quad) {  // Loop's regular limit at every interior node, row-major
-    RowScratch& s = t_row;
-    s.fit(l.s);
-    V3 *p = position + first, *q = normal + first;
-    for (int i = 1; i + 2 < l.n; ++i) {
-      project_triangle_row(t, i, s);
-      const int count = l.n - 2 - i;
-      for (int j = 0; j < count; ++j) {
-        p[j] = {s.row[0][j], s.row[1][j], s.row[2][j]};
-        q[j] = {s.normal[0][j], s.normal[1][j], s.normal[2][j]};
-      }
-      p += count, q += count;
+  V3 *p = position + first, *q = normal + first;
+  const float *px = s.v[0][0].data(), *py = s.v[0][1].data(), *pz = s.v[0][2].data();
+  const float *nx = s.normal[0].data(), *ny = s.normal[1].data(), *nz = s.normal[2].data();
+  for (int i = 1; i <= l.s; ++i)
+    for (int j = 1; quad ? j <= l.s : i + j <= l.s; ++j, ++p, ++q) {
+      const int L = i * n + j;
+      *p = {px[L], py[L], pz[L]};
+      *q = {nx[L], ny[L], nz[L]};
     }
-    return;
-  }
-  RowScratch& s = t_row;
-  s.fit(l.s);
-  for (int i = 1; i <= l.s; ++i) {
-    project_row(t, i, s);
-    V3 *p = position + first + size_t(i - 1) * l.s, *q = normal + first + size_t(i - 1) * l.s;
-    for (int j = 0; j < l.s; ++j) {
-      p[j] = {s.row[0][j], s.row[1][j], s.row[2][j]};
-      q[j] = {s.normal[0][j], s.normal[1][j], s.normal[2][j]};
-    }
-  }
 }
 
 void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const {

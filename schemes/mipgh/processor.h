@@ -39,6 +39,8 @@ class MeshProcessor {
   void strip_disk(int sigma, int e, int t, VertexDisk& disk) const;
   // Reads D-edge e's strip (processor.cpp, Strip) into the thread's scratch.
   void load_strip(int sigma, int e, const V3* src) const;
+  // The array offsets of the nodes along a side (depth 0) or one in from it (1), at level sigma.
+  const int32_t* side_rows(int sigma, int size, int side, int depth) const;
   void project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const;
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const;
 
@@ -47,6 +49,7 @@ class MeshProcessor {
   const EdgeTags& tags_;
   const MeshShader& shader_;
   std::vector<int> vertex_order_;
+  std::vector<std::vector<int32_t>> side_rows_;
 };
 
 // Primitive compilation at level sigma: two triangles per micro-facet of every D-facet that is not

@@ -9,10 +9,6 @@ namespace sdb::mipgh {
 
 namespace Sdc = OpenSubdiv::Sdc;
 
-V3 normalized(V3 a) {
-  const float l = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-  return l > 0 ? (1.0f / l) * a : a;
-}
 
 void VertexDisk::resize(int num_edges, int num_faces) {
   edges = num_edges, faces = num_faces;

@@ -12,6 +12,7 @@
 #include <opensubdiv/sdc/crease.h>
 #include <opensubdiv/sdc/options.h>
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -26,7 +27,10 @@ inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline V3 operator*(float w, V3 a) { return {w * a.x, w * a.y, w * a.z}; }
 inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-V3 normalized(V3 a);
+inline V3 normalized(V3 a) {
+  const float l = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+  return l > 0 ? (1.0f / l) * a : a;
+}
 
 // Figure 20, the stencils of a tag-free regular 1-disk.
 inline V3 facet_vertex(V3 a, V3 b, V3 c, V3 d) { return 0.25f * ((a + c) + (b + d)); }
