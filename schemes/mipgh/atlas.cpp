@@ -87,6 +87,7 @@ struct Builder {
       }
     a.ring_offsets.assign(nv + 1, 0);
     a.vertex_boundary.assign(nv, 0);
+    a.vertex_fans.assign(nv, 1);
     for (int v = 0; v < nv; ++v) {
       a.ring_offsets[v] = static_cast<int32_t>(a.ring.size());
       if (first[v].null()) continue;  // a vertex in no face: it has no node at any level past 0
@@ -103,7 +104,8 @@ struct Builder {
         at = {across->second.facet, across->second.side};
         if (at.facet == start.facet && at.side == start.side) break;
       }
-      if (a.ring.size() - a.ring_offsets[v] != size_t(incidences[v])) throw nonmanifold(v);
+      const size_t fan = a.ring.size() - a.ring_offsets[v];
+      if (fan != size_t(incidences[v])) a.vertex_fans[v] = 2;  // at least: the ring is the first
     }
     a.ring_offsets[nv] = static_cast<int32_t>(a.ring.size());
   }

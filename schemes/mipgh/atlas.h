@@ -43,6 +43,10 @@ struct DAtlas {
   std::vector<int32_t> ring_offsets;
   std::vector<HalfEdge> ring;  // side = the corner of `facet` at the vertex
   std::vector<uint8_t> vertex_boundary;
+  // A vertex whose faces form several fans (a non-manifold vertex, two cones meeting at a point):
+  // the ring holds its first fan only. Far makes such a vertex an infinitely sharp corner, whose
+  // masks read no ring; the processor checks that the tags say so.
+  std::vector<uint8_t> vertex_fans;
 
   int num_facets() const { return static_cast<int>(facet_corners.size()); }
   int next(int f, int k) const { return k + 1 == facet_size[f] ? 0 : k + 1; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "harness/core/errors.h"
 #include "harness/mesh/osd_topology.h"
 
 namespace sdb::mipgh {
@@ -36,6 +37,10 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule 
       depth_(depth) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
   mark_far_holes(mesh, rule, atlas_);
+  for (int v = 0; v < atlas_.num_vertices; ++v)
+    if (atlas_.vertex_fans[v] > 1 && !(tags_.any && tags_.vertex[0][v] >= 10.0f))
+      throw InputError(mesh.source, "vertex " + std::to_string(v) +
+                                        " joins several fans of faces and is not an infinitely sharp corner");
   const Bounds box = bounds_of(control_);
   for (int k = 0; k < 3; ++k) origin_[k] = static_cast<float>(box.centre(k));
   const uint32_t inner_nodes = lod_.layout(lod_.depth()).num_nodes, nodes = lod_.layout(depth).num_nodes;

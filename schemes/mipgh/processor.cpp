@@ -318,7 +318,7 @@ void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& d
 }
 
 void MeshProcessor::visit_vertex(int sigma, int v, const V3* src, V3* dst) const {
-  if (atlas_.valence(v) == 0) {  // in no face: carried along unchanged
+  if (atlas_.valence(v) == 0 || atlas_.vertex_fans[v] > 1) {  // in no face, or a corner of several fans
     dst[v] = src[v];
     return;
   }
