@@ -399,6 +399,47 @@ void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, 
   });
 }
 
+void MeshProcessor::adjust(int sigma, const V3* src, V3* dst, const Adjustment& shader) const {
+  const LevelLayout& l = lod_.layout(sigma);
+  const int n = l.n;
+  VertexDisk disk;
+  for (int f = 0; f < atlas_.num_facets(); ++f) {
+    const uint32_t* idx = lod_.facet(sigma, f);
+    const int size = atlas_.facet_size[f];
+    auto at = [&](int i, int j) { return src[idx[facet_offset(size, n, {i, j})]]; };
+    for (int i = 1; i <= l.s; ++i)
+      for (int j = 1; size == 4 ? j <= l.s : i + j <= l.s; ++j) {
+        disk.c = at(i, j);
+        if (size == 4) {
+          disk.resize(4, 4);
+          disk.e[0] = at(i, j + 1), disk.e[1] = at(i + 1, j), disk.e[2] = at(i, j - 1), disk.e[3] = at(i - 1, j);
+          disk.d[0] = at(i + 1, j + 1), disk.d[1] = at(i + 1, j - 1), disk.d[2] = at(i - 1, j - 1), disk.d[3] = at(i - 1, j + 1);
+        } else {
+          disk.resize(6, 6);
+          disk.e[0] = at(i, j + 1), disk.e[1] = at(i + 1, j), disk.e[2] = at(i + 1, j - 1);
+          disk.e[3] = at(i, j - 1), disk.e[4] = at(i - 1, j), disk.e[5] = at(i - 1, j + 1);
+          for (int k = 0; k < 6; ++k) disk.d[k] = disk.c;
+        }
+        dst[idx[facet_offset(size, n, {i, j})]] = shader(disk);
+      }
+  }
+  for (int e = 0; e < atlas_.num_edges(); ++e) {
+    load_strip(sigma, e, src);
+    for (int t = 1; t <= l.s; ++t) {
+      strip_disk(sigma, e, t, disk);
+      dst[l.edge_node(e, t - 1)] = shader(disk);
+    }
+  }
+  for (int v = 0; v < atlas_.num_vertices; ++v) {
+    if (atlas_.valence(v) == 0) {
+      dst[v] = src[v];
+      continue;
+    }
+    gather_vertex(sigma, v, src, disk);
+    dst[v] = shader(disk);
+  }
+}
+
 namespace {
 
 // Calls f(offset, i, j) for every node of a D-facet's array at level n: row-major (i, j).

@@ -8,6 +8,7 @@
 // output is watertight by construction (no welding, no symmetric evaluation needed).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "harness/core/tessellation.h"
@@ -25,6 +26,12 @@ class MeshProcessor {
   void step(int sigma, const V3* src, V3* dst, bool parallel) const;
   // Limit positions and unit normals of level sigma's nodes.
   void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const;
+
+  // Adjustment without refinement (Figure 24's bypassed case): every node of level sigma is
+  // replaced by what `shader` makes of its 1-disk there (read from src, written to dst). Any
+  // attribute of up to three floats per node; the game of life (paper/life.cpp) is one.
+  using Adjustment = std::function<V3(const VertexDisk&)>;
+  void adjust(int sigma, const V3* src, V3* dst, const Adjustment& shader) const;
 
   // The parts of a step, public for the tests.
   void visit_facet(int sigma, int f, const V3* src, V3* dst) const;

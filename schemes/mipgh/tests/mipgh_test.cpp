@@ -20,6 +20,7 @@
 #include "harness/reference/limit_evaluator.h"
 #include "harness/validate/watertight.h"
 #include "schemes/mipgh/atlas.h"
+#include "schemes/mipgh/life.h"
 #include "schemes/mipgh/lod.h"
 #include "schemes/mipgh/mipgh.h"
 
@@ -187,6 +188,30 @@ TEST(Mipgh, LoopIcosphereEqualsFarAndIsClosed) {
     EXPECT_EQ(count_open_edges(t), 0) << depth;
     EXPECT_EQ(t.num_triangles(), size_t(num_faces(m)) << (2 * depth));
   }
+}
+
+// Figure 23: the game of life as adjustment without refinement. A pulsar placed in a D-facet of a
+// subdivided torus returns to itself every third generation and to nothing sooner, for 99.
+TEST(MipghLife, PulsarHasPeriodThree) {
+  LifeOnMesh life(gen::torus(4, 4), 5);
+  const int margin = (life.facet_side() - 13) / 2;
+  for (int f = 0; f < life.num_facets(); f += 3) life.place(f, margin, margin, pulsar());
+  std::vector<std::vector<V3>> first;
+  auto alive = [](const std::vector<V3>& s) {
+    long n = 0;
+    for (const V3& v : s) n += v.x > 0.5f;
+    return n;
+  };
+  auto same = [](const std::vector<V3>& a, const std::vector<V3>& b) {
+    for (size_t i = 0; i < a.size(); ++i)
+      if ((a[i].x > 0.5f) != (b[i].x > 0.5f)) return false;
+    return true;
+  };
+  EXPECT_EQ(alive(life.state()), 48L * 6);  // 48 cells per pulsar, facets 0, 3, .., 15
+  for (int g = 0; g < 3; ++g, life.step()) first.push_back(life.state());
+  EXPECT_FALSE(same(first[0], first[1]));
+  EXPECT_FALSE(same(first[0], first[2]));
+  for (int g = 3; g < 99; ++g, life.step()) ASSERT_TRUE(same(life.state(), first[g % 3])) << "generation " << g;
 }
 
 TEST(Mipgh, CpuMtEqualsCpuBitForBit) {
