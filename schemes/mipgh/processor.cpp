@@ -53,7 +53,10 @@ struct Tile {
 // (the target at (2a + r, 2b + c) for class 2r + c), or the limit position and two tangents.
 struct Planes {
   std::vector<float> v[4][3], normal[3];
-  void fit(size_t size) {
+  size_t size = 0;
+  void fit(size_t wanted) {
+    if (wanted == size) return;
+    size = wanted;
     for (auto& c : v)
       for (auto& p : c) p.resize(size);
     for (auto& p : normal) p.resize(size);
