@@ -34,17 +34,19 @@ struct Tile {
       for (auto& s : storage) s.assign(size_t(size) * size + 2 * (size + 1), 0.0f);
     n = size;
     float *x = plane(0), *y = plane(1), *z = plane(2);
+    // float by float: a V3 copied whole goes through the stack (store forwarding on every node)
+    const float* base = &src[0].x;
     if (quad) {
       for (int i = 0; i < n * n; ++i) {
-        const V3 p = src[idx[i]];
-        x[i] = p.x, y[i] = p.y, z[i] = p.z;
+        const float* p = base + size_t(idx[i]) * 3;
+        x[i] = p[0], y[i] = p[1], z[i] = p[2];
       }
       return;
     }
     for (int i = 0; i < n; ++i)
       for (int j = 0; i + j < n; ++j) {
-        const V3 p = src[*idx++];
-        x[i * n + j] = p.x, y[i * n + j] = p.y, z[i * n + j] = p.z;
+        const float* p = base + size_t(*idx++) * 3;
+        x[i * n + j] = p[0], y[i * n + j] = p[1], z[i * n + j] = p[2];
       }
   }
 };
