@@ -10,6 +10,7 @@
 #include "harness/core/scheme.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/lod.h"
+#include "schemes/mipgh/primitives.h"
 #include "schemes/mipgh/processor.h"
 #include "schemes/mipgh/shader.h"
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "schemes/mipgh/tile.h"
+
 namespace sdb::mipgh {
 namespace {
 
@@ -19,52 +21,6 @@ void for_each(int count, bool parallel, int grain, F&& f) {
   });
 }
 
-// A D-facet's nodes of one level, gathered once through its index array into three planes (the
-// work-group tile a GPU would stage in shared memory). A plane is the n x n square, a triangle in
-// its lower-left half (row i holds n - i nodes), with n + 1 floats of padding on either side: the
-// stencils then run over the whole square as one long SIMD loop with fixed neighbour offsets
-// (+-1 along a row, +-n across), and the values at squares no target uses are dropped.
-struct Tile {
-  std::vector<float> storage[3];
-  int n = 0;
-  float* plane(int k) { return storage[k].data() + n + 1; }
-  const float* plane(int k) const { return storage[k].data() + n + 1; }
-  void load(const uint32_t* idx, int size, const V3* src, bool quad) {
-    if (n != size)
-      for (auto& s : storage) s.assign(size_t(size) * size + 2 * (size + 1), 0.0f);
-    n = size;
-    float *x = plane(0), *y = plane(1), *z = plane(2);
-    // float by float: a V3 copied whole goes through the stack (store forwarding on every node)
-    const float* base = &src[0].x;
-    if (quad) {
-      for (int i = 0; i < n * n; ++i) {
-        const float* p = base + size_t(idx[i]) * 3;
-        x[i] = p[0], y[i] = p[1], z[i] = p[2];
-      }
-      return;
-    }
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; i + j < n; ++j) {
-        const float* p = base + size_t(*idx++) * 3;
-        x[i * n + j] = p[0], y[i * n + j] = p[1], z[i * n + j] = p[2];
-      }
-  }
-};
-
-// The stencils' results over a tile's square: four classes of target per source square L = (a, b)
-// (the target at (2a + r, 2b + c) for class 2r + c), or the limit position and two tangents.
-struct Planes {
-  std::vector<float> v[4][3], normal[3];
-  size_t size = 0;
-  void fit(size_t wanted) {
-    if (wanted == size) return;
-    size = wanted;
-    for (auto& c : v)
-      for (auto& p : c) p.resize(size);
-    for (auto& p : normal) p.resize(size);
-  }
-};
-
 // The nodes along a D-edge and the rows next to it in its two D-facets, read once per visit:
 // a[t] on the edge, b[t] one in from the major side, c[t] one in from the minor side (t counted
 // from the major halfedge's first corner).
@@ -73,84 +29,22 @@ struct Strip {
   bool quad_major = true, quad_minor = true;
 };
 
-// The tile's loops in AVX2 lanes where the CPU has them, SSE2 otherwise (as the fragments' kernel).
-#define SDB_TILE_CLONES __attribute__((target_clones("avx2", "default")))
-
-thread_local Tile t_tile;
+thread_local tile::Tile t_tile;
 thread_local Strip t_strip;
-thread_local Planes t_planes;
+thread_local tile::Planes t_planes;
 thread_local VertexDisk t_disk;
-
-// Figure 20's stencils at every square of one coordinate's plane: vertex points (class 0),
-// horizontal edge points (1), vertical ones (2), facet points (3).
-SDB_TILE_CLONES void quad_classes(const float* __restrict P, int n, float* __restrict vv, float* __restrict eh,
-                  float* __restrict ev, float* __restrict fv) {
-  for (int L = 0; L < n * n; ++L) {
-    vv[L] = 0.5625f * P[L] + 0.09375f * ((P[L + 1] + P[L - 1]) + (P[L + n] + P[L - n])) +
-            0.015625f * ((P[L + n + 1] + P[L - n - 1]) + (P[L + n - 1] + P[L - n + 1]));
-    eh[L] = 0.375f * (P[L] + P[L + 1]) + 0.0625f * ((P[L - n] + P[L - n + 1]) + (P[L + n] + P[L + n + 1]));
-    ev[L] = 0.375f * (P[L] + P[L + n]) + 0.0625f * ((P[L - 1] + P[L + n - 1]) + (P[L + 1] + P[L + n + 1]));
-    fv[L] = 0.25f * ((P[L] + P[L + n + 1]) + (P[L + 1] + P[L + n]));
-  }
-}
-
-// Loop's, in a triangle's square: vertex points (class 0), edge points of (a, b)-(a, b+1) (1),
-// (a, b)-(a+1, b) (2) and the diagonal (a, b+1)-(a+1, b) (3).
-SDB_TILE_CLONES void triangle_classes(const float* __restrict P, int n, float* __restrict vv, float* __restrict eh,
-                      float* __restrict ev, float* __restrict ed) {
-  for (int L = 0; L < n * n; ++L) {
-    vv[L] = 0.625f * P[L] + 0.0625f * (((P[L + 1] + P[L - 1]) + (P[L + n] + P[L - n])) + (P[L + n - 1] + P[L - n + 1]));
-    eh[L] = 0.375f * (P[L] + P[L + 1]) + 0.125f * (P[L + n] + P[L - n + 1]);
-    ev[L] = 0.375f * (P[L] + P[L + n]) + 0.125f * (P[L + 1] + P[L + n - 1]);
-    ed[L] = 0.375f * (P[L + 1] + P[L + n]) + 0.125f * (P[L] + P[L + n + 1]);
-  }
-}
-
-// The limit position (class 0) and the two tangents (1, 2) at every square: Catmull-Clark's
-// (16, 4, 1)/36 and Figure 21's stencils (T1 along a row, T2 across), or Loop's 1/2, 1/12 and its
-// regular tangents, as catmark_limit_regular and loop_limit_regular compute them.
-SDB_TILE_CLONES void quad_limit(const float* __restrict P, int n, float* __restrict pos, float* __restrict t1, float* __restrict t2) {
-  for (int L = 0; L < n * n; ++L) {
-    const float e0 = P[L + 1], e1 = P[L + n], e2 = P[L - 1], e3 = P[L - n];
-    const float d0 = P[L + n + 1], d1 = P[L + n - 1], d2 = P[L - n - 1], d3 = P[L - n + 1];
-    pos[L] = (1.0f / 36) * (16.0f * P[L] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
-    t1[L] = 4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2));
-    t2[L] = 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3));
-  }
-}
-SDB_TILE_CLONES void triangle_limit(const float* __restrict P, int n, float* __restrict pos, float* __restrict t1,
-                    float* __restrict t2) {
-  for (int L = 0; L < n * n; ++L) {
-    const float e0 = P[L + 1], e1 = P[L + n], e2 = P[L + n - 1], e3 = P[L - 1], e4 = P[L - n], e5 = P[L - n + 1];
-    pos[L] = 0.5f * P[L] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
-    t1[L] = (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5));
-    t2[L] = (e1 + e2) - (e4 + e5);
-  }
-}
-
-// Unit T1 x T2 at every square.
-SDB_TILE_CLONES void unit_normals(const float* __restrict ax, const float* __restrict ay, const float* __restrict az,
-                                  const float* __restrict bx, const float* __restrict by, const float* __restrict bz,
-                                  float* __restrict nx, float* __restrict ny, float* __restrict nz, int count) {
-  for (int L = 0; L < count; ++L) {
-    const float x = ay[L] * bz[L] - az[L] * by[L], y = az[L] * bx[L] - ax[L] * bz[L], z = ax[L] * by[L] - ay[L] * bx[L];
-    const float l2 = x * x + y * y + z * z;
-    const float inv = 1.0f / std::sqrt(l2 + 1e-37f);  // a zero normal stays zero; no branch, so SIMD lanes
-    nx[L] = x * inv, ny[L] = y * inv, nz[L] = z * inv;
-  }
-}
 
 }  // namespace
 
 void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const {
   const int n = lod_.layout(sigma).n, width = lod_.layout(sigma + 1).s;  // target rows, columns 1 .. width
   const bool quad = atlas_.facet_size[f] == 4;
-  Tile& t = t_tile;
-  Planes& s = t_planes;
+  tile::Tile& t = t_tile;
+  tile::Planes& s = t_planes;
   t.load(lod_.facet(sigma, f), n, src, quad);
   s.fit(size_t(n) * n);
   for (int k = 0; k < 3; ++k)
-    (quad ? quad_classes : triangle_classes)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data(),
+    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data(),
                                              s.v[3][k].data());
   V3* out = dst + lod_.layout(sigma + 1).interior(f);
   for (int r = 1; r <= width; ++r) {
@@ -342,13 +236,13 @@ void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position,
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
   const bool quad = atlas_.facet_size[f] == 4;
-  Tile& t = t_tile;
-  Planes& s = t_planes;
+  tile::Tile& t = t_tile;
+  tile::Planes& s = t_planes;
   t.load(lod_.facet(sigma, f), n, src, quad);
   s.fit(size_t(n) * n);
   for (int k = 0; k < 3; ++k)
-    (quad ? quad_limit : triangle_limit)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data());
-  unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
+    (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data());
+  tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
                s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), n * n);
   const uint32_t first = l.interior(f);
   V3 *p = position + first, *q = normal + first;
@@ -443,77 +337,6 @@ void MeshProcessor::adjust(int sigma, const V3* src, V3* dst, const Adjustment& 
     gather_vertex(sigma, v, src, disk);
     dst[v] = shader(disk);
   }
-}
-
-namespace {
-
-// Calls f(offset, i, j) for every node of a D-facet's array at level n: row-major (i, j).
-template <class F>
-void for_each_node(int size, int n, F&& f) {
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; size == 4 ? j < n : i + j < n; ++j) f(size == 4 ? i * n + j : tri_offset(n, i, j), i, j);
-}
-
-}  // namespace
-
-void compile_primitives(const DAtlas& atlas, const DLoD& lod, int depth, Tessellation& out) {
-  const LevelLayout& l = lod.layout(depth);
-  const int n = l.n;
-  const float step = 1.0f / float(n - 1);
-  out.coords.assign(l.num_nodes, SurfaceCoord{});
-  // Each node's coord in the D-facet that owns it: interior nodes their own, D-edge nodes the
-  // major halfedge's, D-vertices the first of their ring's.
-  auto own = [&](int f, RowColumn p) {
-    const uint32_t node = lod.facet(depth, f)[facet_offset(atlas.facet_size[f], n, p)];
-    out.coords[node] = {uint32_t(f), float(p.j) * step, float(p.i) * step};
-  };
-  for (int f = 0; f < atlas.num_facets(); ++f)
-    for_each_node(atlas.facet_size[f], n, [&](int o, int i, int j) {
-      if (lod.facet(depth, f)[o] >= l.facet_base) own(f, {i, j});
-    });
-  for (const DEdge& e : atlas.edges)
-    for (int a = 1; a <= l.s; ++a) own(e.major.facet, side_ij(atlas.facet_size[e.major.facet], e.major.side, n, a, 0));
-  for (int v = 0; v < atlas.num_vertices; ++v)
-    if (atlas.valence(v) > 0) {
-      const HalfEdge& h = atlas.ring[atlas.ring_offsets[v]];
-      own(h.facet, side_ij(atlas.facet_size[h.facet], h.side, n, 0, 0));
-    }
-  out.triangles.clear();
-  out.triangles.reserve(size_t(atlas.num_facets()) * 6 * (n - 1) * (n - 1));
-  for (int f = 0; f < atlas.num_facets(); ++f) {
-    if (atlas.facet_hole[f]) continue;
-    const uint32_t* idx = lod.facet(depth, f);
-    if (atlas.facet_size[f] == 4) {
-      for (int i = 0; i + 1 < n; ++i)
-        for (int j = 0; j + 1 < n; ++j) {
-          const uint32_t a = idx[i * n + j], b = idx[i * n + j + 1], c = idx[(i + 1) * n + j + 1],
-                         d = idx[(i + 1) * n + j];
-          out.triangles.insert(out.triangles.end(), {a, b, c, a, c, d});
-        }
-      continue;
-    }
-    for (int i = 0; i + 1 < n; ++i)
-      for (int j = 0; i + j + 1 < n; ++j) {
-        const uint32_t a = idx[tri_offset(n, i, j)], b = idx[tri_offset(n, i, j + 1)], d = idx[tri_offset(n, i + 1, j)];
-        out.triangles.insert(out.triangles.end(), {a, b, d});
-        if (i + j + 2 < n) out.triangles.insert(out.triangles.end(), {b, idx[tri_offset(n, i + 1, j + 1)], d});
-      }
-  }
-}
-
-std::vector<uint32_t> same_points_at(const DAtlas& atlas, const DLoD& lod, int sigma, int inner) {
-  const int n = lod.layout(sigma).n, m = lod.layout(inner).n, shift = inner - sigma;
-  std::vector<uint32_t> to(lod.layout(sigma).num_nodes);
-  for (int v = 0; v < atlas.num_vertices; ++v) to[v] = v;  // D-vertices (bare ones included) keep their slot
-  for (int f = 0; f < atlas.num_facets(); ++f) {
-    const int size = atlas.facet_size[f];
-    const uint32_t *coarse = lod.facet(sigma, f), *fine = lod.facet(inner, f);
-    for_each_node(size, n, [&](int o, int i, int j) {
-      const int fi = i << shift, fj = j << shift;
-      to[coarse[o]] = fine[size == 4 ? fi * m + fj : tri_offset(m, fi, fj)];
-    });
-  }
-  return to;
 }
 
 }  // namespace sdb::mipgh

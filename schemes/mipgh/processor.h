@@ -59,12 +59,4 @@ class MeshProcessor {
   std::vector<std::vector<int32_t>> side_rows_;
 };
 
-// Primitive compilation at level sigma: two triangles per micro-facet of every D-facet that is not
-// a hole, and each node's SurfaceCoord in the D-facet that owns it (interior: its own; D-edge:
-// the major halfedge's; D-vertex: the first of its ring), in OpenSubdiv's (u, v) of that quad.
-void compile_primitives(const DAtlas& atlas, const DLoD& lod, int sigma, Tessellation& out);
-
-// For each node of level sigma, the node of the deeper level `inner` at the same grid point.
-std::vector<uint32_t> same_points_at(const DAtlas& atlas, const DLoD& lod, int sigma, int inner);
-
 }  // namespace sdb::mipgh
