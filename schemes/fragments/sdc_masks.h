@@ -7,6 +7,8 @@
 
 #include <vector>
 
+#include "harness/mesh/sdc_mask.h"
+
 namespace sdb::fragments {
 
 namespace Far = OpenSubdiv::Far;
@@ -55,29 +57,7 @@ class VertexHood {
   int vertex_, child_vertex_, start_;
 };
 
-class Mask {
- public:
-  using Weight = float;
-  explicit Mask(int max_weights) : v_(2), e_(max_weights), f_(max_weights) {}  // an edge mask has two vertex weights
-  int GetNumVertexWeights() const { return nv_; }
-  int GetNumEdgeWeights() const { return ne_; }
-  int GetNumFaceWeights() const { return nf_; }
-  void SetNumVertexWeights(int n) { nv_ = n; }
-  void SetNumEdgeWeights(int n) { ne_ = n; }
-  void SetNumFaceWeights(int n) { nf_ = n; }
-  Weight const& VertexWeight(int i) const { return v_[i]; }
-  Weight const& EdgeWeight(int i) const { return e_[i]; }
-  Weight const& FaceWeight(int i) const { return f_[i]; }
-  Weight& VertexWeight(int i) { return v_[i]; }
-  Weight& EdgeWeight(int i) { return e_[i]; }
-  Weight& FaceWeight(int i) { return f_[i]; }
-  bool AreFaceWeightsForFaceCenters() const { return centres_; }
-  void SetFaceWeightsForFaceCenters(bool on) { centres_ = on; }
-
- private:
-  std::vector<Weight> v_, e_, f_;
-  int nv_ = 0, ne_ = 0, nf_ = 0;
-  bool centres_ = false;
-};
+// Sdc's masks, filled for the tables (harness/mesh/sdc_mask.h).
+using Mask = SdcMask;
 
 }  // namespace sdb::fragments

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "harness/mesh/sdc_mask.h"
+
 namespace sdb::mipgh {
 
 namespace Sdc = OpenSubdiv::Sdc;
@@ -65,65 +67,38 @@ struct Sum {
   V3 get() const { return {float(x), float(y), float(z)}; }
 };
 
-class Mask {
- public:
-  using Weight = float;
-  int GetNumVertexWeights() const { return nv_; }
-  int GetNumEdgeWeights() const { return ne_; }
-  int GetNumFaceWeights() const { return nf_; }
-  void SetNumVertexWeights(int n) { nv_ = n; }
-  void SetNumEdgeWeights(int n) { ne_ = n, grow(e_, n); }
-  void SetNumFaceWeights(int n) { nf_ = n, grow(f_, n); }
-  Weight const& VertexWeight(int i) const { return v_[i]; }
-  Weight const& EdgeWeight(int i) const { return e_[i]; }
-  Weight const& FaceWeight(int i) const { return f_[i]; }
-  Weight& VertexWeight(int i) { return v_[i]; }
-  Weight& EdgeWeight(int i) { return e_[i]; }
-  Weight& FaceWeight(int i) { return f_[i]; }
-  bool AreFaceWeightsForFaceCenters() const { return centres_; }
-  void SetFaceWeightsForFaceCenters(bool on) { centres_ = on; }
-
-  // In double: a pole's ring of 360 terms summed in float is off by 1e-6 of the diagonal.
-  V3 apply(const VertexDisk& d) const {
-    Sum r;
-    r.add(v_[0], d.c);
-    for (int i = 0; i < ne_; ++i) r.add(e_[i], d.e[i]);
-    for (int i = 0; i < nf_; ++i) {
-      if (!centres_) {
-        r.add(f_[i], d.d[i]);
-        continue;
-      }
-      const V3 corners[4] = {d.c, d.e[i], d.d[i], d.e[(i + 1) % d.edges]};
-      for (const V3& p : corners) r.add(0.25 * f_[i], p);
+// In double: a pole's ring of 360 terms summed in float is off by 1e-6 of the diagonal.
+V3 apply(const SdcMask& m, const VertexDisk& d) {
+  Sum r;
+  r.add(m.VertexWeight(0), d.c);
+  for (int i = 0; i < m.GetNumEdgeWeights(); ++i) r.add(m.EdgeWeight(i), d.e[i]);
+  for (int i = 0; i < m.GetNumFaceWeights(); ++i) {
+    if (!m.AreFaceWeightsForFaceCenters()) {
+      r.add(m.FaceWeight(i), d.d[i]);
+      continue;
     }
-    return r.get();
+    const V3 corners[4] = {d.c, d.e[i], d.d[i], d.e[(i + 1) % d.edges]};
+    for (const V3& p : corners) r.add(0.25 * m.FaceWeight(i), p);
   }
-  V3 apply(const EdgeDisk& d) const {
-    Sum r;
-    r.add(v_[0], d.v0);
-    r.add(v_[1], d.v1);
-    for (int i = 0; i < nf_; ++i) {
-      if (!centres_) {  // a triangle's opposite corner (Loop)
-        r.add(f_[i], d.f[i][0]);
-        continue;
-      }
-      const V3 corners[4] = {d.v0, d.v1, d.f[i][0], d.f[i][1]};
-      for (const V3& p : corners) r.add(0.25 * f_[i], p);
+  return r.get();
+}
+
+V3 apply(const SdcMask& m, const EdgeDisk& d) {
+  Sum r;
+  r.add(m.VertexWeight(0), d.v0);
+  r.add(m.VertexWeight(1), d.v1);
+  for (int i = 0; i < m.GetNumFaceWeights(); ++i) {
+    if (!m.AreFaceWeightsForFaceCenters()) {  // a triangle's opposite corner (Loop)
+      r.add(m.FaceWeight(i), d.f[i][0]);
+      continue;
     }
-    return r.get();
+    const V3 corners[4] = {d.v0, d.v1, d.f[i][0], d.f[i][1]};
+    for (const V3& p : corners) r.add(0.25 * m.FaceWeight(i), p);
   }
+  return r.get();
+}
 
- private:
-  static void grow(std::vector<Weight>& w, int n) {
-    if (w.size() < size_t(n)) w.resize(n);
-  }
-  Weight v_[2] = {0, 0};
-  std::vector<Weight> e_, f_;
-  int nv_ = 0, ne_ = 0, nf_ = 0;
-  bool centres_ = false;
-};
-
-thread_local Mask t_pos, t_tan1, t_tan2;
+thread_local SdcMask t_pos, t_tan1, t_tan2;
 
 }  // namespace
 
@@ -146,13 +121,13 @@ class SdcShader final : public MeshShader {
     if (kType == Sdc::SCHEME_CATMARK && disk.smooth()) return catmark_vertex_smooth(disk);
     const Sdc::Scheme<kType> scheme(options_);
     scheme.ComputeVertexVertexMask(SdcVertex(disk), t_pos);
-    return t_pos.apply(disk);
+    return apply(t_pos, disk);
   }
 
   V3 edge_vertex(const EdgeDisk& disk) const override {
     const Sdc::Scheme<kType> scheme(options_);
     scheme.ComputeEdgeVertexMask(SdcEdge(disk, kType == Sdc::SCHEME_CATMARK ? 4 : 3), t_pos);
-    return t_pos.apply(disk);
+    return apply(t_pos, disk);
   }
 
   void limit(const VertexDisk& disk, V3& position, V3& normal) const override {
@@ -160,8 +135,8 @@ class SdcShader final : public MeshShader {
     const Sdc::Crease::Rule rule = crease.DetermineVertexVertexRule(disk.sharpness, disk.edges, disk.edge_sharpness.data());
     const Sdc::Scheme<kType> scheme(options_);
     scheme.ComputeVertexLimitMask(SdcVertex(disk), t_pos, t_tan1, t_tan2, rule);
-    position = t_pos.apply(disk);
-    normal = normalized(cross(t_tan1.apply(disk), t_tan2.apply(disk)));
+    position = apply(t_pos, disk);
+    normal = normalized(cross(apply(t_tan1, disk), apply(t_tan2, disk)));
   }
 
  private:
