@@ -9,34 +9,39 @@
 namespace sdb::mipgh {
 namespace {
 
-EdgeTags tags_of(const ControlMesh& mesh, SubdivisionRule rule, const DAtlas& atlas, int depth) {
-  const auto refiner = make_refiner(mesh, rule);
-  return build_tags(atlas, refiner->GetLevel(0), sdc_options(mesh), depth);
-}
-
-// Far makes holes of the faces it is told of, and under the boundary rule "none" of every face
-// at a boundary vertex: primitive compilation skips the same ones.
-void mark_far_holes(const ControlMesh& mesh, SubdivisionRule rule, DAtlas& atlas) {
-  const auto refiner = make_refiner(mesh, rule);
-  const auto& base = refiner->GetLevel(0);
-  for (int f = 0; f < atlas.num_facets(); ++f) atlas.facet_hole[f] |= base.IsFaceHole(f);
-}
+// Level sigma's depth for the limit: deeper where semi-sharp creases outlast the depth.
+int inner_depth(const ControlMesh& mesh, int depth, bool project) { return project ? limit_depth_for(mesh, depth) : depth; }
 
 }  // namespace
 
-CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool multithreaded,
-                                       int threads, bool project_to_limit)
+CpuMipghEvaluation::Topology CpuMipghEvaluation::topology_of(const ControlMesh& mesh, SubdivisionRule rule,
+                                                             DAtlas atlas, int inner) {
+  const auto refiner = make_refiner(mesh, rule);
+  const auto& base = refiner->GetLevel(0);
+  // Far makes holes of the faces it is told of, and under the boundary rule "none" of every face
+  // at a boundary vertex: primitive compilation skips the same ones.
+  for (int f = 0; f < atlas.num_facets(); ++f) atlas.facet_hole[f] |= base.IsFaceHole(f);
+  EdgeTags tags = build_tags(atlas, base, sdc_options(mesh), inner);
+  return {std::move(atlas), std::move(tags)};
+}
+
+CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth,
+                                       bool multithreaded, int threads, bool project_to_limit)
+    : CpuMipghEvaluation(mesh, rule,
+                         topology_of(mesh, rule, std::move(atlas), inner_depth(mesh, depth, project_to_limit)), depth,
+                         multithreaded, threads, project_to_limit) {}
+
+CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth,
+                                       bool multithreaded, int threads, bool project_to_limit)
     : control_(mesh.positions),
-      atlas_(build_atlas(mesh, rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads)),
-      lod_(atlas_, project_to_limit ? limit_depth_for(mesh, depth) : depth),
-      tags_(tags_of(mesh, rule, atlas_, lod_.depth())),
+      atlas_(std::move(topology.atlas)),
+      lod_(atlas_, inner_depth(mesh, depth, project_to_limit)),
+      tags_(std::move(topology.tags)),
       shader_(make_shader(rule, sdc_options(mesh))),
       processor_(atlas_, lod_, tags_, *shader_),
       multithreaded_(multithreaded),
-      project_(project_to_limit),
-      depth_(depth) {
+      project_(project_to_limit) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
-  mark_far_holes(mesh, rule, atlas_);
   for (int v = 0; v < atlas_.num_vertices; ++v)
     if (atlas_.vertex_fans[v] > 1 && !(tags_.any && tags_.vertex[0][v] >= 10.0f))
       throw InputError(mesh.source, "vertex " + std::to_string(v) +

@@ -18,13 +18,22 @@ namespace sdb::mipgh {
 
 class CpuMipghEvaluation final : public Evaluation {
  public:
-  CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool multithreaded, int threads,
-                     bool project_to_limit);
+  // `atlas`: the mesh's (build_atlas), as the size check in prepare built it.
+  CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool multithreaded,
+                     int threads, bool project_to_limit);
   void execute() override;
   const Tessellation& result() override { return out_; }
   size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
 
  private:
+  // The atlas with Far's holes marked and the edge tags, from one refiner of the mesh.
+  struct Topology {
+    DAtlas atlas;
+    EdgeTags tags;
+  };
+  static Topology topology_of(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int inner);
+  CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth, bool multithreaded,
+                     int threads, bool project_to_limit);
   void run();
 
   std::vector<Point3> control_;
@@ -36,7 +45,6 @@ class CpuMipghEvaluation final : public Evaluation {
   MeshProcessor processor_;
   bool multithreaded_, project_;
   std::unique_ptr<tbb::task_arena> arena_;
-  int depth_;
   // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
   // depth's grid points: level-depth node i is inner node pick_[i] (empty: the same level).
   std::vector<uint32_t> pick_;

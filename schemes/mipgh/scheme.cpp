@@ -92,7 +92,7 @@ SDB_REGISTER_PAPER_TABLES(mipgh, mipgh_paper_tables);
 
 std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& r,
                                             bool project_to_limit) {
-  const DAtlas atlas = build_atlas(mesh, rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads);
+  DAtlas atlas = build_atlas(mesh, rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads);
   const double nodes = node_count(atlas, r.level);
   const double bytes = nodes * (2 * sizeof(V3) + 2 * sizeof(Point3)) +
                        atlas.num_facets() * std::ldexp(1.0, 2 * r.level) * 4 * 4.0 / 3 * 2;
@@ -102,8 +102,8 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, Subdivision
                   r.level, bytes / 1e9, kMaxBytes / 1e9);
     throw Unsupported(why);
   }
-  return std::make_unique<CpuMipghEvaluation>(mesh, rule, r.level, r.backend == Backend::CpuMt, r.threads,
-                                              project_to_limit);
+  return std::make_unique<CpuMipghEvaluation>(mesh, rule, std::move(atlas), r.level, r.backend == Backend::CpuMt,
+                                              r.threads, project_to_limit);
 }
 
 }  // namespace sdb::mipgh
