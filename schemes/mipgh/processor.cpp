@@ -36,13 +36,19 @@ thread_local VertexDisk t_disk;
 
 }  // namespace
 
+bool MeshProcessor::load_tile(int sigma, int f, const V3* src) const {
+  const int n = lod_.layout(sigma).n;
+  const bool quad = atlas_.facet_size[f] == 4;
+  t_tile.load(lod_.facet(sigma, f), n, src, quad);
+  t_planes.fit(size_t(n) * n);
+  return quad;
+}
+
 void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const {
   const int n = lod_.layout(sigma).n, width = lod_.layout(sigma + 1).s;  // target rows, columns 1 .. width
-  const bool quad = atlas_.facet_size[f] == 4;
-  tile::Tile& t = t_tile;
+  const bool quad = load_tile(sigma, f, src);
+  const tile::Tile& t = t_tile;
   tile::Planes& s = t_planes;
-  t.load(lod_.facet(sigma, f), n, src, quad);
-  s.fit(size_t(n) * n);
   for (int k = 0; k < 3; ++k)
     (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data(),
                                              s.v[3][k].data());
@@ -235,11 +241,9 @@ void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const
 void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
-  const bool quad = atlas_.facet_size[f] == 4;
-  tile::Tile& t = t_tile;
+  const bool quad = load_tile(sigma, f, src);
+  const tile::Tile& t = t_tile;
   tile::Planes& s = t_planes;
-  t.load(lod_.facet(sigma, f), n, src, quad);
-  s.fit(size_t(n) * n);
   for (int k = 0; k < 3; ++k)
     (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data());
   tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),

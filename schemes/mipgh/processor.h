@@ -44,6 +44,9 @@ class MeshProcessor {
   // The 1-disk of the strip's node t on D-edge e (1 <= t <= n - 2), tags included; after
   // load_strip.
   void strip_disk(int sigma, int e, int t, VertexDisk& disk) const;
+  // D-facet f's nodes at level sigma into the thread's tile, its stencil planes sized; true for a
+  // quad.
+  bool load_tile(int sigma, int f, const V3* src) const;
   // Reads D-edge e's strip (processor.cpp, Strip) into the thread's scratch.
   void load_strip(int sigma, int e, const V3* src) const;
   // The array offsets of the nodes along a side (depth 0) or one in from it (1), at level sigma.
