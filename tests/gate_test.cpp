@@ -82,7 +82,11 @@ TEST(Gate, CallgrindCountsAreDeterministicAndCatchThePlant) {
   if (std::system("valgrind --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "valgrind not installed";
   const fs::path counts = fs::temp_directory_path() / "sdb_callgrind_baseline.json";
   const std::string config = " --config " + test_config();
-  ASSERT_EQ(run_cli("gate --callgrind --record --baseline " + counts.string() + config).exit_code, 0);
+  const auto recorded = run_cli("gate --callgrind --record --baseline " + counts.string() + config);
+  // valgrind's own limit on this machine (callgrind.h, valgrind_unusable): said, and skipped
+  if (recorded.exit_code == 2 && recorded.err.find("valgrind cannot run") != std::string::npos)
+    GTEST_SKIP() << recorded.err;
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.err;
   const auto same = run_cli("gate --callgrind --baseline " + counts.string() + config);
   EXPECT_EQ(same.exit_code, 0) << same.out << same.err;
   // Deterministic to a few instructions in millions (a fresh clone's run measured 4 in 4 M): the

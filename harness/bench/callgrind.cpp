@@ -1,5 +1,6 @@
 #include "harness/bench/callgrind.h"
 
+#include <signal.h>
 #include <unistd.h>
 #include <valgrind/callgrind.h>
 
@@ -87,7 +88,25 @@ void run_callgrind_workload(const RunSpec& spec, int iterations) {
   CALLGRIND_STOP_INSTRUMENTATION;
 }
 
+std::optional<std::string> valgrind_unusable(const std::string& executable) {
+  static const std::optional<std::string> why = [&]() -> std::optional<std::string> {
+    ProcessResult r;
+    try {
+      r = run_process({"valgrind", "--tool=none", executable, "list", "backends"}, {.quiet = true});
+    } catch (const std::exception& e) {
+      return std::string("valgrind cannot be started: ") + e.what();
+    }
+    if (r.exit_code == 0) return std::nullopt;
+    if (r.signal == SIGILL)
+      return "valgrind cannot run " + fs::path(executable).filename().string() +
+             " on this machine: it stops at an instruction a library runs while loading (SIGILL under valgrind only)";
+    return "valgrind --tool=none failed (" + r.describe() + "; is valgrind installed?)";
+  }();
+  return why;
+}
+
 long callgrind_instructions(const RunSpec& spec, int iterations, const std::string& executable) {
+  if (auto why = valgrind_unusable(executable)) throw InputError(spec.name(), *why);
   const fs::path out = fs::temp_directory_path() / ("sdb_callgrind_" + std::to_string(getpid()) + ".out");
   // The main thread's count only (--separate-threads, file -01): a cpu workload runs there, and
   // threads a scheme's prepare() left behind (TBB's workers) add a varying few hundred

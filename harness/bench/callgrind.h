@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ CallgrindConfig read_callgrind_config(const std::string& path);
 // What the child process runs (`subdivbench workload ...`): prepare untimed, then `iterations`
 // executions between callgrind's instrumentation start and stop. InputError for a bad spec.
 void run_callgrind_workload(const RunSpec& spec, int iterations);
+
+// Why valgrind cannot run `executable` on this machine at all, or nullopt: valgrind stops (SIGILL)
+// at an instruction it cannot decode that a library runs while loading (seen: libhwy's rdtscp,
+// loaded with OpenImageIO, on a CPU whose CPUID does not announce rdtscp). A limit of the tool on
+// the machine, not of the workload: tests skip on it, the gate says it. Checked once per process.
+std::optional<std::string> valgrind_unusable(const std::string& executable);
 
 // Instructions of `iterations` executions of the workload, counted by a child
 // `valgrind --tool=callgrind <executable> workload ...`. InputError when valgrind fails.

@@ -8,11 +8,7 @@
 #include <vector>
 
 #include "harness/core/scheme.h"
-#include "schemes/mipgh/atlas.h"
-#include "schemes/mipgh/lod.h"
-#include "schemes/mipgh/primitives.h"
-#include "schemes/mipgh/processor.h"
-#include "schemes/mipgh/shader.h"
+#include "schemes/mipgh/mutation.h"
 
 namespace sdb::mipgh {
 
@@ -26,28 +22,12 @@ class CpuMipghEvaluation final : public Evaluation {
   size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
 
  private:
-  // The atlas with Far's holes marked and the edge tags, from one refiner of the mesh.
-  struct Topology {
-    DAtlas atlas;
-    EdgeTags tags;
-  };
-  static Topology topology_of(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int inner);
-  CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth, bool multithreaded,
-                     int threads, bool project_to_limit);
   void run();
 
   std::vector<Point3> control_;
-  float origin_[3];  // refined relative to the control box's centre: float keeps its precision
-  DAtlas atlas_;
-  DLoD lod_;
-  EdgeTags tags_;
-  std::unique_ptr<MeshShader> shader_;
-  MeshProcessor processor_;
-  bool multithreaded_, project_;
+  MeshMutation m_;
+  bool multithreaded_;
   std::unique_ptr<tbb::task_arena> arena_;
-  // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
-  // depth's grid points: level-depth node i is inner node pick_[i] (empty: the same level).
-  std::vector<uint32_t> pick_;
   std::vector<V3> a_, b_, limit_;
   Tessellation out_;
 };

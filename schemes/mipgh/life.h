@@ -6,14 +6,17 @@
 #include <vector>
 
 #include "harness/core/control_mesh.h"
+#include "harness/core/scheme.h"
 #include "schemes/mipgh/shader.h"
 
 namespace sdb::mipgh {
 
-// The states of every node of `mesh` (quads) refined `depth` times, one generation after another.
+// The states of every node of `mesh` (quads) refined `depth` times, one generation after another,
+// on the cpu (MeshProcessor::adjust) or a Vulkan device (life_vulkan.h, the same 1-disks).
 class LifeOnMesh {
  public:
-  LifeOnMesh(const ControlMesh& quads, int depth);
+  // Throws Unsupported for Backend::Vulkan without a device.
+  LifeOnMesh(const ControlMesh& quads, int depth, Backend backend = Backend::Cpu);
   ~LifeOnMesh();
   // Sets the nodes of D-facet f's interior at (row, column) = (top + i, left + j) for each 'O' of
   // pattern row i, column j.

@@ -149,15 +149,30 @@ void MeshProcessor::strip_disk(int sigma, int e, int t, VertexDisk& disk) const 
   }
 }
 
-void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
+bool MeshProcessor::fast_edge(int e) const {
   const DEdge& d = atlas_.edges[e];
+  return tags_.slot[e] < 0 && !d.minor.null() && atlas_.facet_size[d.major.facet] == atlas_.facet_size[d.minor.facet];
+}
+
+void MeshProcessor::edge_disk(int sigma, int e, int t, EdgeDisk& disk) const {
+  const Strip& s = t_strip;
+  const bool boundary = atlas_.edges[e].minor.null();
+  disk.faces = boundary ? 1 : 2;
+  disk.v0 = s.a[t], disk.v1 = s.a[t + 1];
+  disk.f[0][0] = s.b[t], disk.f[0][1] = s.quad_major ? s.b[t + 1] : s.b[t];
+  if (!boundary) disk.f[1][0] = s.c[t], disk.f[1][1] = s.quad_minor ? s.c[t + 1] : s.c[t];
+  disk.sharpness = tags_.micro_edge(sigma, e, t);
+  disk.child_sharpness[0] = tags_.micro_edge(sigma + 1, e, 2 * t);
+  disk.child_sharpness[1] = tags_.micro_edge(sigma + 1, e, 2 * t + 1);
+}
+
+void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
   load_strip(sigma, e, src);
   const Strip& s = t_strip;
   const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
   const int n = lod_.layout(sigma).n;
   V3* out = dst + lod_.layout(sigma + 1).edge_node(e, 0);
-  const bool boundary = d.minor.null();
-  if (tags_.slot[e] < 0 && !boundary && s.quad_major == s.quad_minor) {  // tag-free: the fast paths
+  if (fast_edge(e)) {  // tag-free: the fast paths
     if (s.quad_major) {  // Figure 20
       for (int t = 0; t + 1 < n; ++t) out[2 * t] = edge_vertex(A[t], A[t + 1], B[t], B[t + 1], C[t], C[t + 1]);
       for (int t = 1; t + 1 < n; ++t)
@@ -169,16 +184,10 @@ void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
     }
     return;
   }
+  EdgeDisk edge;
   for (int t = 0; t + 1 < n; ++t) {
-    EdgeDisk disk;
-    disk.faces = boundary ? 1 : 2;
-    disk.v0 = A[t], disk.v1 = A[t + 1];
-    disk.f[0][0] = B[t], disk.f[0][1] = s.quad_major ? B[t + 1] : B[t];
-    if (!boundary) disk.f[1][0] = C[t], disk.f[1][1] = s.quad_minor ? C[t + 1] : C[t];
-    disk.sharpness = tags_.micro_edge(sigma, e, t);
-    disk.child_sharpness[0] = tags_.micro_edge(sigma + 1, e, 2 * t);
-    disk.child_sharpness[1] = tags_.micro_edge(sigma + 1, e, 2 * t + 1);
-    out[2 * t] = shader_.edge_vertex(disk);
+    edge_disk(sigma, e, t, edge);
+    out[2 * t] = shader_.edge_vertex(edge);
   }
   VertexDisk& disk = t_disk;
   for (int t = 1; t + 1 < n; ++t) {
@@ -262,10 +271,9 @@ void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position,
 
 void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const {
   const LevelLayout& l = lod_.layout(sigma);
-  const DEdge& d = atlas_.edges[e];
   load_strip(sigma, e, src);
   const Strip& s = t_strip;
-  if (tags_.slot[e] >= 0 || d.minor.null() || s.quad_major != s.quad_minor) {
+  if (!fast_edge(e)) {
     VertexDisk& disk = t_disk;
     for (int t = 1; t <= l.s; ++t) {
       strip_disk(sigma, e, t, disk);
@@ -302,7 +310,40 @@ void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, 
   });
 }
 
+void MeshProcessor::shader_disks(int sigma, const V3* src, bool limit, const DiskVisitor& visit) const {
+  VertexDisk disk;
+  EdgeDisk edge;
+  const LevelLayout& target = lod_.layout(limit ? sigma : sigma + 1);
+  const int n = lod_.layout(sigma).n;
+  for (int v = 0; v < atlas_.num_vertices; ++v) {
+    if (atlas_.valence(v) == 0 || (!limit && atlas_.vertex_fans[v] > 1)) {  // as visit_vertex and project copy
+      disk.resize(0, 0), disk.c = src[v];
+    } else {
+      gather_vertex(sigma, v, src, disk);
+    }
+    visit(uint32_t(v), &disk, nullptr);
+  }
+  for (int e = 0; e < atlas_.num_edges(); ++e) {
+    if (fast_edge(e)) continue;
+    load_strip(sigma, e, src);
+    for (int t = 0; !limit && t + 1 < n; ++t) {
+      edge_disk(sigma, e, t, edge);
+      visit(target.edge_node(e, 2 * t), nullptr, &edge);
+    }
+    for (int t = 1; t + 1 < n; ++t) {
+      strip_disk(sigma, e, t, disk);
+      visit(target.edge_node(e, limit ? t - 1 : 2 * t - 1), &disk, nullptr);
+    }
+  }
+}
+
 void MeshProcessor::adjust(int sigma, const V3* src, V3* dst, const Adjustment& shader) const {
+  adjustment_disks(sigma, src, [&](uint32_t node, const VertexDisk& disk) {
+    dst[node] = disk.edges == 0 ? disk.c : shader(disk);
+  });
+}
+
+void MeshProcessor::adjustment_disks(int sigma, const V3* src, const AdjustmentVisitor& visit) const {
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
   VertexDisk disk;
@@ -323,23 +364,23 @@ void MeshProcessor::adjust(int sigma, const V3* src, V3* dst, const Adjustment& 
           disk.e[3] = at(i, j - 1), disk.e[4] = at(i - 1, j), disk.e[5] = at(i - 1, j + 1);
           for (int k = 0; k < 6; ++k) disk.d[k] = disk.c;
         }
-        dst[idx[facet_offset(size, n, {i, j})]] = shader(disk);
+        visit(idx[facet_offset(size, n, {i, j})], disk);
       }
   }
   for (int e = 0; e < atlas_.num_edges(); ++e) {
     load_strip(sigma, e, src);
     for (int t = 1; t <= l.s; ++t) {
       strip_disk(sigma, e, t, disk);
-      dst[l.edge_node(e, t - 1)] = shader(disk);
+      visit(l.edge_node(e, t - 1), disk);
     }
   }
   for (int v = 0; v < atlas_.num_vertices; ++v) {
     if (atlas_.valence(v) == 0) {
-      dst[v] = src[v];
-      continue;
+      disk.resize(0, 0), disk.c = src[v];
+    } else {
+      gather_vertex(sigma, v, src, disk);
     }
-    gather_vertex(sigma, v, src, disk);
-    dst[v] = shader(disk);
+    visit(uint32_t(v), disk);
   }
 }
 

@@ -32,6 +32,23 @@ class MeshProcessor {
   // attribute of up to three floats per node; the game of life (paper/life.cpp) is one.
   using Adjustment = std::function<V3(const VertexDisk&)>;
   void adjust(int sigma, const V3* src, V3* dst, const Adjustment& shader) const;
+  // The visits behind adjust: every node of level sigma with its 1-disk there (none for a node in
+  // no face: a VertexDisk with no edges).
+  using AdjustmentVisitor = std::function<void(uint32_t node, const VertexDisk& disk)>;
+  void adjustment_disks(int sigma, const V3* src, const AdjustmentVisitor& visit) const;
+
+  // The 1-disks the fast paths leave to the mesh shader's masks, each with the node it makes: a
+  // step's (limit = false: level sigma + 1's D-vertices and the edge and vertex points of D-edges
+  // that are not fast_edge) or the limit projection's (level sigma's D-vertices and such D-edges'
+  // nodes). An edge point comes as `edge`, any other node as `vertex`; a node that is copied (a
+  // D-vertex in no face, or joining several fans) as a VertexDisk with no edges.
+  using DiskVisitor = std::function<void(uint32_t target, const VertexDisk* vertex, const EdgeDisk* edge)>;
+  void shader_disks(int sigma, const V3* src, bool limit, const DiskVisitor& visit) const;
+  // Level sigma's offsets of the nodes along each side and one in from it, for every kind of side
+  // (a triangle's three, then a quad's four): (kind * 2 + depth) * n + a.
+  const std::vector<int32_t>& side_row_table(int sigma) const { return side_rows_[sigma]; }
+  // Whether D-edge e's nodes take the fast paths: untagged at every level, two D-facets of one kind.
+  bool fast_edge(int e) const;
 
   // The parts of a step, public for the tests.
   void visit_facet(int sigma, int f, const V3* src, V3* dst) const;
@@ -44,6 +61,8 @@ class MeshProcessor {
   // The 1-disk of the strip's node t on D-edge e (1 <= t <= n - 2), tags included; after
   // load_strip.
   void strip_disk(int sigma, int e, int t, VertexDisk& disk) const;
+  // The 1-disk of the edge point of the strip's micro-edge t (t, t + 1); after load_strip.
+  void edge_disk(int sigma, int e, int t, EdgeDisk& disk) const;
   // D-facet f's nodes at level sigma into the thread's tile, its stencil planes sized; true for a
   // quad.
   bool load_tile(int sigma, int f, const V3* src) const;

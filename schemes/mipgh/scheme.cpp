@@ -8,6 +8,7 @@
 #include "schemes/mipgh/cpu.h"
 #include "schemes/mipgh/lod.h"
 #include "schemes/mipgh/mipgh.h"
+#include "schemes/mipgh/vulkan.h"
 
 namespace sdb::mipgh {
 namespace {
@@ -27,7 +28,7 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.role = SchemeRole::Method;
   info.reference = rule;
   info.level_kind = LevelKind::Depth;
-  info.backends = {Backend::Cpu, Backend::CpuMt};
+  info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
   info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::QuadsOnly;
   info.accepts.quadrangulate = !loop;  // R1: one Catmull-Clark step where a face is not a quad
@@ -58,8 +59,8 @@ class MipghScheme final : public Scheme {
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
     if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
-    if (r.backend != Backend::Cpu && r.backend != Backend::CpuMt)
-      return info_.name + " runs on cpu and cpu-mt (its Vulkan passes are not built yet)";
+    if (r.backend == Backend::Vulkan)
+      if (auto why = vulkan_unavailable()) return *why;
     return std::nullopt;
   }
 
@@ -102,6 +103,7 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, Subdivision
                   r.level, bytes / 1e9, kMaxBytes / 1e9);
     throw Unsupported(why);
   }
+  if (r.backend == Backend::Vulkan) return make_vulkan_evaluation(mesh, rule, std::move(atlas), r.level, project_to_limit);
   return std::make_unique<CpuMipghEvaluation>(mesh, rule, std::move(atlas), r.level, r.backend == Backend::CpuMt,
                                               r.threads, project_to_limit);
 }

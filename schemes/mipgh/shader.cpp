@@ -68,33 +68,10 @@ struct Sum {
 };
 
 // In double: a pole's ring of 360 terms summed in float is off by 1e-6 of the diagonal.
-V3 apply(const SdcMask& m, const VertexDisk& d) {
+template <class Disk>
+V3 apply(const SdcMask& m, const Disk& d) {
   Sum r;
-  r.add(m.VertexWeight(0), d.c);
-  for (int i = 0; i < m.GetNumEdgeWeights(); ++i) r.add(m.EdgeWeight(i), d.e[i]);
-  for (int i = 0; i < m.GetNumFaceWeights(); ++i) {
-    if (!m.AreFaceWeightsForFaceCenters()) {
-      r.add(m.FaceWeight(i), d.d[i]);
-      continue;
-    }
-    const V3 corners[4] = {d.c, d.e[i], d.d[i], d.e[(i + 1) % d.edges]};
-    for (const V3& p : corners) r.add(0.25 * m.FaceWeight(i), p);
-  }
-  return r.get();
-}
-
-V3 apply(const SdcMask& m, const EdgeDisk& d) {
-  Sum r;
-  r.add(m.VertexWeight(0), d.v0);
-  r.add(m.VertexWeight(1), d.v1);
-  for (int i = 0; i < m.GetNumFaceWeights(); ++i) {
-    if (!m.AreFaceWeightsForFaceCenters()) {  // a triangle's opposite corner (Loop)
-      r.add(m.FaceWeight(i), d.f[i][0]);
-      continue;
-    }
-    const V3 corners[4] = {d.v0, d.v1, d.f[i][0], d.f[i][1]};
-    for (const V3& p : corners) r.add(0.25 * m.FaceWeight(i), p);
-  }
+  for_each_term(m, d, [&](V3 p, float w) { r.add(w, p); });
   return r.get();
 }
 
@@ -119,24 +96,33 @@ class SdcShader final : public MeshShader {
 
   V3 vertex_vertex(const VertexDisk& disk) const override {
     if (kType == Sdc::SCHEME_CATMARK && disk.smooth()) return catmark_vertex_smooth(disk);
-    const Sdc::Scheme<kType> scheme(options_);
-    scheme.ComputeVertexVertexMask(SdcVertex(disk), t_pos);
+    vertex_mask(disk, t_pos);
     return apply(t_pos, disk);
   }
 
   V3 edge_vertex(const EdgeDisk& disk) const override {
-    const Sdc::Scheme<kType> scheme(options_);
-    scheme.ComputeEdgeVertexMask(SdcEdge(disk, kType == Sdc::SCHEME_CATMARK ? 4 : 3), t_pos);
+    edge_mask(disk, t_pos);
     return apply(t_pos, disk);
   }
 
   void limit(const VertexDisk& disk, V3& position, V3& normal) const override {
-    const Sdc::Crease crease(options_);
-    const Sdc::Crease::Rule rule = crease.DetermineVertexVertexRule(disk.sharpness, disk.edges, disk.edge_sharpness.data());
-    const Sdc::Scheme<kType> scheme(options_);
-    scheme.ComputeVertexLimitMask(SdcVertex(disk), t_pos, t_tan1, t_tan2, rule);
+    limit_masks(disk, t_pos, t_tan1, t_tan2);
     position = apply(t_pos, disk);
     normal = normalized(cross(apply(t_tan1, disk), apply(t_tan2, disk)));
+  }
+
+  void vertex_mask(const VertexDisk& disk, SdcMask& mask) const override {
+    Sdc::Scheme<kType>(options_).ComputeVertexVertexMask(SdcVertex(disk), mask);
+  }
+
+  void edge_mask(const EdgeDisk& disk, SdcMask& mask) const override {
+    Sdc::Scheme<kType>(options_).ComputeEdgeVertexMask(SdcEdge(disk, kType == Sdc::SCHEME_CATMARK ? 4 : 3), mask);
+  }
+
+  void limit_masks(const VertexDisk& disk, SdcMask& position, SdcMask& t1, SdcMask& t2) const override {
+    const Sdc::Crease crease(options_);
+    const Sdc::Crease::Rule rule = crease.DetermineVertexVertexRule(disk.sharpness, disk.edges, disk.edge_sharpness.data());
+    Sdc::Scheme<kType>(options_).ComputeVertexLimitMask(SdcVertex(disk), position, t1, t2, rule);
   }
 
  private:

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "harness/core/control_mesh.h"
+#include "harness/mesh/sdc_mask.h"
 
 namespace sdb::mipgh {
 
@@ -79,7 +80,42 @@ class MeshShader {
   virtual V3 edge_vertex(const EdgeDisk& disk) const = 0;
   // Limit position and unit normal (T1 x T2) by Sdc's limit masks for the rule the tags give.
   virtual void limit(const VertexDisk& disk, V3& position, V3& normal) const = 0;
+  // The masks behind the three, for a caller that applies them itself (the Vulkan passes' tables,
+  // shader_table.h).
+  virtual void vertex_mask(const VertexDisk& disk, SdcMask& mask) const = 0;
+  virtual void edge_mask(const EdgeDisk& disk, SdcMask& mask) const = 0;
+  virtual void limit_masks(const VertexDisk& disk, SdcMask& position, SdcMask& t1, SdcMask& t2) const = 0;
 };
+
+// Each (disk point, weight) a mask weighs, in the order the shaders sum them: the centre or the
+// edge's ends, the edges' far ends, then the faces (a face centre as its corners' quarters).
+template <class F>
+void for_each_term(const SdcMask& m, const VertexDisk& d, F&& f) {
+  f(d.c, m.VertexWeight(0));
+  for (int i = 0; i < m.GetNumEdgeWeights(); ++i) f(d.e[i], m.EdgeWeight(i));
+  for (int i = 0; i < m.GetNumFaceWeights(); ++i) {
+    if (!m.AreFaceWeightsForFaceCenters()) {
+      f(d.d[i], m.FaceWeight(i));
+      continue;
+    }
+    const float q = 0.25f * m.FaceWeight(i);
+    f(d.c, q), f(d.e[i], q), f(d.d[i], q), f(d.e[(i + 1) % d.edges], q);
+  }
+}
+
+template <class F>
+void for_each_term(const SdcMask& m, const EdgeDisk& d, F&& f) {
+  f(d.v0, m.VertexWeight(0));
+  f(d.v1, m.VertexWeight(1));
+  for (int i = 0; i < m.GetNumFaceWeights(); ++i) {
+    if (!m.AreFaceWeightsForFaceCenters()) {  // a triangle's opposite corner (Loop)
+      f(d.f[i][0], m.FaceWeight(i));
+      continue;
+    }
+    const float q = 0.25f * m.FaceWeight(i);
+    f(d.v0, q), f(d.v1, q), f(d.f[i][0], q), f(d.f[i][1], q);
+  }
+}
 
 // Sdc's masks for Catmull-Clark or Loop, fed with the 1-disk's tags.
 std::unique_ptr<MeshShader> make_shader(SubdivisionRule rule, const OpenSubdiv::Sdc::Options& options);

@@ -16,6 +16,7 @@
 #include "harness/mesh/osd_topology.h"
 #include "harness/validate/watertight.h"
 #include "schemes/fragments/fragments.h"
+#include "harness/conformance/backend_agreement.h"
 #include "harness/conformance/sweep_corpus.h"
 #include "schemes/fragments/vulkan.h"
 
@@ -50,28 +51,8 @@ Output run(const ControlMesh& accepted, SubdivisionRule rule, int depth, Backend
   return r;
 }
 
-struct Agreement {
-  double max_rel = 0, max_deg = 0;
-  size_t identical = 0, vertices = 0;
-};
-
-Agreement agreement(const Tessellation& cpu, const Tessellation& gpu, double diagonal) {
-  Agreement a;
-  a.vertices = cpu.positions.size();
-  for (size_t i = 0; i < cpu.positions.size(); ++i) {
-    const Point3 &p = cpu.positions[i], &q = gpu.positions[i];
-    a.identical += p == q;
-    a.max_rel = std::max(a.max_rel, std::sqrt(double(p[0] - q[0]) * (p[0] - q[0]) + double(p[1] - q[1]) * (p[1] - q[1]) +
-                                              double(p[2] - q[2]) * (p[2] - q[2])) /
-                                        diagonal);
-    const Point3 &m = cpu.normals[i], &n = gpu.normals[i];
-    const double c[3] = {double(m[1]) * n[2] - double(m[2]) * n[1], double(m[2]) * n[0] - double(m[0]) * n[2],
-                         double(m[0]) * n[1] - double(m[1]) * n[0]};
-    const double dot = double(m[0]) * n[0] + double(m[1]) * n[1] + double(m[2]) * n[2];
-    a.max_deg = std::max(a.max_deg, std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot) * 180 / M_PI);
-  }
-  return a;
-}
+using conformance::Agreement;
+using conformance::agreement;
 
 // cpu and vulkan agree (<= 1e-6 of the diagonal, normals 1e-3 degrees), lay the output out the
 // same, and the vulkan output is watertight: the input's boundary times 2^depth open, no crack.

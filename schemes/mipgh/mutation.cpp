@@ -1,0 +1,44 @@
+#include "schemes/mipgh/mutation.h"
+
+#include <string>
+#include <utility>
+
+#include "harness/core/errors.h"
+#include "harness/mesh/osd_topology.h"
+#include "schemes/mipgh/primitives.h"
+
+namespace sdb::mipgh {
+
+MeshMutation::Topology MeshMutation::topology_of(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int inner) {
+  const auto refiner = make_refiner(mesh, rule);
+  const auto& base = refiner->GetLevel(0);
+  // Far makes holes of the faces it is told of, and under the boundary rule "none" of every face
+  // at a boundary vertex: primitive compilation skips the same ones.
+  for (int f = 0; f < atlas.num_facets(); ++f) atlas.facet_hole[f] |= base.IsFaceHole(f);
+  EdgeTags tags = build_tags(atlas, base, sdc_options(mesh), inner);
+  return {std::move(atlas), std::move(tags)};
+}
+
+MeshMutation::MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool project)
+    : MeshMutation(mesh, rule, topology_of(mesh, rule, std::move(atlas), project ? limit_depth_for(mesh, depth) : depth),
+                   depth, project ? limit_depth_for(mesh, depth) : depth, project) {}
+
+MeshMutation::MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth, int inner,
+                           bool project)
+    : atlas(std::move(topology.atlas)),
+      lod(atlas, inner),
+      tags(std::move(topology.tags)),
+      shader(make_shader(rule, sdc_options(mesh))),
+      processor(atlas, lod, tags, *shader),
+      pick(inner > depth ? same_points_at(atlas, lod, depth, inner) : std::vector<uint32_t>{}),
+      depth_(depth),
+      project_(project) {
+  for (int v = 0; v < atlas.num_vertices; ++v)
+    if (atlas.vertex_fans[v] > 1 && !(tags.any && tags.vertex[0][v] >= 10.0f))
+      throw InputError(mesh.source, "vertex " + std::to_string(v) +
+                                        " joins several fans of faces and is not an infinitely sharp corner");
+  const Bounds box = bounds_of(mesh.positions);
+  for (int k = 0; k < 3; ++k) origin[k] = static_cast<float>(box.centre(k));
+}
+
+}  // namespace sdb::mipgh

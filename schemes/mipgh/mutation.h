@@ -1,0 +1,51 @@
+// What every backend builds in prepare from a mesh: the D-atlas with Far's holes, the D-LoD and
+// edge tags to the depth the limit needs, the mesh shader and the processor over them. Fixed
+// after initialization (Section 3.2); the backends differ only in how they run the steps.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "harness/core/control_mesh.h"
+#include "schemes/mipgh/atlas.h"
+#include "schemes/mipgh/lod.h"
+#include "schemes/mipgh/processor.h"
+#include "schemes/mipgh/shader.h"
+
+namespace sdb::mipgh {
+
+class MeshMutation {
+ public:
+  // `atlas`: the mesh's (build_atlas), as the size check in prepare built it. Throws InputError
+  // for a vertex of several fans that Far does not make an infinitely sharp corner.
+  MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool project_to_limit);
+  MeshMutation(const MeshMutation&) = delete;
+  MeshMutation& operator=(const MeshMutation&) = delete;
+
+  int depth() const { return depth_; }              // the output's level
+  int inner_depth() const { return lod.depth(); }   // the last level refined (deeper for the limit)
+  bool project() const { return project_; }
+
+  const DAtlas atlas;
+  const DLoD lod;
+  const EdgeTags tags;
+  const std::unique_ptr<MeshShader> shader;
+  const MeshProcessor processor;
+  // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
+  // depth's grid points: output node i is inner node pick[i] (empty: the same level).
+  const std::vector<uint32_t> pick;
+  float origin[3];  // levels are refined relative to the control box's centre: float keeps its precision
+
+ private:
+  struct Topology {
+    DAtlas atlas;
+    EdgeTags tags;
+  };
+  static Topology topology_of(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int inner);
+  MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth, int inner, bool project);
+
+  int depth_;
+  bool project_;
+};
+
+}  // namespace sdb::mipgh

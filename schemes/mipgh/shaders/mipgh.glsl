@@ -1,0 +1,61 @@
+// What the MiPGH passes share (vulkan.h): the bindings, the push constants and the node fetches.
+// A level's nodes are xyz floats read through a texel view and written through an r32f image view
+// (lavapipe's fast paths, harness/gpu/README.md); the D-LoD's index arrays and every table are
+// r32ui texels. The arithmetic is the CPU's (tile.cpp, shader.h), operation for operation and
+// `precise` (no fused multiply-adds, no reassociation), so the stencils' nodes equal the CPU's.
+#extension GL_GOOGLE_include_directive : require
+#include "sdb/dispatch.glsl"
+
+layout(local_size_x_id = 0) in;
+
+layout(binding = 0) uniform samplerBuffer src_floats;                       // level sigma
+layout(binding = 1, r32f) uniform restrict writeonly imageBuffer dst_floats;  // level sigma + 1, or the limit
+layout(binding = 2, r32f) uniform restrict writeonly imageBuffer normal_floats;  // the limit's normals
+layout(binding = 3) uniform usamplerBuffer lod;       // every level's D-facet index arrays
+layout(binding = 4) uniform usamplerBuffer words;     // the tables (vulkan.cpp, Tables)
+layout(binding = 5) uniform samplerBuffer weights;    // the mask tables' weights
+layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_position;
+layout(binding = 7, r32f) uniform restrict writeonly imageBuffer out_normal;
+layout(binding = 8) uniform samplerBuffer normals_in;  // the limit's normals, read by the output pass
+
+layout(push_constant) uniform Push {
+  uint count;        // invocations that do work
+  uint per_item;     // targets per D-facet or per D-edge
+  uint table;        // the pass's table, in words
+  uint lod_base;     // level sigma's D-LoD, in words
+  uint n;            // nodes along a D-facet's side at level sigma
+  uint facet_nodes;  // a D-facet's index array at level sigma
+  uint dst_base;     // the first target node (a level's interiors or edge nodes)
+  uint interior;     // nodes per D-facet interior (or per D-edge) at the target level
+  uint rows;         // level sigma's side rows (MeshProcessor::side_row_table), in words
+  uint begins;       // a mask table's term ranges, in words
+  uint sources;      // and its source nodes
+  uint weight_base;  // and its weights, in floats
+  uint pick;         // the output pass's node list (0xffffffff: node i is output i)
+  uint pad0, pad1, pad2;
+  vec4 origin;       // the control box's centre: levels are relative to it
+} pc;
+
+uint word(uint i) { return texelFetch(words, int(i)).x; }
+vec3 node(uint i) {
+  const int k = int(3u * i);
+  return vec3(texelFetch(src_floats, k).x, texelFetch(src_floats, k + 1).x, texelFetch(src_floats, k + 2).x);
+}
+void store(uint i, vec3 p) {
+  const int k = int(3u * i);
+  imageStore(dst_floats, k, vec4(p.x));
+  imageStore(dst_floats, k + 1, vec4(p.y));
+  imageStore(dst_floats, k + 2, vec4(p.z));
+}
+void store_normal(uint i, vec3 p) {
+  const int k = int(3u * i);
+  imageStore(normal_floats, k, vec4(p.x));
+  imageStore(normal_floats, k + 1, vec4(p.y));
+  imageStore(normal_floats, k + 2, vec4(p.z));
+}
+// tile.cpp's unit_normals: a zero normal stays zero, without a branch.
+vec3 unit(vec3 t1, vec3 t2) {
+  precise vec3 c = vec3(t1.y * t2.z - t1.z * t2.y, t1.z * t2.x - t1.x * t2.z, t1.x * t2.y - t1.y * t2.x);
+  precise float l2 = c.x * c.x + c.y * c.y + c.z * c.z;
+  return c * (1.0 / sqrt(l2 + 1e-37));
+}

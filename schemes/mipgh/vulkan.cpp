@@ -1,0 +1,350 @@
+#include "schemes/mipgh/vulkan.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "harness/gpu/gpu.h"
+#include "schemes/mipgh/mask_table.h"
+#include "schemes/mipgh/mutation.h"
+#include "schemes/mipgh/primitives.h"
+#include "sdb_scheme_mipgh_shaders.h"
+
+namespace sdb::mipgh {
+namespace {
+
+namespace shaders = sdb_scheme_mipgh_shaders;
+using gpu::BufferUsage;
+
+// Invocations per work group, one target node each (local_size_x_id = 0): a multiple of every
+// subgroup size in use (8 on lavapipe, 32 on NVIDIA).
+constexpr uint32_t kLocalSize = 64;
+constexpr uint32_t kNoPick = 0xffffffffu;
+
+struct Push {
+  uint32_t count = 0, per_item = 1, table = 0, lod_base = 0, n = 0, facet_nodes = 0, dst_base = 0, interior = 0,
+           rows = 0, begins = 0, sources = 0, weight_base = 0, pick = kNoPick, pad[3] = {0, 0, 0};
+  float origin[4] = {0, 0, 0, 0};
+};
+
+// facets.comp's classes: the step's four (vertex points, the two edge points, facet or diagonal
+// points) and the limit.
+constexpr uint32_t kFacetClasses = 5, kFacetLimit = 4;
+// edges.comp's parts.
+constexpr uint32_t kEdgePoints = 0, kVertexPoints = 1, kEdgeLimit = 2;
+
+// One dispatch: the pipeline, its push constants, and the level buffer it reads (0: A, 1: B).
+struct Dispatch {
+  const gpu::ComputePipeline* pipeline;
+  Push push;
+  uint32_t reads;
+};
+// Dispatches under one timestamp pair.
+struct Pass {
+  std::string label;
+  std::vector<Dispatch> dispatches;
+};
+
+// Everything the passes read besides the levels, in three texel tables, and where each part is.
+class Tables {
+ public:
+  std::vector<uint32_t> words{0}, lod;
+  std::vector<float> weights{0};
+
+  uint32_t add(const std::vector<uint32_t>& w) { return append(words, w); }
+  uint32_t add_weights(const std::vector<float>& w) { return append(weights, w); }
+  template <class T>
+  static uint32_t append(std::vector<T>& to, const std::vector<T>& w) {
+    const size_t at = to.size();
+    to.insert(to.end(), w.begin(), w.end());
+    return static_cast<uint32_t>(at);
+  }
+};
+
+// Per class, each target of a D-facet's interior at level sigma + 1 (limit: at sigma) as its source
+// square (a << 16 | b) and its offset in the interior, in the order the CPU stores them.
+std::vector<std::vector<uint32_t>> facet_classes(int n, bool quad, bool limit) {
+  std::vector<std::vector<uint32_t>> classes(limit ? 1 : 4);
+  const int width = limit ? n - 2 : 2 * n - 3;
+  uint32_t out = 0;
+  for (int r = 1; r <= width; ++r)
+    for (int c = 1; c <= (quad ? width : width - r); ++c, ++out) {
+      auto& to = classes[limit ? 0 : ((r & 1) << 1) | (c & 1)];
+      const uint32_t square = limit ? uint32_t(r) << 16 | uint32_t(c) : uint32_t(r >> 1) << 16 | uint32_t(c >> 1);
+      to.insert(to.end(), {square, out});
+    }
+  return classes;
+}
+
+uint32_t checked_u32(size_t x, const char* what) {
+  if (x >= UINT32_MAX) throw gpu::Unsupported(std::string(what) + " past 2^32 entries");
+  return static_cast<uint32_t>(x);
+}
+
+class VulkanMipghEvaluation final : public Evaluation {
+ public:
+  VulkanMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool project,
+                        std::shared_ptr<gpu::Context> ctx)
+      : ctx_(std::move(ctx)), control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project) {
+    const DAtlas& a = m_.atlas;
+    quad_ = a.num_facets() == 0 || a.facet_size[0] == 4;
+    for (int f = 0; f < a.num_facets(); ++f)
+      if ((a.facet_size[f] == 4) != quad_) throw gpu::Unsupported("the Vulkan passes take D-facets of one kind");
+    const uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
+    level_bytes_ = std::max<uint64_t>(uint64_t(inner_nodes) * 12, 16);
+    output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
+    build_tables();
+    gpu::check_memory(*ctx_,
+                      {uint64_t(tables_.words.size() + tables_.weights.size() + tables_.lod.size()) * 4 +
+                           3 * level_bytes_ + 2 * output_bytes_,
+                       2 * output_bytes_ + control_.size() * 12},
+                      mesh.name + " at depth " + std::to_string(depth));
+    gpu::check_texel_binding(*ctx_, level_bytes_ / 4, "a level's nodes");
+    make_buffers();
+    make_pipelines();
+    plan_passes();
+    compile_primitives(m_.atlas, m_.lod, depth, out_);
+    out_.positions.resize(nodes);
+    out_.normals.resize(nodes);
+    record_frame();
+    record_readback();
+  }
+
+  void execute() override {
+    // Level 0: the control points relative to the box's centre (as the CPU's run() starts).
+    const float* o = m_.origin;
+    for (size_t v = 0; v < control_.size(); ++v)
+      level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2]};
+    control_staging_.write(level0_);
+    ctx_->submit(*frame_);
+    stale_ = true;
+  }
+
+  const Tessellation& result() override {
+    if (!stale_) return out_;
+    ctx_->submit(*readback_);
+    read_back_ = true;
+    positions_staging_.read(out_.positions.data(), out_.positions.size() * sizeof(Point3));
+    normals_staging_.read(out_.normals.data(), out_.normals.size() * sizeof(Point3));
+    stale_ = false;
+    return out_;
+  }
+
+  size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+
+  std::optional<GpuTimes> gpu_times() const override {
+    auto passes = frame_timer_->read_passes();
+    if (!passes) return std::nullopt;
+    if (read_back_)
+      if (auto readback = readback_timer_->read_passes()) passes->insert(passes->end(), readback->begin(), readback->end());
+    return gpu::to_gpu_times(*passes);
+  }
+
+ private:
+  uint32_t lod_words(int sigma) const {
+    const size_t n = m_.lod.layout(sigma).n;
+    return checked_u32(quad_ ? n * n : n * (n + 1) / 2, "a D-facet's index array");
+  }
+
+  void build_tables() {
+    const int inner = m_.inner_depth();
+    const int F = m_.atlas.num_facets();
+    for (int sigma = 0; sigma <= inner; ++sigma) {
+      lod_base_.push_back(checked_u32(tables_.lod.size(), "the D-LoD"));
+      const uint32_t* first = m_.lod.facet(sigma, 0);
+      tables_.lod.insert(tables_.lod.end(), first, first + size_t(F) * lod_words(sigma));
+      const int n = m_.lod.layout(sigma).n;
+      const auto& rows = m_.processor.side_row_table(sigma);
+      rows_.push_back(tables_.add(std::vector<uint32_t>(rows.begin(), rows.end())));
+      const auto classes = facet_classes(n, quad_, sigma == inner);
+      std::vector<std::pair<uint32_t, uint32_t>> at;
+      for (const auto& c : classes) at.push_back({tables_.add(c), uint32_t(c.size() / 2)});
+      classes_.push_back(at);
+      const bool limit = sigma == inner;
+      masks_.push_back(limit && !m_.project() ? MaskRange{}
+                                              : add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit)));
+    }
+    std::vector<uint32_t> fast;
+    for (int e = 0; e < m_.atlas.num_edges(); ++e) {
+      if (!m_.processor.fast_edge(e)) continue;
+      const DEdge& d = m_.atlas.edges[e];
+      const uint32_t kind = quad_ ? 3 : 0;  // side_row_table's kinds: a triangle's sides, then a quad's
+      fast.insert(fast.end(), {uint32_t(e), uint32_t(d.major.facet), kind + d.major.side, uint32_t(d.minor.facet),
+                               kind + d.minor.side});
+    }
+    num_fast_edges_ = uint32_t(fast.size() / 5);
+    fast_edges_ = tables_.add(fast);
+    if (!m_.pick.empty()) pick_ = tables_.add(m_.pick);
+  }
+
+  struct MaskRange {
+    uint32_t entries = 0, target = 0, begins = 0, sources = 0, weights = 0;
+  };
+  MaskRange add_masks(const MaskTable& t) {
+    return {uint32_t(t.entries()), tables_.add(t.target), tables_.add(t.begin), tables_.add(t.source),
+            tables_.add_weights(t.weight)};
+  }
+
+  void make_buffers() {
+    gpu::Context& c = *ctx_;
+    level0_.resize(control_.size());
+    const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(V3), 16);
+    control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
+    const BufferUsage level_usage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
+    level_[0] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (even levels)");
+    level_[1] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (odd levels)");
+    normals_ = gpu::Buffer::device(c, level_bytes_, level_usage, "limit normals");
+    lod_ = gpu::texel_table(c, tables_.lod, "D-LoD index arrays");
+    words_ = gpu::texel_table(c, tables_.words, "mipgh tables");
+    weights_ = gpu::texel_table(c, tables_.weights, "mask weights");
+    const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
+    positions_ = gpu::Buffer::device(c, output_bytes_, output_usage, "positions");
+    out_normals_ = gpu::Buffer::device(c, output_bytes_, output_usage, "normals");
+    positions_staging_ = gpu::Buffer::readback(c, output_bytes_, "positions (readback)");
+    normals_staging_ = gpu::Buffer::readback(c, output_bytes_, "normals (readback)");
+  }
+
+  gpu::ComputePipelineDesc desc(const char* shader, uint32_t constant1, uint32_t constant2) const {
+    using gpu::Binding;
+    return {shaders::get(shader),
+            {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
+             Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
+             Binding::StorageTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer},
+            sizeof(Push),
+            {{0, kLocalSize}, {1, constant1}, {2, constant2}}};
+  }
+
+  void make_pipelines() {
+    for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[k].emplace(*ctx_, desc("facets.comp", quad_, k));
+    for (uint32_t k = 0; k < 3; ++k) edges_[k].emplace(*ctx_, desc("edges.comp", quad_, k));
+    const char* masks = ctx_->info().features.shader_float64 ? "masks_double.comp" : "masks.comp";
+    masks_step_.emplace(*ctx_, desc(masks, 0, 0));
+    masks_limit_.emplace(*ctx_, desc(masks, 1, 0));
+    output_.emplace(*ctx_, desc("output.comp", m_.project(), 0));
+    // Set k reads level buffer k and writes the other.
+    for (int k = 0; k < 2; ++k)
+      sets_[k] = gpu::DescriptorSet(
+          *output_, {level_[k].texels(VK_FORMAT_R32_SFLOAT), level_[1 - k].texels(VK_FORMAT_R32_SFLOAT),
+                     normals_.texels(VK_FORMAT_R32_SFLOAT), lod_.texels(VK_FORMAT_R32_UINT),
+                     words_.texels(VK_FORMAT_R32_UINT), weights_.texels(VK_FORMAT_R32_SFLOAT),
+                     positions_.texels(VK_FORMAT_R32_SFLOAT), out_normals_.texels(VK_FORMAT_R32_SFLOAT),
+                     normals_.texels(VK_FORMAT_R32_SFLOAT)});
+  }
+
+  // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma.
+  void add_level(int sigma, bool limit) {
+    const LevelLayout &src = m_.lod.layout(sigma), &dst = m_.lod.layout(limit ? sigma : sigma + 1);
+    const uint32_t reads = sigma % 2, F = m_.atlas.num_facets();
+    Push base;
+    base.lod_base = lod_base_[sigma], base.n = src.n, base.facet_nodes = lod_words(sigma), base.rows = rows_[sigma];
+    const std::string name = limit ? "limit" : "step " + std::to_string(sigma + 1);
+    Pass facets{name + " facets", {}}, edges{name + " edges", {}}, masks{name + " masks", {}};
+    const auto& classes = classes_[sigma];
+    for (size_t k = 0; k < classes.size(); ++k) {
+      Push p = base;
+      p.table = classes[k].first, p.per_item = classes[k].second;
+      p.count = checked_u32(size_t(F) * p.per_item, "a D-facet pass");
+      p.dst_base = dst.facet_base;
+      p.interior = checked_u32(quad_ ? size_t(dst.s) * dst.s : size_t(dst.s) * (dst.s - 1) / 2, "an interior");
+      facets.dispatches.push_back({&*facets_[limit ? kFacetLimit : k], p, reads});
+    }
+    const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
+    for (int k = 0; k < (limit ? 1 : 2); ++k) {
+      Push p = base;
+      p.table = fast_edges_, p.dst_base = dst.edge_base, p.interior = dst.s;
+      p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
+      p.count = checked_u32(size_t(num_fast_edges_) * p.per_item, "a D-edge pass");
+      edges.dispatches.push_back({&*edges_[parts[k]], p, reads});
+    }
+    const MaskRange& r = masks_[sigma];
+    Push p = base;
+    p.count = r.entries, p.table = r.target, p.begins = r.begins, p.sources = r.sources, p.weight_base = r.weights;
+    masks.dispatches.push_back({limit ? &*masks_limit_ : &*masks_step_, p, reads});
+    passes_.push_back(std::move(facets)), passes_.push_back(std::move(edges)), passes_.push_back(std::move(masks));
+  }
+
+  void plan_passes() {
+    const int inner = m_.inner_depth();
+    for (int sigma = 0; sigma < inner; ++sigma) add_level(sigma, false);
+    if (m_.project()) add_level(inner, true);
+    // The output reads the limit (written over the other buffer) or the last level.
+    Push p;
+    p.count = m_.lod.layout(m_.depth()).num_nodes;
+    p.pick = m_.pick.empty() ? kNoPick : pick_;
+    for (int k = 0; k < 3; ++k) p.origin[k] = m_.origin[k];
+    passes_.push_back({"output", {{&*output_, p, uint32_t((inner + (m_.project() ? 1 : 0)) % 2)}}});
+  }
+
+  void record_frame() {
+    frame_timer_.emplace(*ctx_, uint32_t(passes_.size()) + 1);
+    frame_ = ctx_->record([&](gpu::Commands& cmd) {
+      cmd.barrier(gpu::Stage::All, gpu::Stage::All);  // the previous frame and readback read what this one writes
+      frame_timer_->reset(cmd);
+      frame_timer_->begin(cmd, gpu::PassKind::Upload, "upload");
+      cmd.upload(control_staging_, level_[0], control_.size() * sizeof(V3));
+      frame_timer_->end(cmd);
+      for (const Pass& pass : passes_) {
+        // A step's three passes write disjoint nodes of the next level: one barrier per level
+        // would do, but the timestamps per pass want each finished before the next.
+        cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
+        frame_timer_->begin(cmd, gpu::PassKind::Kernel, pass.label);
+        for (const Dispatch& d : pass.dispatches) {
+          if (d.push.count == 0) continue;
+          cmd.bind(*d.pipeline, sets_[d.reads]);
+          cmd.push(d.push);
+          cmd.dispatch(gpu::groups_for(d.push.count, kLocalSize, ctx_->limits()));
+        }
+        frame_timer_->end(cmd);
+      }
+    });
+  }
+
+  void record_readback() {
+    readback_timer_.emplace(*ctx_, 1);
+    readback_ = ctx_->record([&](gpu::Commands& cmd) {
+      readback_timer_->reset(cmd);
+      readback_timer_->begin(cmd, gpu::PassKind::Readback, "readback");
+      cmd.download(positions_, positions_staging_);
+      cmd.download(out_normals_, normals_staging_);
+      readback_timer_->end(cmd);
+    });
+  }
+
+  std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
+  std::vector<Point3> control_;
+  MeshMutation m_;
+  bool quad_ = true;
+  uint64_t level_bytes_ = 0, output_bytes_ = 0;
+  Tables tables_;
+  std::vector<uint32_t> lod_base_, rows_;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> classes_;  // per level: (table, targets per D-facet)
+  std::vector<MaskRange> masks_;
+  uint32_t fast_edges_ = 0, num_fast_edges_ = 0, pick_ = 0;
+  std::vector<Pass> passes_;
+  std::vector<V3> level0_;
+  gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
+  gpu::Buffer positions_, out_normals_, positions_staging_, normals_staging_;
+  std::optional<gpu::ComputePipeline> facets_[kFacetClasses], edges_[3], masks_step_, masks_limit_, output_;
+  gpu::DescriptorSet sets_[2];
+  std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
+  std::optional<gpu::Recording> frame_, readback_;
+  Tessellation out_;
+  bool stale_ = false, read_back_ = false;
+};
+
+}  // namespace
+
+std::optional<std::string> vulkan_unavailable() {
+  static const gpu::DeviceInfo device = gpu::probe();
+  if (!device.available) return "no Vulkan device: " + device.reason;
+  return std::nullopt;  // nine texel bindings per pass: within Vulkan's minimum limits
+}
+
+std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas,
+                                                   int depth, bool project_to_limit) {
+  if (auto why = vulkan_unavailable()) throw gpu::Unsupported(*why);
+  return std::make_unique<VulkanMipghEvaluation>(mesh, rule, std::move(atlas), depth, project_to_limit,
+                                                 gpu::shared_context());
+}
+
+}  // namespace sdb::mipgh
