@@ -33,7 +33,8 @@ constexpr uint32_t kFacetClasses = 5, kFacetLimit = 4;
 // edges.comp's parts.
 constexpr uint32_t kEdgePoints = 0, kVertexPoints = 1, kEdgeLimit = 2;
 
-// One dispatch: the pipeline, its push constants, and the level buffer it reads (0: A, 1: B).
+// One dispatch: the pipeline, its push constants, and its descriptor set (0, 1: reads level buffer
+// 0 or 1 and writes the other; 2, 3: reads 0 or 1 and writes the output).
 struct Dispatch {
   const gpu::ComputePipeline* pipeline;
   Push push;
@@ -221,21 +222,30 @@ class VulkanMipghEvaluation final : public Evaluation {
     masks_step_.emplace(*ctx_, desc(masks, 0, 0));
     masks_limit_.emplace(*ctx_, desc(masks, 1, 0));
     output_.emplace(*ctx_, desc("output.comp", m_.project(), 0));
-    // Set k reads level buffer k and writes the other.
-    for (int k = 0; k < 2; ++k)
+    // Set k reads level buffer k and writes the other; set 2 + k reads level buffer k and writes
+    // the output itself (the limit, where no grid points are picked from a deeper level).
+    for (int k = 0; k < 4; ++k) {
+      const gpu::Buffer& read = level_[k % 2];
+      const gpu::Buffer& written = k < 2 ? level_[1 - k] : positions_;
+      const gpu::Buffer& normals = k < 2 ? normals_ : out_normals_;
       sets_[k] = gpu::DescriptorSet(
-          *output_, {level_[k].texels(VK_FORMAT_R32_SFLOAT), level_[1 - k].texels(VK_FORMAT_R32_SFLOAT),
-                     normals_.texels(VK_FORMAT_R32_SFLOAT), lod_.texels(VK_FORMAT_R32_UINT),
+          *output_, {read.texels(VK_FORMAT_R32_SFLOAT), written.texels(VK_FORMAT_R32_SFLOAT),
+                     normals.texels(VK_FORMAT_R32_SFLOAT), lod_.texels(VK_FORMAT_R32_UINT),
                      words_.texels(VK_FORMAT_R32_UINT), weights_.texels(VK_FORMAT_R32_SFLOAT),
                      positions_.texels(VK_FORMAT_R32_SFLOAT), out_normals_.texels(VK_FORMAT_R32_SFLOAT),
                      normals_.texels(VK_FORMAT_R32_SFLOAT)});
+    }
   }
 
-  // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma.
+  // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma, written
+  // straight into the output (moved back from the box's centre) unless a deeper level is picked.
   void add_level(int sigma, bool limit) {
     const LevelLayout &src = m_.lod.layout(sigma), &dst = m_.lod.layout(limit ? sigma : sigma + 1);
-    const uint32_t reads = sigma % 2, F = m_.atlas.num_facets();
+    const bool to_output = limit && m_.pick.empty();
+    const uint32_t reads = sigma % 2 + (to_output ? 2 : 0), F = m_.atlas.num_facets();
     Push base;
+    if (to_output)
+      for (int k = 0; k < 3; ++k) base.origin[k] = m_.origin[k];
     base.lod_base = lod_base_[sigma], base.n = src.n, base.facet_nodes = lod_words(sigma), base.rows = rows_[sigma];
     const std::string name = limit ? "limit" : "step " + std::to_string(sigma + 1);
     Pass facets{name + " facets", {}}, edges{name + " edges", {}}, masks{name + " masks", {}};
@@ -267,6 +277,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     const int inner = m_.inner_depth();
     for (int sigma = 0; sigma < inner; ++sigma) add_level(sigma, false);
     if (m_.project()) add_level(inner, true);
+    if (m_.project() && m_.pick.empty()) return;  // the limit wrote the output
     // The output reads the limit (written over the other buffer) or the last level.
     Push p;
     p.count = m_.lod.layout(m_.depth()).num_nodes;
@@ -325,7 +336,7 @@ class VulkanMipghEvaluation final : public Evaluation {
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
   gpu::Buffer positions_, out_normals_, positions_staging_, normals_staging_;
   std::optional<gpu::ComputePipeline> facets_[kFacetClasses], edges_[3], masks_step_, masks_limit_, output_;
-  gpu::DescriptorSet sets_[2];
+  gpu::DescriptorSet sets_[4];
   std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
   std::optional<gpu::Recording> frame_, readback_;
   Tessellation out_;

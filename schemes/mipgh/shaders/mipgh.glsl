@@ -33,7 +33,7 @@ layout(push_constant) uniform Push {
   uint weight_base;  // and its weights, in floats
   uint pick;         // the output pass's node list (0xffffffff: node i is output i)
   uint pad0, pad1, pad2;
-  vec4 origin;       // the control box's centre: levels are relative to it
+  vec4 origin;       // the control box's centre (levels are relative to it): added where the output is written
 } pc;
 
 uint word(uint i) { return texelFetch(words, int(i)).x; }
@@ -41,7 +41,10 @@ vec3 node(uint i) {
   const int k = int(3u * i);
   return vec3(texelFetch(src_floats, k).x, texelFetch(src_floats, k + 1).x, texelFetch(src_floats, k + 2).x);
 }
-void store(uint i, vec3 p) {
+// Steps push a zero origin; a limit written straight into the output the box's centre (as the
+// cpu adds it: after the node is computed).
+void store(uint i, vec3 node) {
+  precise vec3 p = node + pc.origin.xyz;
   const int k = int(3u * i);
   imageStore(dst_floats, k, vec4(p.x));
   imageStore(dst_floats, k + 1, vec4(p.y));
