@@ -38,6 +38,7 @@ struct MeshRequirements {
   enum class Faces { Any, QuadsOnly, TrianglesOnly };
   Faces faces = Faces::Any;
   bool quadrangulate = false;  // QuadsOnly: make quads by one Catmull-Clark step instead of refusing
+  bool split_polygons = false;  // Any: split faces of more than four sides into quads and a triangle (split_polygons.h)
   bool manifold = true;        // no edge with more than two faces, consistent orientation
   bool closed = false;         // no boundary edges
   bool genus0 = false;

@@ -5,6 +5,7 @@
 #include "harness/core/errors.h"
 #include "harness/mesh/facts.h"
 #include "harness/mesh/quadrangulate.h"
+#include "harness/mesh/split_polygons.h"
 
 namespace sdb {
 
@@ -53,6 +54,11 @@ ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
     ControlMesh quads = quadrangulate(mesh);
     quads.warnings.push_back("quadrangulated by one Catmull-Clark step for " + info.name);
     return quads;
+  }
+  if (req.split_polygons && !facts.face_sizes.empty() && facts.face_sizes.rbegin()->first > 4) {
+    ControlMesh split = split_polygons(mesh);
+    split.warnings.push_back("faces of more than four sides split into quads and a triangle for " + info.name);
+    return split;
   }
   return mesh;
 }

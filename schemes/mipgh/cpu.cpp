@@ -6,7 +6,7 @@
 
 namespace sdb::mipgh {
 
-CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth,
+CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth,
                                        bool multithreaded, int threads, bool project_to_limit)
     : control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project_to_limit), multithreaded_(multithreaded) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
@@ -14,6 +14,9 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule 
   a_.resize(inner_nodes), b_.resize(inner_nodes);
   if (!m_.pick.empty()) limit_.resize(inner_nodes);
   compile_primitives(m_.atlas, m_.lod, depth, out_);
+  // A triangle's (u, v) is Loop's parametrization, which names no point of the Catmull-Clark
+  // reference (whose ptex faces split a triangle in three): quad/triangle rows carry none.
+  if (rule == MeshRule::QuadTri) out_.coords.clear();
   out_.positions.resize(nodes);
   out_.normals.resize(nodes);
 }

@@ -15,7 +15,7 @@ namespace sdb::mipgh {
 class CpuMipghEvaluation final : public Evaluation {
  public:
   // `atlas`: the mesh's (build_atlas), as the size check in prepare built it.
-  CpuMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool multithreaded,
+  CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool multithreaded,
                      int threads, bool project_to_limit);
   void execute() override;
   const Tessellation& result() override { return out_; }

@@ -26,7 +26,7 @@ struct LifeOnMesh::Impl {
       : atlas(build_atlas(m)),
         lod(atlas, d),
         tags(build_tags(atlas, make_refiner(m, SubdivisionRule::CatmullClark)->GetLevel(0), sdc_options(m), d)),
-        shader(make_shader(SubdivisionRule::CatmullClark, sdc_options(m))),
+        shader(make_shader(MeshRule::CatmullClark, sdc_options(m))),
         processor(atlas, lod, tags, *shader),
         depth(d),
         now(lod.layout(d).num_nodes, V3{0, 0, 0}),

@@ -10,9 +10,25 @@
 
 namespace sdb::mipgh {
 
+// The mesh shader a scheme binds: Catmull-Clark (mipgh-cc), Loop (mipgh-loop), or Stam and Loop's
+// quad/triangle rules (mipgh-quadtri: Catmull-Clark on quads, Loop on triangles, their blend
+// where they meet; quad_tri_shader.cpp).
+enum class MeshRule { CatmullClark, Loop, QuadTri };
+// The rule Far refines the tags and holes with: quad/triangle meshes as Catmull-Clark's.
+inline SubdivisionRule far_rule(MeshRule r) {
+  return r == MeshRule::Loop ? SubdivisionRule::Loop : SubdivisionRule::CatmullClark;
+}
+inline MeshRule mesh_rule(SubdivisionRule r) { return r == SubdivisionRule::Loop ? MeshRule::Loop : MeshRule::CatmullClark; }
+
 // project_to_limit = false returns the last level's refined nodes (the exactness oracle's side,
 // and the paper's mutation steps alone: the `limit=0` parameter); the normals are left zero.
-std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& request,
+// mipgh-quadtri has no limit masks (none are known for its mixed vertices): project_to_limit
+// must be false for it.
+std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule rule, const RunRequest& request,
                                             bool project_to_limit = true);
+inline std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule,
+                                                   const RunRequest& request, bool project_to_limit = true) {
+  return make_evaluation(mesh, mesh_rule(rule), request, project_to_limit);
+}
 
 }  // namespace sdb::mipgh

@@ -9,8 +9,8 @@
 
 namespace sdb::mipgh {
 
-MeshMutation::Topology MeshMutation::topology_of(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int inner) {
-  const auto refiner = make_refiner(mesh, rule);
+MeshMutation::Topology MeshMutation::topology_of(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int inner) {
+  const auto refiner = make_refiner(mesh, far_rule(rule));
   const auto& base = refiner->GetLevel(0);
   // Far makes holes of the faces it is told of, and under the boundary rule "none" of every face
   // at a boundary vertex: primitive compilation skips the same ones.
@@ -19,11 +19,11 @@ MeshMutation::Topology MeshMutation::topology_of(const ControlMesh& mesh, Subdiv
   return {std::move(atlas), std::move(tags)};
 }
 
-MeshMutation::MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool project)
+MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project)
     : MeshMutation(mesh, rule, topology_of(mesh, rule, std::move(atlas), project ? limit_depth_for(mesh, depth) : depth),
                    depth, project ? limit_depth_for(mesh, depth) : depth, project) {}
 
-MeshMutation::MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth, int inner,
+MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topology, int depth, int inner,
                            bool project)
     : atlas(std::move(topology.atlas)),
       lod(atlas, inner),

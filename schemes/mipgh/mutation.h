@@ -9,6 +9,7 @@
 #include "harness/core/control_mesh.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/lod.h"
+#include "schemes/mipgh/mipgh.h"
 #include "schemes/mipgh/processor.h"
 #include "schemes/mipgh/shader.h"
 
@@ -18,7 +19,7 @@ class MeshMutation {
  public:
   // `atlas`: the mesh's (build_atlas), as the size check in prepare built it. Throws InputError
   // for a vertex of several fans that Far does not make an infinitely sharp corner.
-  MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool project_to_limit);
+  MeshMutation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project_to_limit);
   MeshMutation(const MeshMutation&) = delete;
   MeshMutation& operator=(const MeshMutation&) = delete;
 
@@ -41,8 +42,8 @@ class MeshMutation {
     DAtlas atlas;
     EdgeTags tags;
   };
-  static Topology topology_of(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int inner);
-  MeshMutation(const ControlMesh& mesh, SubdivisionRule rule, Topology topology, int depth, int inner, bool project);
+  static Topology topology_of(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int inner);
+  MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topology, int depth, int inner, bool project);
 
   int depth_;
   bool project_;

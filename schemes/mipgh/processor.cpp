@@ -130,7 +130,8 @@ void MeshProcessor::strip_disk(int sigma, int e, int t, VertexDisk& disk) const 
   } else {
     disk.d[q++] = s.a[t], disk.e[k++] = s.b[t], disk.d[q++] = s.a[t], disk.e[k++] = s.b[t - 1], disk.d[q++] = s.a[t];
   }
-  const int back = k;
+  for (int i = 0; i < q; ++i) disk.face_size[i] = s.quad_major ? 4 : 3;
+  const int back = k, major_faces = q;
   disk.e[k++] = s.a[t - 1];
   if (!boundary) {
     if (s.quad_minor) {
@@ -139,6 +140,7 @@ void MeshProcessor::strip_disk(int sigma, int e, int t, VertexDisk& disk) const 
       disk.d[q++] = s.a[t], disk.e[k++] = s.c[t - 1], disk.d[q++] = s.a[t], disk.e[k++] = s.c[t], disk.d[q++] = s.a[t];
     }
   }
+  for (int i = major_faces; i < q; ++i) disk.face_size[i] = s.quad_minor ? 4 : 3;
   disk.sharpness = disk.child_sharpness = 0;
   for (int i = 0; i < disk.edges; ++i) disk.edge_sharpness[i] = disk.child_edge_sharpness[i] = 0;
   disk.edge_sharpness[0] = tags_.micro_edge(sigma, e, t);
@@ -158,6 +160,7 @@ void MeshProcessor::edge_disk(int sigma, int e, int t, EdgeDisk& disk) const {
   const Strip& s = t_strip;
   const bool boundary = atlas_.edges[e].minor.null();
   disk.faces = boundary ? 1 : 2;
+  disk.face_size[0] = s.quad_major ? 4 : 3, disk.face_size[1] = s.quad_minor ? 4 : 3;
   disk.v0 = s.a[t], disk.v1 = s.a[t + 1];
   disk.f[0][0] = s.b[t], disk.f[0][1] = s.quad_major ? s.b[t + 1] : s.b[t];
   if (!boundary) disk.f[1][0] = s.c[t], disk.f[1][1] = s.quad_minor ? s.c[t + 1] : s.c[t];
@@ -217,6 +220,7 @@ void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& d
     disk.e[i] = src[idx[facet_side_offset(size, h.side, n, 1, 0)]];
     // a quad's corner across from v (a triangle has none: Loop's masks weigh no faces)
     disk.d[i] = size == 4 ? src[idx[side_offset(h.side, n, 1, 1)]] : disk.c;
+    disk.face_size[i] = uint8_t(size);
     disk.edge_sharpness[i] = tags_.any ? sharpness(sigma, h.facet, h.side, true) : 0.0f;
     disk.child_edge_sharpness[i] = child ? sharpness(sigma + 1, h.facet, h.side, true) : 0.0f;
   }
@@ -364,6 +368,7 @@ void MeshProcessor::adjustment_disks(int sigma, const V3* src, const AdjustmentV
           disk.e[3] = at(i, j - 1), disk.e[4] = at(i - 1, j), disk.e[5] = at(i - 1, j + 1);
           for (int k = 0; k < 6; ++k) disk.d[k] = disk.c;
         }
+        for (int k = 0; k < disk.faces; ++k) disk.face_size[k] = uint8_t(size);
         visit(idx[facet_offset(size, n, {i, j})], disk);
       }
   }

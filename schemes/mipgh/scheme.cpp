@@ -18,33 +18,56 @@ constexpr int kMaxDepth = 8;
 // request is refused before anything is built.
 constexpr double kMaxBytes = 8e9;
 
-SchemeInfo make_info(SubdivisionRule rule) {
-  const bool loop = rule == SubdivisionRule::Loop;
+const char* scheme_name(MeshRule rule) {
+  switch (rule) {
+    case MeshRule::Loop: return "mipgh-loop";
+    case MeshRule::QuadTri: return "mipgh-quadtri";
+    default: return "mipgh-cc";
+  }
+}
+
+SchemeInfo make_info(MeshRule rule) {
+  const bool loop = rule == MeshRule::Loop, quadtri = rule == MeshRule::QuadTri;
   SchemeInfo info;
-  info.name = loop ? "mipgh-loop" : "mipgh-cc";
+  info.name = scheme_name(rule);
   info.paper = "Shiue, Goel, Peters 2003, Mesh Mutation in Programmable Graphics Hardware";
-  info.description = loop ? "D-atlas mesh processor with the Loop mesh shader, limit projection"
-                          : "D-atlas mesh processor with the Catmull-Clark mesh shader, limit projection";
+  info.description = loop      ? "D-atlas mesh processor with the Loop mesh shader, limit projection"
+                     : quadtri ? "D-atlas mesh processor with Stam and Loop's quad/triangle mesh shader, last level's nodes"
+                               : "D-atlas mesh processor with the Catmull-Clark mesh shader, limit projection";
   info.role = SchemeRole::Method;
-  info.reference = rule;
+  info.reference = far_rule(rule);
   info.level_kind = LevelKind::Depth;
   info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
-  info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::QuadsOnly;
-  info.accepts.quadrangulate = !loop;  // R1: one Catmull-Clark step where a face is not a quad
+  info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly
+                       : quadtri ? MeshRequirements::Faces::Any
+                                 : MeshRequirements::Faces::QuadsOnly;
+  info.accepts.quadrangulate = rule == MeshRule::CatmullClark;  // R1: one Catmull-Clark step where a face is not a quad
+  info.accepts.split_polygons = quadtri;  // R1 for quads and triangles: larger faces split into them
   info.accepts.manifold = true;
   info.accepts.creases = true;
   info.accepts.holes = true;
   // Far's own limit masks at the last level (PrimvarRefiner::Limit): the bound the fragments
-  // hold, where the reference's limit and Far's agree.
-  info.bound = {1e-5, 0.01};
+  // hold, where the reference's limit and Far's agree. The quad/triangle surface is another one,
+  // and its last level's nodes are not on it: its distance from Catmull-Clark's limit is reported,
+  // not bounded.
+  info.bound = quadtri ? DeviationBound{} : DeviationBound{1e-5, 0.01};
+  info.surface_coords = !quadtri;  // its rows carry the Hausdorff distance (cpu.cpp)
   info.peer = loop ? "osd-uniform-loop" : "osd-uniform";
   const std::string headline = loop ? "stanford/bunny" : "stein/sword_quad_dominant";
-  info.default_meshes = loop ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",
-                                                        "pmp/icosahedron_subdiv"}
-                             : std::vector<std::string>{"stein/sword_quad_dominant", "crane/spot_control",
-                                                        "pmp/fandisk_quads"};
+  info.default_meshes = loop      ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",
+                                                             "pmp/icosahedron_subdiv"}
+                        : quadtri ? std::vector<std::string>{"stein/sword_quad_dominant", "pmp/suzanne",
+                                                             "crane/spot_control", "crane/blub_control"}
+                                  : std::vector<std::string>{"stein/sword_quad_dominant", "crane/spot_control",
+                                                             "pmp/fandisk_quads"};
   info.headline_runs = {{headline, Backend::Cpu, 4}, {headline, Backend::CpuMt, 4}};
+  if (quadtri) {
+    // No limit masks are known where quads and triangles meet: the last level's nodes, normals zero.
+    info.backends = {Backend::Cpu, Backend::CpuMt};
+    info.parameters = {{"limit", "0 only: no limit masks are known where quads and triangles meet", true, 0, 0, 0, 1}};
+    return info;
+  }
   // The paper's mutation steps alone (its cost claim, paper/cost.cpp): the last step's nodes are
   // the output, not the limit surface, so such a row lies off the limit by design.
   info.parameters = {{"limit", "1: project the last level to the limit surface; 0: output the last mutation step's nodes",
@@ -54,11 +77,13 @@ SchemeInfo make_info(SubdivisionRule rule) {
 
 class MipghScheme final : public Scheme {
  public:
-  explicit MipghScheme(SubdivisionRule rule) : rule_(rule), info_(make_info(rule)) {}
+  explicit MipghScheme(MeshRule rule) : rule_(rule), info_(make_info(rule)) {}
   const SchemeInfo& info() const override { return info_; }
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
     if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
+    if (r.backend == Backend::Vulkan && rule_ == MeshRule::QuadTri)
+      return info_.name + " runs on cpu and cpu-mt (the Vulkan passes take D-facets of one kind)";
     if (r.backend == Backend::Vulkan)
       if (auto why = vulkan_unavailable()) return *why;
     return std::nullopt;
@@ -69,7 +94,7 @@ class MipghScheme final : public Scheme {
   }
 
  private:
-  SubdivisionRule rule_;
+  MeshRule rule_;
   SchemeInfo info_;
 };
 
@@ -81,8 +106,9 @@ namespace {
 
 std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
   std::vector<std::unique_ptr<Scheme>> s;
-  s.push_back(std::make_unique<MipghScheme>(SubdivisionRule::CatmullClark));
-  s.push_back(std::make_unique<MipghScheme>(SubdivisionRule::Loop));
+  s.push_back(std::make_unique<MipghScheme>(MeshRule::CatmullClark));
+  s.push_back(std::make_unique<MipghScheme>(MeshRule::Loop));
+  s.push_back(std::make_unique<MipghScheme>(MeshRule::QuadTri));
   return s;
 }
 
@@ -91,9 +117,14 @@ SDB_REGISTER_PAPER_TABLES(mipgh, mipgh_paper_tables);
 
 }  // namespace
 
-std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule, const RunRequest& r,
+std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule rule, const RunRequest& r,
                                             bool project_to_limit) {
-  DAtlas atlas = build_atlas(mesh, rule == SubdivisionRule::Loop ? FacetKinds::Triangles : FacetKinds::Quads);
+  if (rule == MeshRule::QuadTri && project_to_limit)
+    throw Unsupported("mipgh-quadtri has no limit masks where quads and triangles meet");
+  const FacetKinds kinds = rule == MeshRule::Loop      ? FacetKinds::Triangles
+                           : rule == MeshRule::QuadTri ? FacetKinds::QuadsAndTriangles
+                                                       : FacetKinds::Quads;
+  DAtlas atlas = build_atlas(mesh, kinds);
   const double nodes = node_count(atlas, r.level);
   const double bytes = nodes * (2 * sizeof(V3) + 2 * sizeof(Point3)) +
                        atlas.num_facets() * std::ldexp(1.0, 2 * r.level) * 4 * 4.0 / 3 * 2;

@@ -15,7 +15,7 @@ namespace Sdc = OpenSubdiv::Sdc;
 void VertexDisk::resize(int num_edges, int num_faces) {
   edges = num_edges, faces = num_faces;
   if (e.size() < size_t(num_edges)) e.resize(num_edges), edge_sharpness.resize(num_edges), child_edge_sharpness.resize(num_edges);
-  if (d.size() < size_t(num_faces)) d.resize(num_faces);
+  if (d.size() < size_t(num_faces)) d.resize(num_faces), face_size.resize(num_faces);
 }
 
 bool VertexDisk::smooth() const {
@@ -131,8 +131,9 @@ class SdcShader final : public MeshShader {
 
 }  // namespace
 
-std::unique_ptr<MeshShader> make_shader(SubdivisionRule rule, const Sdc::Options& options) {
-  if (rule == SubdivisionRule::Loop) return std::make_unique<SdcShader<Sdc::SCHEME_LOOP>>(options);
+std::unique_ptr<MeshShader> make_shader(MeshRule rule, const Sdc::Options& options) {
+  if (rule == MeshRule::QuadTri) return make_quad_tri_shader(options);
+  if (rule == MeshRule::Loop) return std::make_unique<SdcShader<Sdc::SCHEME_LOOP>>(options);
   return std::make_unique<SdcShader<Sdc::SCHEME_CATMARK>>(options);
 }
 

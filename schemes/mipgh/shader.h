@@ -13,11 +13,13 @@
 #include <opensubdiv/sdc/options.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "harness/core/control_mesh.h"
 #include "harness/mesh/sdc_mask.h"
+#include "schemes/mipgh/mipgh.h"
 
 namespace sdb::mipgh {
 
@@ -57,6 +59,7 @@ struct VertexDisk {
   int edges = 0, faces = 0;
   V3 c{};
   std::vector<V3> e, d;
+  std::vector<uint8_t> face_size;  // 4 or 3 per face (a triangle's d is the centre)
   float sharpness = 0, child_sharpness = 0;
   std::vector<float> edge_sharpness, child_edge_sharpness;
   void resize(int num_edges, int num_faces);
@@ -67,6 +70,7 @@ struct VertexDisk {
 // two, the one next to v0 first; a triangle's one, in f[i][0].
 struct EdgeDisk {
   int faces = 2;
+  int face_size[2] = {4, 4};
   V3 v0{}, v1{};
   V3 f[2][2]{};
   float sharpness = 0, child_sharpness[2] = {0, 0};
@@ -117,8 +121,9 @@ void for_each_term(const SdcMask& m, const EdgeDisk& d, F&& f) {
   }
 }
 
-// Sdc's masks for Catmull-Clark or Loop, fed with the 1-disk's tags.
-std::unique_ptr<MeshShader> make_shader(SubdivisionRule rule, const OpenSubdiv::Sdc::Options& options);
+// Sdc's masks for Catmull-Clark or Loop, fed with the 1-disk's tags; or the quad/triangle shader.
+std::unique_ptr<MeshShader> make_shader(MeshRule rule, const OpenSubdiv::Sdc::Options& options);
+std::unique_ptr<MeshShader> make_quad_tri_shader(const OpenSubdiv::Sdc::Options& options);  // quad_tri_shader.cpp
 
 // The paper's extraordinary vertex-vertex stencil (Section 5's code), any valence, no tags.
 V3 catmark_vertex_smooth(const VertexDisk& disk);

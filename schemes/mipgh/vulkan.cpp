@@ -84,7 +84,7 @@ uint32_t checked_u32(size_t x, const char* what) {
 
 class VulkanMipghEvaluation final : public Evaluation {
  public:
-  VulkanMipghEvaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas, int depth, bool project,
+  VulkanMipghEvaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project,
                         std::shared_ptr<gpu::Context> ctx)
       : ctx_(std::move(ctx)), control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project) {
     const DAtlas& a = m_.atlas;
@@ -351,7 +351,7 @@ std::optional<std::string> vulkan_unavailable() {
   return std::nullopt;  // nine texel bindings per pass: within Vulkan's minimum limits
 }
 
-std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas,
+std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas,
                                                    int depth, bool project_to_limit) {
   if (auto why = vulkan_unavailable()) throw gpu::Unsupported(*why);
   return std::make_unique<VulkanMipghEvaluation>(mesh, rule, std::move(atlas), depth, project_to_limit,

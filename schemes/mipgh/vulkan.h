@@ -12,6 +12,7 @@
 
 #include "harness/core/scheme.h"
 #include "schemes/mipgh/atlas.h"
+#include "schemes/mipgh/mipgh.h"
 
 namespace sdb::mipgh {
 
@@ -19,7 +20,7 @@ namespace sdb::mipgh {
 std::optional<std::string> vulkan_unavailable();
 
 // Throws Unsupported where the device's limits or memory do not take the request.
-std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, DAtlas atlas,
+std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas,
                                                    int depth, bool project_to_limit);
 
 }  // namespace sdb::mipgh

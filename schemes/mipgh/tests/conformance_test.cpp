@@ -1,3 +1,3 @@
 #include "harness/conformance/conformance.h"
 
-SDB_CONFORMANCE_SUITE("mipgh-cc", "mipgh-loop");
+SDB_CONFORMANCE_SUITE("mipgh-cc", "mipgh-loop", "mipgh-quadtri");
