@@ -7,6 +7,7 @@
 #include "harness/mesh/facts.h"
 #include "harness/mesh/mesh_io.h"
 #include "harness/mesh/quadrangulate.h"
+#include "harness/mesh/split_polygons.h"
 
 namespace fs = std::filesystem;
 using namespace sdb;
@@ -320,4 +321,22 @@ TEST(ReadMesh, PlyVersionOtherThanOneIsRefusedBeforeOpenMesh) {
     EXPECT_NE(std::string(e.what()).find(":2: unknown PLY version"), std::string::npos) << e.what();
   }
   fs::remove(p);
+}
+
+// R1 for quad/triangle schemes: a pentagon becomes a quad and a triangle, a hexagon two quads, a
+// heptagon two quads and a triangle, fanned from the first corner; quads and triangles stay; a
+// hole's parts are holes and every part keeps its face's line.
+TEST(SplitPolygons, FansQuadsAndALastTriangleFromTheFirstCorner) {
+  ControlMesh m;
+  m.positions.resize(8);
+  m.face_sizes = {5, 6, 7, 3};
+  m.face_vertices = {0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 6, 0, 1, 7};
+  m.face_lines = {10, 11, 12, 13};
+  m.holes = {1};
+  const ControlMesh s = split_polygons(m);
+  EXPECT_EQ(s.face_sizes, (std::vector<int>{4, 3, 4, 4, 4, 4, 3, 3}));
+  EXPECT_EQ(s.face_vertices, (std::vector<int>{0, 1, 2, 3, 0, 3, 4, 0, 1, 2, 3, 0, 3, 4, 5, 0, 1, 2, 3, 0, 3, 4, 5,
+                                               0, 5, 6, 0, 1, 7}));
+  EXPECT_EQ(s.face_lines, (std::vector<int>{10, 10, 11, 11, 12, 12, 12, 13}));
+  EXPECT_EQ(s.holes, (std::vector<int>{2, 3}));
 }
