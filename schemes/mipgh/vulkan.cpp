@@ -94,13 +94,17 @@ class VulkanMipghEvaluation final : public Evaluation {
     const uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
     level_bytes_ = std::max<uint64_t>(uint64_t(inner_nodes) * 12, 16);
     output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
+    // What one texel view takes, checked before the tables are built (the D-LoD's are the largest)
+    gpu::check_texel_binding(*ctx_, level_bytes_ / 4, "a level's nodes");
+    uint64_t lod_words_total = 0;
+    for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += uint64_t(a.num_facets()) * lod_words(sigma);
+    gpu::check_texel_binding(*ctx_, lod_words_total, "the D-LoD's index arrays");
     build_tables();
     gpu::check_memory(*ctx_,
                       {uint64_t(tables_.words.size() + tables_.weights.size() + tables_.lod.size()) * 4 +
                            3 * level_bytes_ + 2 * output_bytes_,
                        2 * output_bytes_ + control_.size() * 12},
                       mesh.name + " at depth " + std::to_string(depth));
-    gpu::check_texel_binding(*ctx_, level_bytes_ / 4, "a level's nodes");
     make_buffers();
     make_pipelines();
     plan_passes();
