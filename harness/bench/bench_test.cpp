@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <cstdio>
 #include <cstdlib>
@@ -83,6 +84,35 @@ TEST(Measure, UnsupportedBackendIsAStatusNotAFailure) {
   const RunRow row = measure_run({"osd-uniform", "cube", Backend::CpuMt, 2}, quick(), ctx);
   EXPECT_EQ(row.status, RunStatus::Unsupported);
   EXPECT_FALSE(row.message.empty());
+}
+
+// A scheme that only declares what faces it takes (prepare is never called here).
+class FaceRequirement final : public Scheme {
+ public:
+  explicit FaceRequirement(bool split) { info_.name = split ? "splits" : "any", info_.accepts.split_polygons = split; }
+  const SchemeInfo& info() const override { return info_; }
+  std::unique_ptr<Evaluation> prepare(const ControlMesh&, const RunRequest&) const override { return nullptr; }
+
+ private:
+  SchemeInfo info_;
+};
+
+// Schemes that take a mesh differently (here: one splits pentagons, one takes them) never share
+// the accepted mesh of one run (a cache keyed on the face kind alone handed the split-asking
+// scheme the unsplit mesh).
+TEST(Measure, EachFaceRequirementGetsItsOwnAcceptedMesh) {
+  MeasureContext ctx(describe_machine());
+  const FaceRequirement any(false), splits(true);
+  std::shared_ptr<const ControlMesh> taken, split;
+  try {
+    taken = ctx.accepted("crane/spot_control", any);
+  } catch (const InputError&) {
+    GTEST_SKIP() << "no shared corpus";
+  }
+  split = ctx.accepted("crane/spot_control", splits);
+  const auto largest = [](const ControlMesh& m) { return *std::max_element(m.face_sizes.begin(), m.face_sizes.end()); };
+  EXPECT_EQ(largest(*taken), 5);
+  EXPECT_EQ(largest(*split), 4);
 }
 
 TEST(Plan, DefaultSetSkipsRefusedMeshesAndHonoursTheBudget) {

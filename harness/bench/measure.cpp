@@ -133,7 +133,8 @@ const ControlMesh& MeasureContext::mesh(const std::string& name) {
 std::shared_ptr<const ControlMesh> MeasureContext::accepted(const std::string& name, const Scheme& scheme) {
   const MeshRequirements& a = scheme.info().accepts;
   // Schemes with the same face requirement get the same accepted mesh (and reference surface).
-  const std::string key = name + "|" + std::to_string(int(a.faces)) + std::to_string(a.quadrangulate);
+  const std::string key =
+      name + "|" + std::to_string(int(a.faces)) + std::to_string(a.quadrangulate) + std::to_string(a.split_polygons);
   auto it = accepted_.find(key);
   if (it != accepted_.end()) {
     accept_mesh(*it->second, scheme.info());  // the remaining checks still apply per scheme
@@ -378,6 +379,8 @@ DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureC
   row.extraordinary_fraction = facts.all_triangles ? facts.extraordinary_vertex_fraction : facts.extraordinary_quad_fraction;
   const auto& w = d.accepted->warnings;
   if (!w.empty() && w.back().rfind("quadrangulated", 0) == 0) row.message = "quadrangulated by one Catmull-Clark step";
+  if (!w.empty() && w.back().rfind("faces of more than four sides split", 0) == 0)
+    row.message = "faces of more than four sides split into quads and a triangle";
   return d;
 }
 
