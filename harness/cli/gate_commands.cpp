@@ -33,7 +33,7 @@ struct GateOptions {
   bool callgrind = false, record = false;
   std::string scheme, mesh, backend = "cpu";
   int level = 0, iterations = 3, rounds = 0;
-  std::string paper_id;
+  std::string paper_id, texture;
   bool quick = false;
   std::vector<std::string> bench_flags;  // passed to Google Benchmark
 };
@@ -140,6 +140,7 @@ int paper(const GateOptions& opts) {
       PaperTableOptions options;
       if (!opts.out.empty()) options.out_dir = opts.out;
       options.quick = opts.quick;
+      options.texture = opts.texture;
       // On standard error: the table on standard output stays what the paper verb writes.
       Progress progress(std::cerr, stderr_is_terminal(), 0, Progress::steady_seconds, terminal_columns());
       MeasureObserver observer([&](const RunSpec& spec) { progress.begin(spec.name()); },
@@ -213,6 +214,7 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   p->add_option("id", opts->paper_id, "table id, or `list`");
   p->add_option("--out", opts->out, "folder for the table and its pictures (default results/paper)");
   p->add_flag("--quick", opts->quick, "fewer and smaller cells (what the tests run)");
+  p->add_option("--texture", opts->texture, "an image the table reads (shiue2003-fig22: its displacement map)");
   verbs["paper"] = [opts] { return paper(*opts); };
 
   auto* w = app.add_subcommand("workload", "");  // hidden: what the callgrind gate counts

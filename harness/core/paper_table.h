@@ -15,6 +15,7 @@ struct PaperTableOptions {
   std::string out_dir = "results/paper";
   int reps = 5;        // timed repetitions per cell
   bool quick = false;  // smaller meshes / fewer cells, for tests
+  std::string texture;  // an image a table reads (paper --texture), where it takes one; empty: its own
 };
 
 struct PaperTable {

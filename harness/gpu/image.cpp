@@ -21,6 +21,11 @@ Image read_image(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error(path + ": cannot read (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec& spec = in->spec();
+  // A header's size is checked before anything is allocated (a file can announce any size)
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
+      double(spec.width) * spec.height * spec.nchannels > double(1 << 30))
+    throw std::runtime_error(path + ": announces " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                             " pixels of " + std::to_string(spec.nchannels) + " channels, past 2^30 values");
   Image image;
   image.width = static_cast<uint32_t>(spec.width);
   image.height = static_cast<uint32_t>(spec.height);

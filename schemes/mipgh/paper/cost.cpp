@@ -68,9 +68,11 @@ int run_cost(const PaperTableOptions& options, std::ostream& out) {
 }  // namespace
 
 std::vector<PaperTable> mipgh_figure_tables();  // fig23.cpp
+std::vector<PaperTable> mipgh_fig22_tables();   // fig22.cpp
 
 std::vector<PaperTable> mipgh_paper_tables() {
-  std::vector<PaperTable> tables = mipgh_figure_tables();
+  std::vector<PaperTable> tables = mipgh_fig22_tables();
+  for (PaperTable& t : mipgh_figure_tables()) tables.push_back(std::move(t));
   tables.insert(tables.begin(), {"shiue2003-cost", "Mesh mutation (MiPGH), Section 1: instructions to refine and adjust 1000 nodes 4 times",
            run_cost});
   return tables;
