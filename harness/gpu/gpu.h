@@ -11,6 +11,7 @@
 #include "harness/gpu/image.h"         // Image, write_png
 #include "harness/gpu/mesh_renderer.h" // MeshRenderer, Camera, render_image
 #include "harness/gpu/pipeline.h"      // ComputePipeline, GraphicsPipeline, DescriptorSet
+#include "harness/gpu/readback.h"      // OutputReadback
 #include "harness/gpu/render_target.h" // RenderTarget
 #include "harness/gpu/spirv.h"         // Spirv
 #include "harness/gpu/timer.h"         // GpuTimer, PassKind

@@ -230,7 +230,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
     push_.levels = tables.levels;
     push_.header_words = tables.header_words;
     record_frame();
-    record_readback();
+    readback_.emplace(*ctx_, positions_, normals_, output);
     out_.positions.resize(surface_.num_output_vertices);
     out_.normals.resize(surface_.num_output_vertices);
   }
@@ -238,16 +238,11 @@ class VulkanFragmentEvaluation final : public Evaluation {
   void execute() override {
     control_staging_.write(control_);
     ctx_->submit(*frame_);
-    stale_ = true;
+    readback_->invalidate();
   }
 
   const Tessellation& result() override {
-    if (!stale_) return out_;
-    ctx_->submit(*readback_);
-    read_back_ = true;
-    positions_staging_.read(out_.positions.data(), out_.positions.size() * sizeof(Point3));
-    normals_staging_.read(out_.normals.data(), out_.normals.size() * sizeof(Point3));
-    stale_ = false;
+    readback_->read_into(out_);
     return out_;
   }
 
@@ -257,8 +252,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
   std::optional<GpuTimes> gpu_times() const override {
     auto passes = frame_timer_->read_passes();
     if (!passes) return std::nullopt;
-    if (read_back_)
-      if (auto readback = readback_timer_->read_passes()) passes->insert(passes->end(), readback->begin(), readback->end());
+    readback_->append_passes(*passes);
     std::vector<gpu::PassTimestamps> merged;
     std::map<std::string, size_t> index;
     for (const gpu::PassTimestamps& p : *passes) {
@@ -296,8 +290,6 @@ class VulkanFragmentEvaluation final : public Evaluation {
     const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
     positions_ = gpu::Buffer::device(c, output, output_usage, "positions");
     normals_ = gpu::Buffer::device(c, output, output_usage, "normals");
-    positions_staging_ = gpu::Buffer::readback(c, output, "positions (readback)");
-    normals_staging_ = gpu::Buffer::readback(c, output, "normals (readback)");
   }
 
   void make_renderer(const VulkanOptions& o) {
@@ -403,16 +395,6 @@ class VulkanFragmentEvaluation final : public Evaluation {
     });
   }
 
-  void record_readback() {
-    readback_timer_.emplace(*ctx_, 1);
-    readback_ = ctx_->record([&](gpu::Commands& cmd) {
-      readback_timer_->reset(cmd);
-      readback_timer_->begin(cmd, gpu::PassKind::Readback, "readback");
-      cmd.download(positions_, positions_staging_);
-      cmd.download(normals_, normals_staging_);
-      readback_timer_->end(cmd);
-    });
-  }
 
   std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
   std::vector<Point3> control_;
@@ -422,17 +404,17 @@ class VulkanFragmentEvaluation final : public Evaluation {
   WavePlan plan_;
   Push push_;
   gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_;
-  gpu::Buffer positions_, normals_, positions_staging_, normals_staging_;
+  gpu::Buffer positions_, normals_;
+  std::optional<gpu::OutputReadback> readback_;
   std::optional<gpu::ComputePipeline> gather_, level_, level_edges_, limit_;  // level_: face points
   std::vector<gpu::DescriptorSet> sets_;
-  std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
-  std::optional<gpu::Recording> frame_, readback_;
+  std::optional<gpu::GpuTimer> frame_timer_;
+  std::optional<gpu::Recording> frame_;
   std::optional<gpu::RenderTarget> target_;
   std::optional<gpu::MeshRenderer> renderer_;
   gpu::Buffer indices_;
   gpu::Camera camera_;
   Tessellation out_;
-  bool stale_ = false, read_back_ = false;
 };
 
 }  // namespace

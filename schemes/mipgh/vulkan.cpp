@@ -112,7 +112,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     out_.positions.resize(nodes);
     out_.normals.resize(nodes);
     record_frame();
-    record_readback();
+    readback_.emplace(*ctx_, positions_, out_normals_, output_bytes_);
   }
 
   void execute() override {
@@ -122,16 +122,11 @@ class VulkanMipghEvaluation final : public Evaluation {
       level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2]};
     control_staging_.write(level0_);
     ctx_->submit(*frame_);
-    stale_ = true;
+    readback_->invalidate();
   }
 
   const Tessellation& result() override {
-    if (!stale_) return out_;
-    ctx_->submit(*readback_);
-    read_back_ = true;
-    positions_staging_.read(out_.positions.data(), out_.positions.size() * sizeof(Point3));
-    normals_staging_.read(out_.normals.data(), out_.normals.size() * sizeof(Point3));
-    stale_ = false;
+    readback_->read_into(out_);
     return out_;
   }
 
@@ -140,8 +135,7 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::optional<GpuTimes> gpu_times() const override {
     auto passes = frame_timer_->read_passes();
     if (!passes) return std::nullopt;
-    if (read_back_)
-      if (auto readback = readback_timer_->read_passes()) passes->insert(passes->end(), readback->begin(), readback->end());
+    readback_->append_passes(*passes);
     return gpu::to_gpu_times(*passes);
   }
 
@@ -205,8 +199,6 @@ class VulkanMipghEvaluation final : public Evaluation {
     const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
     positions_ = gpu::Buffer::device(c, output_bytes_, output_usage, "positions");
     out_normals_ = gpu::Buffer::device(c, output_bytes_, output_usage, "normals");
-    positions_staging_ = gpu::Buffer::readback(c, output_bytes_, "positions (readback)");
-    normals_staging_ = gpu::Buffer::readback(c, output_bytes_, "normals (readback)");
   }
 
   gpu::ComputePipelineDesc desc(const char* shader, uint32_t constant1, uint32_t constant2) const {
@@ -314,16 +306,6 @@ class VulkanMipghEvaluation final : public Evaluation {
     });
   }
 
-  void record_readback() {
-    readback_timer_.emplace(*ctx_, 1);
-    readback_ = ctx_->record([&](gpu::Commands& cmd) {
-      readback_timer_->reset(cmd);
-      readback_timer_->begin(cmd, gpu::PassKind::Readback, "readback");
-      cmd.download(positions_, positions_staging_);
-      cmd.download(out_normals_, normals_staging_);
-      readback_timer_->end(cmd);
-    });
-  }
 
   std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
   std::vector<Point3> control_;
@@ -338,13 +320,13 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::vector<Pass> passes_;
   std::vector<V3> level0_;
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
-  gpu::Buffer positions_, out_normals_, positions_staging_, normals_staging_;
+  gpu::Buffer positions_, out_normals_;
+  std::optional<gpu::OutputReadback> readback_;
   std::optional<gpu::ComputePipeline> facets_[kFacetClasses], edges_[3], masks_step_, masks_limit_, output_;
   gpu::DescriptorSet sets_[4];
-  std::optional<gpu::GpuTimer> frame_timer_, readback_timer_;
-  std::optional<gpu::Recording> frame_, readback_;
+  std::optional<gpu::GpuTimer> frame_timer_;
+  std::optional<gpu::Recording> frame_;
   Tessellation out_;
-  bool stale_ = false, read_back_ = false;
 };
 
 }  // namespace
