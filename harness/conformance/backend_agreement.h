@@ -6,6 +6,11 @@
 #include <cmath>
 #include <cstddef>
 
+#include <functional>
+#include <string>
+
+#include "harness/core/control_mesh.h"
+#include "harness/core/scheme.h"
 #include "harness/core/tessellation.h"
 
 namespace sdb::conformance {
@@ -33,5 +38,31 @@ inline Agreement agreement(const Tessellation& a, const Tessellation& b, double 
   }
   return r;
 }
+
+// What a scheme's Vulkan test asks of the device's output against the cpu's.
+struct VulkanExpectations {
+  double max_rel = 1e-6;  // of the diagonal
+  double max_deg = 1e-3;  // between normals
+  long open_edges = -1;   // on the vulkan output; -1: as many as the cpu's
+  long rays = 0;          // ray-crack check on a closed input without holes (0: none)
+};
+
+// One request on `backend` (the scheme's evaluation, executed); throws Unsupported where the
+// device refuses it.
+using BackendRun = std::function<Tessellation(Backend backend)>;
+
+// Runs cpu and vulkan, and EXPECTs (GoogleTest) the same layout, agreement within `e`, the open
+// edges and no ray crack. A request the device refuses is said on stdout and gives an empty
+// Agreement (vertices 0).
+Agreement expect_vulkan_agrees(const std::string& name, int depth, const ControlMesh& accepted, const BackendRun& run,
+                               const VulkanExpectations& e);
+
+// The corpus sweep of a Vulkan test: every sweep shape of `rule` accepted as `scheme` takes it and
+// taken by `cpu_prepare` (which throws InputError where the cpu refuses it), depths 1..5 while the
+// output stays under 20,000 triangles (depth 1 always), each through `check`; prints the totals.
+// Skips the test where there is no shared corpus.
+using SweepCheck = std::function<Agreement(const std::string& name, const ControlMesh& accepted, int depth)>;
+void vulkan_sweep(SubdivisionRule rule, const std::string& scheme,
+                  const std::function<void(const ControlMesh&)>& cpu_prepare, const SweepCheck& check);
 
 }  // namespace sdb::conformance

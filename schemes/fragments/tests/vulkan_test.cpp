@@ -52,34 +52,13 @@ Output run(const ControlMesh& accepted, SubdivisionRule rule, int depth, Backend
 }
 
 using conformance::Agreement;
-using conformance::agreement;
 
 // cpu and vulkan agree (<= 1e-6 of the diagonal, normals 1e-3 degrees), lay the output out the
 // same, and the vulkan output is watertight: the input's boundary times 2^depth open, no crack.
 Agreement check(const std::string& name, const ControlMesh& accepted, SubdivisionRule rule, int depth, long rays) {
-  const double d = bounds_of(accepted.positions).diagonal();
-  const Output cpu = run(accepted, rule, depth, Backend::Cpu);
-  Output gpu;
-  try {
-    gpu = run(accepted, rule, depth, Backend::Vulkan);
-  } catch (const Unsupported& e) {
-    std::printf("  %s depth %d refused on this device: %s\n", name.c_str(), depth, e.what());
-    return {};
-  }
-  EXPECT_EQ(cpu.t.triangles, gpu.t.triangles) << name;
-  if (cpu.t.positions.size() != gpu.t.positions.size()) {
-    ADD_FAILURE() << name << ": the backends lay the output out differently";
-    return {};
-  }
-  const Agreement a = agreement(cpu.t, gpu.t, d);
-  EXPECT_LE(a.max_rel, 1e-6) << name << " depth " << depth;
-  EXPECT_LE(a.max_deg, 1e-3) << name << " depth " << depth;
-  EXPECT_EQ(count_open_edges(gpu.t), boundary_edges(accepted) << depth) << name << " depth " << depth;
-  if (rays > 0 && compute_facts(accepted).closed && accepted.holes.empty()) {
-    const RayCrackReport r = ray_crack_check(gpu.t, {rays / 2, rays / 2, 3});
-    EXPECT_EQ(r.cracks, 0) << name << " depth " << depth << " (" << r.rays << " rays)";
-  }
-  return a;
+  return conformance::expect_vulkan_agrees(
+      name, depth, accepted, [&](Backend b) { return run(accepted, rule, depth, b).t; },
+      {.max_rel = 1e-6, .max_deg = 1e-3, .open_edges = boundary_edges(accepted) << depth, .rays = rays});
 }
 
 TEST_F(FragmentsVulkan, MatchesTheCpuAndIsWatertightOnBuiltins) {
@@ -120,34 +99,13 @@ TEST_F(FragmentsVulkan, ManyWavesGiveTheOutputOfOne) {
   EXPECT_TRUE(one.t.normals == many.t.normals);
 }
 
-// Depths 1..5 while the output stays small for lavapipe (depth 1 always); 100,000 rays a run.
-// llvmpipe refuses the valence-360 poles (vulkan.cpp: its loop limit).
+// Depths 1..5 while the output stays small for lavapipe (conformance::vulkan_sweep); 100,000 rays
+// a run. llvmpipe refuses the valence-360 poles (vulkan.cpp: its loop limit).
 void sweep(SubdivisionRule rule) {
-  const std::vector<std::string> shapes = conformance::sweep_shapes(rule);
-  if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
   const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
-  size_t identical = 0, vertices = 0;
-  double worst = 0, worst_deg = 0;
-  int runs = 0;
-  for (const std::string& name : shapes) {
-    ControlMesh accepted;
-    try {
-      accepted = conformance::sweep_mesh(name, rule, rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc");
-      fragments::make_evaluation(accepted, rule, default_request(info, Backend::Cpu, 0));
-    } catch (const InputError&) {
-      continue;  // refused on the cpu too (fragments_test lists them)
-    }
-    const long blocks = num_faces(accepted) - static_cast<long>(accepted.holes.size());
-    for (int depth = 1; depth <= 5; ++depth) {
-      if (depth > 1 && blocks * (rule == SubdivisionRule::Loop ? 1L : 2L) << (2 * depth) > 20000) break;
-      const Agreement a = check(name, accepted, rule, depth, 100000);
-      if (a.vertices == 0) continue;  // refused by the device, said above
-      identical += a.identical, vertices += a.vertices, ++runs;
-      worst = std::max(worst, a.max_rel), worst_deg = std::max(worst_deg, a.max_deg);
-    }
-  }
-  std::printf("%s: %d runs, %zu of %zu positions bit-identical to the cpu's, worst %.2g of the diagonal, normals %.2g deg\n",
-              info.name.c_str(), runs, identical, vertices, worst, worst_deg);
+  conformance::vulkan_sweep(
+      rule, info.name, [&](const ControlMesh& m) { fragments::make_evaluation(m, rule, default_request(info, Backend::Cpu, 0)); },
+      [&](const std::string& name, const ControlMesh& m, int depth) { return check(name, m, rule, depth, 100000); });
 }
 
 class FragmentsVulkanSweep : public gpu::testing::VulkanTest {};

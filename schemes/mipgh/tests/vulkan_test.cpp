@@ -45,33 +45,13 @@ Output run(const ControlMesh& accepted, SubdivisionRule rule, int depth, Backend
 }
 
 // cpu and vulkan agree (<= 1e-6 of the diagonal, normals 0.005 degrees) on the same layout, and
-// the vulkan output is watertight: the cpu's open edges, no crack.
+// the vulkan output is watertight: the cpu's open edges (the input's boundary and Far's holes',
+// mipgh_test), no crack.
 Agreement check(const std::string& name, const ControlMesh& accepted, SubdivisionRule rule, int depth, long rays,
                 bool limit = true) {
-  const double d = bounds_of(accepted.positions).diagonal();
-  const Output cpu = run(accepted, rule, depth, Backend::Cpu, limit);
-  Output gpu;
-  try {
-    gpu = run(accepted, rule, depth, Backend::Vulkan, limit);
-  } catch (const Unsupported& e) {
-    std::printf("  %s depth %d refused on this device: %s\n", name.c_str(), depth, e.what());
-    return {};
-  }
-  EXPECT_EQ(cpu.t.triangles, gpu.t.triangles) << name;
-  if (cpu.t.positions.size() != gpu.t.positions.size()) {
-    ADD_FAILURE() << name << ": the backends lay the output out differently";
-    return {};
-  }
-  const Agreement a = conformance::agreement(cpu.t, gpu.t, d);
-  EXPECT_LE(a.max_rel, 1e-6) << name << " depth " << depth;
-  EXPECT_LE(a.max_deg, 5e-3) << name << " depth " << depth;
-  // the cpu's open edges are the input's boundary and Far's holes' (mipgh_test)
-  EXPECT_EQ(count_open_edges(gpu.t), count_open_edges(cpu.t)) << name << " depth " << depth;
-  if (rays > 0 && compute_facts(accepted).closed && accepted.holes.empty()) {
-    const RayCrackReport r = ray_crack_check(gpu.t, {rays / 2, rays / 2, 3});
-    EXPECT_EQ(r.cracks, 0) << name << " depth " << depth << " (" << r.rays << " rays)";
-  }
-  return a;
+  return conformance::expect_vulkan_agrees(
+      name, depth, accepted, [&](Backend b) { return run(accepted, rule, depth, b, limit).t; },
+      {.max_rel = 1e-6, .max_deg = 5e-3, .open_edges = -1, .rays = rays});
 }
 
 TEST_F(MipghVulkan, MatchesTheCpuAndIsWatertightOnBuiltins) {
@@ -141,33 +121,14 @@ TEST_F(MipghVulkan, LifeGenerationsEqualTheCpusFor100Steps) {
   EXPECT_GT(changed, 1000);  // the soup evolves: the comparison is not of two still lifes
 }
 
-// Depths 1..5 while the output stays small for lavapipe (depth 1 always); 100,000 rays a run.
+// Depths 1..5 while the output stays small for lavapipe (conformance::vulkan_sweep); 100,000 rays
+// a run.
 void sweep(SubdivisionRule rule) {
-  const std::vector<std::string> shapes = conformance::sweep_shapes(rule);
-  if (shapes.empty()) GTEST_SKIP() << "no shared corpus";
   const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
-  size_t identical = 0, vertices = 0;
-  double worst = 0, worst_deg = 0;
-  int runs = 0;
-  for (const std::string& name : shapes) {
-    ControlMesh accepted;
-    try {
-      accepted = conformance::sweep_mesh(name, rule, info.name);
-      mipgh::make_evaluation(accepted, rule, default_request(info, Backend::Cpu, 0), true);
-    } catch (const InputError&) {
-      continue;  // refused on the cpu too (mipgh_test lists them)
-    }
-    const long facets = num_faces(accepted) - static_cast<long>(accepted.holes.size());
-    for (int depth = 1; depth <= 5; ++depth) {
-      if (depth > 1 && facets * (rule == SubdivisionRule::Loop ? 1L : 2L) << (2 * depth) > 20000) break;
-      const Agreement a = check(name, accepted, rule, depth, 100000);
-      if (a.vertices == 0) continue;  // refused by the device, said above
-      identical += a.identical, vertices += a.vertices, ++runs;
-      worst = std::max(worst, a.max_rel), worst_deg = std::max(worst_deg, a.max_deg);
-    }
-  }
-  std::printf("%s: %d runs, %zu of %zu positions bit-identical to the cpu's, worst %.2g of the diagonal, normals %.2g deg\n",
-              info.name.c_str(), runs, identical, vertices, worst, worst_deg);
+  conformance::vulkan_sweep(
+      rule, info.name,
+      [&](const ControlMesh& m) { mipgh::make_evaluation(m, rule, default_request(info, Backend::Cpu, 0), true); },
+      [&](const std::string& name, const ControlMesh& m, int depth) { return check(name, m, rule, depth, 100000); });
 }
 
 class MipghVulkanSweep : public gpu::testing::VulkanTest {};
