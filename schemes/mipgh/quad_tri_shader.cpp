@@ -18,12 +18,6 @@ namespace {
 
 namespace Sdc = OpenSubdiv::Sdc;
 
-struct Sum {
-  double x = 0, y = 0, z = 0;
-  void add(double w, V3 p) { x += w * p.x, y += w * p.y, z += w * p.z; }
-  V3 get() const { return {float(x), float(y), float(z)}; }
-};
-
 // Stam and Loop's smooth rule at a vertex whose faces mix quads and triangles (no boundary).
 V3 mixed_smooth_vertex(const VertexDisk& d) {
   int quads = 0;
@@ -32,7 +26,7 @@ V3 mixed_smooth_vertex(const VertexDisk& d) {
   // Angles in units of pi/6: a quad 3, a triangle 2; their sum W = 3 n_q + 2 n_t (12 when regular).
   const double W = 3.0 * quads + 2.0 * triangles, a = 12.0 / W;
   // c = sum over faces of angle * point / W, each point written in the disk's nodes
-  Sum c;
+  DoubleSum c;
   for (int i = 0; i < d.faces; ++i) {
     const V3 ei = d.e[i], ej = d.e[(i + 1) % d.edges];
     if (d.face_size[i] == 4) {
@@ -49,7 +43,7 @@ V3 mixed_smooth_vertex(const VertexDisk& d) {
     }
   }
   const V3 avg = c.get();
-  Sum r;
+  DoubleSum r;
   r.add(1.0 - a, d.c), r.add(a, avg);
   return r.get();
 }
@@ -57,7 +51,7 @@ V3 mixed_smooth_vertex(const VertexDisk& d) {
 // A crease (3/4, 1/8, 1/8 along its two sharp edges) or a corner, by the sharpness given.
 V3 sharp_vertex(const VertexDisk& d, Sdc::Crease::Rule rule, const float* edge_sharpness) {
   if (rule == Sdc::Crease::RULE_CORNER) return d.c;
-  Sum r;
+  DoubleSum r;
   r.add(0.75, d.c);
   for (int i = 0; i < d.edges; ++i)
     if (edge_sharpness[i] > 0) r.add(0.125, d.e[i]);
@@ -84,7 +78,7 @@ class QuadTriShader final : public MeshShader {
     const V3 other = child == Sdc::Crease::RULE_SMOOTH || child == Sdc::Crease::RULE_DART
                          ? mixed_smooth_vertex(d)
                          : sharp_vertex(d, child, d.child_edge_sharpness.data());
-    Sum r;
+    DoubleSum r;
     r.add(w, sharp), r.add(1.0 - w, other);
     return r.get();
   }
@@ -96,16 +90,16 @@ class QuadTriShader final : public MeshShader {
     // two quads and three triangles around it, a = 1): 3/8 each end, 1/16 each of the quad's far
     // corners, 1/8 the triangle's.
     const int q = d.face_size[0] == 4 ? 0 : 1;
-    Sum smooth;
+    DoubleSum smooth;
     smooth.add(0.375, d.v0), smooth.add(0.375, d.v1);
     smooth.add(0.0625, d.f[q][0]), smooth.add(0.0625, d.f[q][1]), smooth.add(0.125, d.f[1 - q][0]);
     if (d.sharpness <= 0) return smooth.get();
-    Sum mid;
+    DoubleSum mid;
     mid.add(0.5, d.v0), mid.add(0.5, d.v1);
     if (d.child_sharpness[0] > 0 || d.child_sharpness[1] > 0) return mid.get();
     // Sdc's blend where a semi-sharp edge ends: its sharpness weighs the crease's midpoint
     const double w = d.sharpness < 1 ? d.sharpness : 1.0;
-    Sum r;
+    DoubleSum r;
     r.add(w, mid.get()), r.add(1.0 - w, smooth.get());
     return r.get();
   }

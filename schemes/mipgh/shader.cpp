@@ -61,16 +61,9 @@ class SdcEdge {
   int size_;
 };
 
-struct Sum {
-  double x = 0, y = 0, z = 0;
-  void add(double w, V3 p) { x += w * p.x, y += w * p.y, z += w * p.z; }
-  V3 get() const { return {float(x), float(y), float(z)}; }
-};
-
-// In double: a pole's ring of 360 terms summed in float is off by 1e-6 of the diagonal.
 template <class Disk>
 V3 apply(const SdcMask& m, const Disk& d) {
-  Sum r;
+  DoubleSum r;
   for_each_term(m, d, [&](V3 p, float w) { r.add(w, p); });
   return r.get();
 }

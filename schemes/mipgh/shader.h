@@ -35,6 +35,14 @@ inline V3 normalized(V3 a) {
   return l > 0 ? (1.0f / l) * a : a;
 }
 
+// A weighted sum of nodes in double, rounded to float once (the masks' sums: a pole's ring of 360
+// terms summed in float is off by 1e-6 of the diagonal).
+struct DoubleSum {
+  double x = 0, y = 0, z = 0;
+  void add(double w, V3 p) { x += w * p.x, y += w * p.y, z += w * p.z; }
+  V3 get() const { return {float(x), float(y), float(z)}; }
+};
+
 // Figure 20, the stencils of a tag-free regular 1-disk.
 inline V3 facet_vertex(V3 a, V3 b, V3 c, V3 d) { return 0.25f * ((a + c) + (b + d)); }
 // v0, v1 the edge's ends; f the four other corners of its two quads.
