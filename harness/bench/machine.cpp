@@ -100,11 +100,15 @@ double measure_write_bandwidth(int threads) {
 
 namespace sdb {
 
-MachineInfo describe_machine_with_probes() {
-  MachineInfo m = describe_machine();
+void add_bandwidth_probes(MachineInfo& m) {
   m.write_bandwidth_gbs = measure_write_bandwidth(1);
   m.write_bandwidth_mt_gbs = measure_write_bandwidth(std::max(1, m.cores));
   if (!m.vulkan_device.empty()) m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
+}
+
+MachineInfo describe_machine_with_probes() {
+  MachineInfo m = describe_machine();
+  add_bandwidth_probes(m);
   return m;
 }
 

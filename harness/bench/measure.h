@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "harness/bench/machine.h"
 #include "harness/bench/results.h"
 #include "harness/bench/run_spec.h"
 #include "harness/core/scheme.h"
@@ -72,6 +73,8 @@ class MeasureContext {
   // once per mesh and rule.
   const DenseLimit& dense_reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
   const MachineInfo& machine() const { return machine_; }
+  // The bandwidth probes, taken once the selection is known to be good (machine.h).
+  void probe_bandwidth() { add_bandwidth_probes(machine_); }
 
  private:
   MachineInfo machine_;

@@ -93,9 +93,11 @@ std::string RunSet::journal_path() const { return (fs::path(out_) / kJournalFile
 
 RunSet RunSet::start(const std::string& out, const RunSelection& selection, bool isolate) {
   prepare_output_folder(out);  // before the measuring, not after it
-  RunSet set(out, describe_machine_with_probes(), isolate);
+  RunSet set(out, describe_machine(), isolate);
   set.selection_ = selection;
+  // A bad selection (no such scheme, mesh or run) is said at once, not after seconds of probes.
   set.plan_ = make_plan(selection.selection, *set.context_);
+  set.context_->probe_bandwidth();
   if (set.plan_.runs.empty()) return set;
   const JournalHeader header{set.machine(), utc_now(), fs::current_path().string(), selection, run_names(set.plan_)};
   set.journal_.emplace(JournalWriter::create(set.journal_path(), header));

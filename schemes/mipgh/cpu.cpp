@@ -1,5 +1,6 @@
 #include "schemes/mipgh/cpu.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "schemes/mipgh/primitives.h"
@@ -7,13 +8,23 @@
 namespace sdb::mipgh {
 
 CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth,
-                                       bool multithreaded, int threads, bool project_to_limit)
-    : control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project_to_limit), multithreaded_(multithreaded) {
+                                       bool multithreaded, int threads, bool project_to_limit,
+                                       AdaptiveCriterion criterion)
+    : control_(mesh.positions),
+      m_(mesh, rule, std::move(atlas), depth, project_to_limit, criterion),
+      multithreaded_(multithreaded) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
-  const uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
+  uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
+  if (m_.lod.adaptive()) {  // levels are sized by what they hold: the largest may be any
+    for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) inner_nodes = std::max(inner_nodes, m_.lod.layout(sigma).num_nodes);
+    adaptive_ = compile_adaptive(m_.atlas, m_.lod, m_.render, m_.home, out_);
+    nodes = uint32_t(out_.coords.size());
+    limit_.resize(inner_nodes);
+  } else {
+    compile_primitives(m_.atlas, m_.lod, depth, out_);
+  }
   a_.resize(inner_nodes), b_.resize(inner_nodes);
   if (!m_.pick.empty()) limit_.resize(inner_nodes);
-  compile_primitives(m_.atlas, m_.lod, depth, out_);
   // A triangle's (u, v) is Loop's parametrization, which names no point of the Catmull-Clark
   // reference (whose ptex faces split a triangle in three): quad/triangle rows carry none.
   if (rule == MeshRule::QuadTri) out_.coords.clear();
@@ -25,6 +36,13 @@ void CpuMipghEvaluation::run() {
   const float* o = m_.origin;
   for (size_t v = 0; v < control_.size(); ++v) a_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2]};
   V3 *src = a_.data(), *dst = b_.data();
+  if (m_.lod.adaptive()) {
+    for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) {
+      if (sigma > 0) m_.processor.step(sigma - 1, src, dst, multithreaded_), std::swap(src, dst);
+      output_level(sigma, src, dst);
+    }
+    return;
+  }
   for (int sigma = 0; sigma < m_.inner_depth(); ++sigma) {
     m_.processor.step(sigma, src, dst, multithreaded_);
     std::swap(src, dst);
@@ -43,6 +61,21 @@ void CpuMipghEvaluation::run() {
     const size_t k = pick.empty() ? i : pick[i];
     out_.positions[i] = {dst[k].x + o[0], dst[k].y + o[1], dst[k].z + o[2]};
     if (!pick.empty()) out_.normals[i] = {limit_[k].x, limit_[k].y, limit_[k].z};
+  }
+}
+
+void CpuMipghEvaluation::output_level(int sigma, const V3* src, V3* spare) {
+  const auto& nodes = adaptive_.nodes[sigma];
+  if (nodes.empty()) return;
+  const float* o = m_.origin;
+  if (!m_.project()) {
+    for (const auto& [at, i] : nodes) out_.positions[i] = {src[at].x + o[0], src[at].y + o[1], src[at].z + o[2]};
+    return;
+  }
+  m_.processor.project(sigma, src, spare, limit_.data(), adaptive_.homes[sigma], multithreaded_);
+  for (const auto& [at, i] : nodes) {
+    out_.positions[i] = {spare[at].x + o[0], spare[at].y + o[1], spare[at].z + o[2]};
+    out_.normals[i] = {limit_[at].x, limit_[at].y, limit_[at].z};
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace sdb::mipgh {
 
@@ -25,27 +26,80 @@ double node_count(const DAtlas& atlas, int sigma) {
   return atlas.num_vertices + atlas.num_edges() * s + quads * s * s + (atlas.num_facets() - quads) * s * (s - 1) / 2;
 }
 
-DLoD::DLoD(const DAtlas& atlas, int depth) : quads_before_(atlas.quads_before.data()) {
-  const size_t quads = atlas.quads_before.back(), tris = atlas.num_facets() - quads;
+DLoD::DLoD(const DAtlas& atlas, int depth) {
+  const std::vector<uint8_t> all(atlas.num_facets(), 1);
+  for (int sigma = 0; sigma <= depth; ++sigma) lay_out(atlas, sigma, all);
+}
+
+DLoD::DLoD(const DAtlas& atlas, int depth, std::vector<uint8_t> labels) : labels_(std::move(labels)) {
+  std::vector<uint8_t> near(atlas.num_vertices), held(atlas.num_facets());
   for (int sigma = 0; sigma <= depth; ++sigma) {
-    const LevelLayout l = level_layout(atlas, sigma);
-    layouts_.push_back(l);
-    const int n = l.n, s = l.s;
-    facets_.emplace_back(quads * n * n + tris * (size_t(n) * (n + 1) / 2));
+    std::fill(near.begin(), near.end(), 0);
+    for (int f = 0; f < atlas.num_facets(); ++f)
+      if (labels_[f] >= sigma)
+        for (int k = 0; k < atlas.facet_size[f]; ++k) near[atlas.facet_corners[f][k]] = 1;
     for (int f = 0; f < atlas.num_facets(); ++f) {
-      uint32_t* d = const_cast<uint32_t*>(facet(sigma, f));
-      const int size = atlas.facet_size[f];
-      for (int k = 0; k < size; ++k) {
-        d[facet_side_offset(size, k, n, 0, 0)] = static_cast<uint32_t>(atlas.facet_corners[f][k]);
-        const int e = atlas.facet_edges[f][k];
-        const bool minor = atlas.facet_side_minor[f][k];
-        for (int a = 1; a <= s; ++a) d[facet_side_offset(size, k, n, a, 0)] = l.edge_node(e, minor ? s - a : a - 1);
-      }
-      uint32_t inside = l.interior(f);  // row-major, as the D-facet visit writes them
-      for (int i = 1; i <= s; ++i)
-        for (int j = 1; size == 4 ? j <= s : i + j <= s; ++j) d[size == 4 ? i * n + j : tri_offset(n, i, j)] = inside++;
+      held[f] = 0;
+      for (int k = 0; k < atlas.facet_size[f]; ++k) held[f] |= near[atlas.facet_corners[f][k]];
     }
+    lay_out(atlas, sigma, held);
   }
+  // The tables outlive every move of their vectors: point the layouts at them last.
+  for (int sigma = 0; sigma <= depth; ++sigma) {
+    layouts_[sigma].edge_first = edge_first_[sigma].data();
+    layouts_[sigma].facet_first = facet_first_[sigma].data();
+  }
+}
+
+void DLoD::lay_out(const DAtlas& atlas, int sigma, const std::vector<uint8_t>& held) {
+  LevelLayout l = level_layout(atlas, sigma);
+  const int n = l.n, s = l.s, F = atlas.num_facets();
+  auto interior_nodes = [&](int f) { return uint32_t(atlas.facet_size[f] == 4 ? s * s : s * (s - 1) / 2); };
+  std::vector<uint32_t> edge_first, facet_first;
+  std::vector<int32_t> facets_held, edges_held;
+  if (adaptive()) {
+    edge_first.assign(atlas.num_edges(), kAbsent), facet_first.assign(F, kAbsent);
+    uint32_t next = uint32_t(atlas.num_vertices);
+    for (int e = 0; e < atlas.num_edges(); ++e) {
+      const DEdge& d = atlas.edges[e];
+      if (!held[d.major.facet] && (d.minor.null() || !held[d.minor.facet])) continue;
+      edge_first[e] = next, next += uint32_t(s);
+      edges_held.push_back(e);
+    }
+    l.facet_base = next;
+    for (int f = 0; f < F; ++f)
+      if (held[f]) facet_first[f] = next, next += interior_nodes(f), facets_held.push_back(f);
+    l.num_nodes = next;
+    l.edge_first = edge_first.data(), l.facet_first = facet_first.data();
+  }
+  layouts_.push_back(l);
+  std::vector<size_t> at(F, 0);
+  size_t words = 0;
+  for (int f = 0; f < F; ++f) {
+    at[f] = words;
+    if (held[f]) words += atlas.facet_size[f] == 4 ? size_t(n) * n : size_t(n) * (n + 1) / 2;
+  }
+  std::vector<uint32_t> index(words);
+  for (int f = 0; f < F; ++f) {
+    if (!held[f]) continue;
+    uint32_t* d = index.data() + at[f];
+    const int size = atlas.facet_size[f];
+    for (int k = 0; k < size; ++k) {
+      d[facet_side_offset(size, k, n, 0, 0)] = static_cast<uint32_t>(atlas.facet_corners[f][k]);
+      const int e = atlas.facet_edges[f][k];
+      const bool minor = atlas.facet_side_minor[f][k];
+      for (int a = 1; a <= s; ++a) d[facet_side_offset(size, k, n, a, 0)] = l.edge_node(e, minor ? s - a : a - 1);
+    }
+    uint32_t inside = l.interior(f);  // row-major, as the D-facet visit writes them
+    for (int i = 1; i <= s; ++i)
+      for (int j = 1; size == 4 ? j <= s : i + j <= s; ++j) d[size == 4 ? i * n + j : tri_offset(n, i, j)] = inside++;
+  }
+  facets_.push_back(std::move(index));
+  facet_at_.push_back(std::move(at));
+  edge_first_.push_back(std::move(edge_first));
+  facet_first_.push_back(std::move(facet_first));
+  facets_held_.push_back(std::move(facets_held));
+  edges_held_.push_back(std::move(edges_held));
 }
 
 namespace {

@@ -19,9 +19,14 @@ struct LevelLayout {
   int s = 0;  // nodes strictly inside a D-edge: n - 2 (s^2 inside a quad, s(s-1)/2 a triangle)
   uint32_t edge_base = 0, facet_base = 0, num_nodes = 0;
   const int32_t* quads_before = nullptr;  // the atlas's
+  // An adaptive level (DLoD's labels) stores only the D-edges and D-facets it holds, each at its
+  // own first node: these tables, owned by the DLoD (null: every one, in order).
+  const uint32_t* edge_first = nullptr;
+  const uint32_t* facet_first = nullptr;
 
-  uint32_t edge_node(int e, int k) const { return edge_base + uint32_t(e) * s + k; }
+  uint32_t edge_node(int e, int k) const { return (edge_first ? edge_first[e] : edge_base + uint32_t(e) * s) + k; }
   uint32_t interior(int f) const {
+    if (facet_first) return facet_first[f];
     const uint32_t q = quads_before[f], t = uint32_t(f) - q;
     return facet_base + q * s * s + t * (s * (s - 1) / 2);
   }
@@ -64,19 +69,50 @@ inline int side_offset(int side, int n, int a, int b) { return facet_side_offset
 
 class DLoD {
  public:
+  // Uniform: every D-facet refined to `depth`.
   DLoD(const DAtlas& atlas, int depth);
+  // Adaptive refinement (Figures 13, 14): D-facet f refined to labels[f] (<= depth). Level sigma
+  // holds the D-facets refined to sigma or beyond and, as the auxiliary layer, the D-facets that
+  // share a D-vertex with one of them, whose nodes near it the refined facets' 1-disks read; the
+  // D-edges of those; no other D-facet's nodes are visited or allocated there. Departure: the
+  // auxiliary D-facets are refined whole, not as one row of nodes, so that their visit is the
+  // uniform one (the nodes a refined D-facet reads come out bit for bit as uniform refinement's).
+  DLoD(const DAtlas& atlas, int depth, std::vector<uint8_t> labels);
+  DLoD(const DLoD&) = delete;
+  DLoD& operator=(const DLoD&) = delete;
+
   const LevelLayout& layout(int sigma) const { return layouts_[sigma]; }
-  // D-facet f's node indices at level sigma: n x n for a quad, n(n+1)/2 for a triangle.
-  const uint32_t* facet(int sigma, int f) const {
-    const size_t n = layouts_[sigma].n, q = quads_before_[f], t = size_t(f) - q;
-    return facets_[sigma].data() + q * n * n + t * (n * (n + 1) / 2);
-  }
+  // D-facet f's node indices at level sigma: n x n for a quad, n(n+1)/2 for a triangle. Only for
+  // a D-facet the level holds.
+  const uint32_t* facet(int sigma, int f) const { return facets_[sigma].data() + facet_at_[sigma][f]; }
   int depth() const { return static_cast<int>(layouts_.size()) - 1; }
 
+  bool adaptive() const { return !labels_.empty(); }
+  int label(int f) const { return adaptive() ? labels_[f] : depth(); }
+  // Whether level sigma holds D-facet f (refined there or auxiliary), or D-edge e.
+  bool holds_facet(int sigma, int f) const { return !adaptive() || facet_first_[sigma][f] != kAbsent; }
+  bool holds_edge(int sigma, int e) const { return !adaptive() || edge_first_[sigma][e] != kAbsent; }
+  // Adaptive: the D-facets and D-edges level sigma holds, in order.
+  const std::vector<int32_t>& facets_held(int sigma) const { return facets_held_[sigma]; }
+  const std::vector<int32_t>& edges_held(int sigma) const { return edges_held_[sigma]; }
+
+  static constexpr uint32_t kAbsent = 0xffffffffu;
+
  private:
-  const int32_t* quads_before_;
+  void lay_out(const DAtlas& atlas, int sigma, const std::vector<uint8_t>& held);
+
+  std::vector<uint8_t> labels_;
   std::vector<LevelLayout> layouts_;
   std::vector<std::vector<uint32_t>> facets_;
+  std::vector<std::vector<size_t>> facet_at_;
+  std::vector<std::vector<uint32_t>> edge_first_, facet_first_;
+  std::vector<std::vector<int32_t>> facets_held_, edges_held_;
+};
+
+// Adaptive output: the D-facets whose interiors, the D-edges whose nodes and the D-vertices whose
+// output comes from one level (its home: the finest level that draws them, primitives.h).
+struct LevelHomes {
+  std::vector<int32_t> facets, edges, vertices;
 };
 
 // Crease sharpness along D-edges and at D-vertices, every level. Edges inside a D-facet are born

@@ -7,6 +7,7 @@
 
 #include "harness/core/control_mesh.h"
 #include "harness/core/scheme.h"
+#include "schemes/mipgh/adaptive.h"
 
 namespace sdb::mipgh {
 
@@ -24,11 +25,13 @@ inline MeshRule mesh_rule(SubdivisionRule r) { return r == SubdivisionRule::Loop
 // and the paper's mutation steps alone: the `limit=0` parameter); the normals are left zero.
 // mipgh-quadtri has no limit masks (none are known for its mixed vertices): project_to_limit
 // must be false for it.
+// A criterion other than Uniform refines adaptively (adaptive.h), on cpu and cpu-mt.
 std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule rule, const RunRequest& request,
-                                            bool project_to_limit = true);
+                                            bool project_to_limit = true, AdaptiveCriterion criterion = {});
 inline std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule,
-                                                   const RunRequest& request, bool project_to_limit = true) {
-  return make_evaluation(mesh, mesh_rule(rule), request, project_to_limit);
+                                                   const RunRequest& request, bool project_to_limit = true,
+                                                   AdaptiveCriterion criterion = {}) {
+  return make_evaluation(mesh, mesh_rule(rule), request, project_to_limit, criterion);
 }
 
 }  // namespace sdb::mipgh

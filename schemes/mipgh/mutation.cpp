@@ -19,18 +19,36 @@ MeshMutation::Topology MeshMutation::topology_of(const ControlMesh& mesh, MeshRu
   return {std::move(atlas), std::move(tags)};
 }
 
-MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project)
+MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project,
+                           AdaptiveCriterion criterion)
     : MeshMutation(mesh, rule, topology_of(mesh, rule, std::move(atlas), project ? limit_depth_for(mesh, depth) : depth),
-                   depth, project ? limit_depth_for(mesh, depth) : depth, project) {}
+                   depth, project ? limit_depth_for(mesh, depth) : depth, project, criterion) {}
+
+std::vector<uint8_t> MeshMutation::home_levels(const ControlMesh& mesh, int depth, bool project) {
+  std::vector<uint8_t> home(depth + 1);
+  for (int l = 0; l <= depth; ++l) home[l] = uint8_t(project ? limit_depth_for(mesh, l) : l);
+  return home;
+}
+
+DLoD MeshMutation::lay_out(const DAtlas& atlas, const std::vector<uint8_t>& render, const std::vector<uint8_t>& home,
+                           int inner) {
+  if (render.empty()) return DLoD(atlas, inner);
+  std::vector<uint8_t> labels(render);
+  for (uint8_t& l : labels) l = home[l];
+  return DLoD(atlas, inner, std::move(labels));
+}
 
 MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topology, int depth, int inner,
-                           bool project)
+                           bool project, AdaptiveCriterion criterion)
     : atlas(std::move(topology.atlas)),
-      lod(atlas, inner),
+      render(criterion.kind == Refinement::Uniform ? std::vector<uint8_t>{}
+                                                   : facet_labels(atlas, mesh.positions, criterion, depth)),
+      home(home_levels(mesh, depth, project)),
+      lod(lay_out(atlas, render, home, inner)),
       tags(std::move(topology.tags)),
       shader(make_shader(rule, sdc_options(mesh))),
       processor(atlas, lod, tags, *shader),
-      pick(inner > depth ? same_points_at(atlas, lod, depth, inner) : std::vector<uint32_t>{}),
+      pick(inner > depth && render.empty() ? same_points_at(atlas, lod, depth, inner) : std::vector<uint32_t>{}),
       depth_(depth),
       project_(project) {
   for (int v = 0; v < atlas.num_vertices; ++v)

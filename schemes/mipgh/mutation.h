@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "harness/core/control_mesh.h"
+#include "schemes/mipgh/adaptive.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/lod.h"
 #include "schemes/mipgh/mipgh.h"
@@ -19,7 +20,10 @@ class MeshMutation {
  public:
   // `atlas`: the mesh's (build_atlas), as the size check in prepare built it. Throws InputError
   // for a vertex of several fans that Far does not make an infinitely sharp corner.
-  MeshMutation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project_to_limit);
+  // A criterion other than Uniform labels the D-facets (adaptive.h): `render` holds the labels,
+  // the DLoD refines each D-facet to its label (plus the levels `pick` would add).
+  MeshMutation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project_to_limit,
+               AdaptiveCriterion criterion = {});
   MeshMutation(const MeshMutation&) = delete;
   MeshMutation& operator=(const MeshMutation&) = delete;
 
@@ -28,12 +32,16 @@ class MeshMutation {
   bool project() const { return project_; }
 
   const DAtlas atlas;
+  const std::vector<uint8_t> render;  // adaptive: each D-facet's drawn level; empty: uniform
+  // Adaptive: the level a drawn level's nodes come from (deeper where semi-sharp creases outlast
+  // it, as `pick` does for the depth: limit_depth_for of each level).
+  const std::vector<uint8_t> home;
   const DLoD lod;
   const EdgeTags tags;
   const std::unique_ptr<MeshShader> shader;
   const MeshProcessor processor;
   // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
-  // depth's grid points: output node i is inner node pick[i] (empty: the same level).
+  // depth's grid points: output node i is inner node pick[i] (empty: the same level, or adaptive).
   const std::vector<uint32_t> pick;
   float origin[3];  // levels are refined relative to the control box's centre: float keeps its precision
 
@@ -43,7 +51,11 @@ class MeshMutation {
     EdgeTags tags;
   };
   static Topology topology_of(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int inner);
-  MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topology, int depth, int inner, bool project);
+  MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topology, int depth, int inner, bool project,
+               AdaptiveCriterion criterion);
+  static DLoD lay_out(const DAtlas& atlas, const std::vector<uint8_t>& render, const std::vector<uint8_t>& home,
+                      int inner);
+  static std::vector<uint8_t> home_levels(const ControlMesh& mesh, int depth, bool project);
 
   int depth_;
   bool project_;

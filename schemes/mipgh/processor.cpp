@@ -246,9 +246,50 @@ void MeshProcessor::visit_vertex(int sigma, int v, const V3* src, V3* dst) const
 }
 
 void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const {
+  if (lod_.adaptive()) return step_adaptive(sigma, src, dst, parallel);
   for_each(atlas_.num_facets(), parallel, 64, [&](int f) { visit_facet(sigma, f, src, dst); });
   for_each(atlas_.num_edges(), parallel, 256, [&](int e) { visit_edge(sigma, e, src, dst); });
   for_each(atlas_.num_vertices, parallel, 512, [&](int i) { visit_vertex(sigma, vertex_order_[i], src, dst); });
+}
+
+bool MeshProcessor::edge_readable(int sigma, int e) const {
+  const DEdge& d = atlas_.edges[e];
+  return lod_.holds_facet(sigma, d.major.facet) && (d.minor.null() || lod_.holds_facet(sigma, d.minor.facet));
+}
+
+bool MeshProcessor::vertex_readable(int sigma, int v) const {
+  for (int i = atlas_.ring_offsets[v]; i < atlas_.ring_offsets[v + 1]; ++i)
+    if (!lod_.holds_facet(sigma, atlas_.ring[i].facet)) return false;
+  return true;
+}
+
+void MeshProcessor::copy_edge(int sigma, int e, const V3* src, V3* dst) const {
+  const LevelLayout &l = lod_.layout(sigma), &next = lod_.layout(sigma + 1);
+  const HalfEdge& h = atlas_.edges[e].major;
+  const uint32_t first = uint32_t(atlas_.facet_corners[h.facet][h.side]);
+  const uint32_t last = uint32_t(atlas_.facet_corners[h.facet][atlas_.next(h.facet, h.side)]);
+  auto a = [&](int t) { return src[t == 0 ? first : t == l.n - 1 ? last : l.edge_node(e, t - 1)]; };
+  V3* out = dst + next.edge_node(e, 0);
+  for (int t = 0; t + 1 < l.n; ++t) {
+    const V3 p = a(t), q = a(t + 1);
+    out[2 * t] = {0.5f * (p.x + q.x), 0.5f * (p.y + q.y), 0.5f * (p.z + q.z)};
+    if (t > 0) out[2 * t - 1] = p;
+  }
+}
+
+void MeshProcessor::step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const {
+  const std::vector<int32_t>&facets = lod_.facets_held(sigma + 1), &edges = lod_.edges_held(sigma + 1);
+  for_each(int(facets.size()), parallel, 64, [&](int i) { visit_facet(sigma, facets[i], src, dst); });
+  for_each(int(edges.size()), parallel, 256, [&](int i) {
+    const int e = edges[i];
+    if (edge_readable(sigma, e)) visit_edge(sigma, e, src, dst);
+    else copy_edge(sigma, e, src, dst);
+  });
+  for_each(atlas_.num_vertices, parallel, 512, [&](int i) {
+    const int v = vertex_order_[i];
+    if (vertex_readable(sigma, v)) visit_vertex(sigma, v, src, dst);
+    else dst[v] = src[v];
+  });
 }
 
 void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const {
@@ -302,16 +343,25 @@ void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, 
 void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const {
   for_each(atlas_.num_facets(), parallel, 64, [&](int f) { project_facet(sigma, f, src, position, normal); });
   for_each(atlas_.num_edges(), parallel, 256, [&](int e) { project_edge(sigma, e, src, position, normal); });
-  for_each(atlas_.num_vertices, parallel, 512, [&](int i) {
-    const int v = vertex_order_[i];
-    if (atlas_.valence(v) == 0) {
-      position[v] = src[v], normal[v] = {0, 0, 0};
-      return;
-    }
-    VertexDisk& disk = t_disk;
-    gather_vertex(sigma, v, src, disk);
-    shader_.limit(disk, position[v], normal[v]);
-  });
+  for_each(atlas_.num_vertices, parallel, 512, [&](int i) { project_vertex(sigma, vertex_order_[i], src, position, normal); });
+}
+
+void MeshProcessor::project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal) const {
+  if (atlas_.valence(v) == 0) {
+    position[v] = src[v], normal[v] = {0, 0, 0};
+    return;
+  }
+  VertexDisk& disk = t_disk;
+  gather_vertex(sigma, v, src, disk);
+  shader_.limit(disk, position[v], normal[v]);
+}
+
+void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, const Homes& homes,
+                            bool parallel) const {
+  const auto &f = homes.facets, &e = homes.edges, &v = homes.vertices;
+  for_each(int(f.size()), parallel, 64, [&](int i) { project_facet(sigma, f[i], src, position, normal); });
+  for_each(int(e.size()), parallel, 256, [&](int i) { project_edge(sigma, e[i], src, position, normal); });
+  for_each(int(v.size()), parallel, 512, [&](int i) { project_vertex(sigma, v[i], src, position, normal); });
 }
 
 void MeshProcessor::shader_disks(int sigma, const V3* src, bool limit, const DiskVisitor& visit) const {

@@ -26,6 +26,10 @@ class MeshProcessor {
   void step(int sigma, const V3* src, V3* dst, bool parallel) const;
   // Limit positions and unit normals of level sigma's nodes.
   void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const;
+  // Adaptive (DLoD's labels): the limit of the nodes whose home is level sigma only: the
+  // interiors of these D-facets, the nodes of these D-edges and these D-vertices.
+  using Homes = LevelHomes;
+  void project(int sigma, const V3* src, V3* position, V3* normal, const Homes& homes, bool parallel) const;
 
   // Adjustment without refinement (Figure 24's bypassed case): every node of level sigma is
   // replaced by what `shader` makes of its 1-disk there (read from src, written to dst). Any
@@ -54,6 +58,12 @@ class MeshProcessor {
   void visit_facet(int sigma, int f, const V3* src, V3* dst) const;
   void visit_edge(int sigma, int e, const V3* src, V3* dst) const;
   void visit_vertex(int sigma, int v, const V3* src, V3* dst) const;
+  // Adaptive: whether level sigma holds every D-facet a D-edge's (or a D-vertex's) next nodes
+  // read. Where not, the nodes lie away from every refined D-facet, no refined node reads them,
+  // and the step interpolates them instead (copy_edge).
+  bool edge_readable(int sigma, int e) const;
+  bool vertex_readable(int sigma, int v) const;
+  void copy_edge(int sigma, int e, const V3* src, V3* dst) const;
 
  private:
   // D-vertex v's 1-disk at level sigma (and its tags at sigma and sigma + 1).
@@ -72,6 +82,8 @@ class MeshProcessor {
   const int32_t* side_rows(int sigma, int size, int side, int depth) const;
   void project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const;
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const;
+  void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal) const;
+  void step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const;
 
   const DAtlas& atlas_;
   const DLoD& lod_;

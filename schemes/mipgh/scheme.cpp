@@ -62,16 +62,25 @@ SchemeInfo make_info(MeshRule rule) {
                                   : std::vector<std::string>{"stein/sword_quad_dominant", "crane/spot_control",
                                                              "pmp/fandisk_quads"};
   info.headline_runs = {{headline, Backend::Cpu, 4}, {headline, Backend::CpuMt, 4}};
+  // Adaptive refinement (Figures 13, 14; adaptive.h): the criterion that labels the D-facets.
+  const std::vector<ParameterSpec> adaptive = {
+      {"adapt", "0: uniform; adaptive by 1: region (x below extent of the box), 2: curvature, 3: camera distance",
+       true, 0, 0, 3, 1},
+      {"extent", "adaptive: the region's fraction of the box, the fraction of the largest bend refined fully, or "
+                 "the doublings of camera distance per level",
+       false, 0.5, 0.05, 1, 0}};
   if (quadtri) {
     // No limit masks are known where quads and triangles meet: the last level's nodes, normals zero.
     info.backends = {Backend::Cpu, Backend::CpuMt};
     info.parameters = {{"limit", "0 only: no limit masks are known where quads and triangles meet", true, 0, 0, 0, 1}};
+    info.parameters.insert(info.parameters.end(), adaptive.begin(), adaptive.end());
     return info;
   }
   // The paper's mutation steps alone (its cost claim, paper/cost.cpp): the last step's nodes are
   // the output, not the limit surface, so such a row lies off the limit by design.
   info.parameters = {{"limit", "1: project the last level to the limit surface; 0: output the last mutation step's nodes",
                       true, 1, 0, 1, 1}};
+  info.parameters.insert(info.parameters.end(), adaptive.begin(), adaptive.end());
   return info;
 }
 
@@ -84,13 +93,16 @@ class MipghScheme final : public Scheme {
     if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
     if (r.backend == Backend::Vulkan && rule_ == MeshRule::QuadTri)
       return info_.name + " runs on cpu and cpu-mt (the Vulkan passes take D-facets of one kind)";
+    if (r.backend == Backend::Vulkan && r.parameters.integer("adapt") != 0)
+      return "adaptive refinement runs on cpu and cpu-mt (the Vulkan passes lay out every D-facet)";
     if (r.backend == Backend::Vulkan)
       if (auto why = vulkan_unavailable()) return *why;
     return std::nullopt;
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
-    return make_evaluation(mesh, rule_, r, r.parameters.integer("limit") == 1);
+    const AdaptiveCriterion criterion{Refinement(r.parameters.integer("adapt")), r.parameters.value("extent")};
+    return make_evaluation(mesh, rule_, r, r.parameters.integer("limit") == 1, criterion);
   }
 
  private:
@@ -118,7 +130,7 @@ SDB_REGISTER_PAPER_TABLES(mipgh, mipgh_paper_tables);
 }  // namespace
 
 std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule rule, const RunRequest& r,
-                                            bool project_to_limit) {
+                                            bool project_to_limit, AdaptiveCriterion criterion) {
   if (rule == MeshRule::QuadTri && project_to_limit)
     throw Unsupported("mipgh-quadtri has no limit masks where quads and triangles meet");
   const FacetKinds kinds = rule == MeshRule::Loop      ? FacetKinds::Triangles
@@ -134,9 +146,11 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule ru
                   r.level, bytes / 1e9, kMaxBytes / 1e9);
     throw Unsupported(why);
   }
+  if (r.backend == Backend::Vulkan && criterion.kind != Refinement::Uniform)
+    throw Unsupported("adaptive refinement runs on cpu and cpu-mt");
   if (r.backend == Backend::Vulkan) return make_vulkan_evaluation(mesh, rule, std::move(atlas), r.level, project_to_limit);
   return std::make_unique<CpuMipghEvaluation>(mesh, rule, std::move(atlas), r.level, r.backend == Backend::CpuMt,
-                                              r.threads, project_to_limit);
+                                              r.threads, project_to_limit, criterion);
 }
 
 }  // namespace sdb::mipgh
