@@ -89,9 +89,8 @@ class DLoD {
 
   bool adaptive() const { return !labels_.empty(); }
   int label(int f) const { return adaptive() ? labels_[f] : depth(); }
-  // Whether level sigma holds D-facet f (refined there or auxiliary), or D-edge e.
+  // Whether level sigma holds D-facet f (refined there or auxiliary).
   bool holds_facet(int sigma, int f) const { return !adaptive() || facet_first_[sigma][f] != kAbsent; }
-  bool holds_edge(int sigma, int e) const { return !adaptive() || edge_first_[sigma][e] != kAbsent; }
   // Adaptive: the D-facets and D-edges level sigma holds, in order.
   const std::vector<int32_t>& facets_held(int sigma) const { return facets_held_[sigma]; }
   const std::vector<int32_t>& edges_held(int sigma) const { return edges_held_[sigma]; }
