@@ -13,11 +13,11 @@ MachineInfo describe_machine(bool probe_devices = true);
 // cache, best of a few passes; `threads` > 1 splits the buffer across TBB workers.
 double measure_write_bandwidth(int threads);
 
-// describe_machine() with the write-bandwidth probes measured (CPU one thread, all threads, and
-// the Vulkan device when there is one): what every results file records.
 // The write-bandwidth probes (seconds: 256 MiB filled five times per thread count, and the GPU's
 // where there is one) added to a description.
 void add_bandwidth_probes(MachineInfo& m);
+// describe_machine() with the write-bandwidth probes measured (CPU one thread, all threads, and
+// the Vulkan device when there is one): what every results file records.
 MachineInfo describe_machine_with_probes();
 
 // The same for the Vulkan device: a buffer fill timed by timestamp queries; 0 without a device.

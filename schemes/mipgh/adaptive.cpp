@@ -1,19 +1,15 @@
 #include "schemes/mipgh/adaptive.h"
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 namespace sdb::mipgh {
 namespace {
 
-using D3 = std::array<double, 3>;
-
-D3 sub(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const D3& a, const D3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-D3 cross(const D3& a, const D3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using D3 = Eigen::Vector3d;
 
 struct FacetGeometry {
   std::vector<D3> centroid, normal;  // normal: unit, or zero for a degenerate facet
@@ -23,17 +19,15 @@ FacetGeometry facet_geometry(const DAtlas& atlas, const std::vector<Point3>& x) 
   FacetGeometry g;
   for (int f = 0; f < atlas.num_facets(); ++f) {
     const int size = atlas.facet_size[f];
-    D3 c{0, 0, 0}, p[4];
+    D3 c = D3::Zero(), p[4];
     for (int k = 0; k < size; ++k) {
       const Point3& q = x[atlas.facet_corners[f][k]];
       p[k] = {q[0], q[1], q[2]};
-      for (int a = 0; a < 3; ++a) c[a] += p[k][a] / size;
+      c += p[k] / size;
     }
     // a quad's normal across its diagonals, a triangle's across two sides
-    D3 n = size == 4 ? cross(sub(p[2], p[0]), sub(p[3], p[1])) : cross(sub(p[1], p[0]), sub(p[2], p[0]));
-    const double l = std::sqrt(dot(n, n));
-    for (double& a : n) a = l > 0 ? a / l : 0;
-    g.centroid.push_back(c), g.normal.push_back(n);
+    const D3 n = size == 4 ? (p[2] - p[0]).cross(p[3] - p[1]) : (p[1] - p[0]).cross(p[2] - p[0]);
+    g.centroid.push_back(c), g.normal.push_back(n.norm() > 0 ? D3(n.normalized()) : D3::Zero());
   }
   return g;
 }
@@ -59,7 +53,7 @@ std::vector<uint8_t> facet_labels(const DAtlas& atlas, const std::vector<Point3>
       std::vector<double> bend(F, 0.0);
       for (const DEdge& e : atlas.edges) {
         if (e.minor.null()) continue;
-        const double cosine = std::clamp(dot(g.normal[e.major.facet], g.normal[e.minor.facet]), -1.0, 1.0);
+        const double cosine = std::clamp(g.normal[e.major.facet].dot(g.normal[e.minor.facet]), -1.0, 1.0);
         const double angle = std::acos(cosine);
         bend[e.major.facet] = std::max(bend[e.major.facet], angle);
         bend[e.minor.facet] = std::max(bend[e.minor.facet], angle);
@@ -72,7 +66,7 @@ std::vector<uint8_t> facet_labels(const DAtlas& atlas, const std::vector<Point3>
       const double beyond = 0.25 * box.diagonal() / std::sqrt(3.0);
       const D3 eye{box.hi[0] + beyond, box.hi[1] + beyond, box.hi[2] + beyond};
       std::vector<double> distance(F);
-      for (int f = 0; f < F; ++f) distance[f] = std::sqrt(dot(sub(g.centroid[f], eye), sub(g.centroid[f], eye)));
+      for (int f = 0; f < F; ++f) distance[f] = (g.centroid[f] - eye).norm();
       const double nearest = *std::min_element(distance.begin(), distance.end());
       for (int f = 0; f < F; ++f)
         labels[f] = clamp_level(depth - std::floor(std::log2(distance[f] / nearest) / c.extent), depth);

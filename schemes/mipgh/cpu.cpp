@@ -19,7 +19,7 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, D
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) inner_nodes = std::max(inner_nodes, m_.lod.layout(sigma).num_nodes);
     adaptive_ = compile_adaptive(m_.atlas, m_.lod, m_.render, m_.home, out_);
     nodes = uint32_t(out_.coords.size());
-    limit_.resize(inner_nodes);
+    if (m_.project()) limit_.resize(inner_nodes);  // the normals of a level's projection
   } else {
     compile_primitives(m_.atlas, m_.lod, depth, out_);
   }

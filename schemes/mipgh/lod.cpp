@@ -44,11 +44,6 @@ DLoD::DLoD(const DAtlas& atlas, int depth, std::vector<uint8_t> labels) : labels
     }
     lay_out(atlas, sigma, held);
   }
-  // The tables outlive every move of their vectors: point the layouts at them last.
-  for (int sigma = 0; sigma <= depth; ++sigma) {
-    layouts_[sigma].edge_first = edge_first_[sigma].data();
-    layouts_[sigma].facet_first = facet_first_[sigma].data();
-  }
 }
 
 void DLoD::lay_out(const DAtlas& atlas, int sigma, const std::vector<uint8_t>& held) {
@@ -70,6 +65,7 @@ void DLoD::lay_out(const DAtlas& atlas, int sigma, const std::vector<uint8_t>& h
     for (int f = 0; f < F; ++f)
       if (held[f]) facet_first[f] = next, next += interior_nodes(f), facets_held.push_back(f);
     l.num_nodes = next;
+    // moved into edge_first_ and facet_first_ below: a moved vector keeps its buffer
     l.edge_first = edge_first.data(), l.facet_first = facet_first.data();
   }
   layouts_.push_back(l);
