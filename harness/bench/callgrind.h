@@ -26,7 +26,8 @@ void run_callgrind_workload(const RunSpec& spec, int iterations);
 
 // Why valgrind cannot run `executable` on this machine at all, or nullopt: valgrind stops (SIGILL)
 // at an instruction it cannot decode that a library runs while loading (seen: libhwy's rdtscp,
-// loaded with OpenImageIO, on a CPU whose CPUID does not announce rdtscp). A limit of the tool on
+// loaded with OpenImageIO, on a CPU whose CPUID does not announce rdtscp; OpenImageIO is now
+// opened only where an image is read or written, harness/images/image_io.h). A limit of the tool on
 // the machine, not of the workload: tests skip on it, the gate says it. Checked once per process.
 std::optional<std::string> valgrind_unusable(const std::string& executable);
 

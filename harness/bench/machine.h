@@ -10,11 +10,15 @@ namespace sdb {
 MachineInfo describe_machine(bool probe_devices = true);
 
 // Achievable write bandwidth in GB/s: sequential stores over a buffer several times the last-level
-// cache, best of a few passes; `threads` > 1 splits the buffer across TBB workers.
-double measure_write_bandwidth(int threads);
+// cache, best of five passes, on one thread and on `threads` TBB workers (the same buffer).
+struct CpuWriteBandwidth {
+  double one_thread_gbs = 0;
+  double all_threads_gbs = 0;
+};
+CpuWriteBandwidth measure_write_bandwidth(int threads);
 
-// The write-bandwidth probes (seconds: 256 MiB filled five times per thread count, and the GPU's
-// where there is one) added to a description.
+// The write-bandwidth probes (about a second: the buffer filled five times per thread count, and
+// the GPU's 256 MiB where there is one) added to a description.
 void add_bandwidth_probes(MachineInfo& m);
 // describe_machine() with the write-bandwidth probes measured (CPU one thread, all threads, and
 // the Vulkan device when there is one): what every results file records.

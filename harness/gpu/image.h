@@ -1,4 +1,5 @@
-// Image: RGBA8 pixels on the host, and PNG files through OpenImageIO.
+// Image: RGBA8 pixels on the host, and PNG files through OpenImageIO (opened at run time:
+// harness/images/image_io.h).
 #pragma once
 
 #include <array>

@@ -1,12 +1,13 @@
 #include "schemes/geometry-image/creation/cache.h"
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+
+#include "harness/images/image_io.h"
 
 namespace fs = std::filesystem;
 
@@ -41,19 +42,13 @@ std::optional<CachedImage> ImageCache::load(uint64_t key, int n) const {
   const std::string file = path(key, n);
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) return std::nullopt;
-  auto in = OIIO::ImageInput::open(file);
-  if (!in) return std::nullopt;
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width != n || spec.height != n || spec.nchannels != 3 ||
-      spec.get_string_attribute(kKeyAttribute) != hex(key))
-    return std::nullopt;
+  std::optional<images::FloatImage> read = images::image_codec().read_float(file, n, n, 3);
+  if (!read || read->strings[kKeyAttribute] != hex(key)) return std::nullopt;
   CachedImage out{GeometryImage(n), {}, file};
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, out.image.samples.data())) return std::nullopt;
-  for (const OIIO::ParamValue& p : spec.extra_attribs) {
-    const std::string name = p.name().string();
-    if (name.rfind(kFigurePrefix, 0) == 0 && p.type() == OIIO::TypeDesc::FLOAT)
-      out.figures[name.substr(std::string(kFigurePrefix).size())] = p.get_float();
-  }
+  for (size_t i = 0; i < out.image.samples.size(); ++i)
+    for (int c = 0; c < 3; ++c) out.image.samples[i][c] = read->samples[3 * i + c];
+  for (const auto& [name, value] : read->floats)
+    if (name.rfind(kFigurePrefix, 0) == 0) out.figures[name.substr(std::string(kFigurePrefix).size())] = value;
   return out;
 }
 
@@ -62,15 +57,13 @@ std::string ImageCache::store(uint64_t key, const GeometryImage& image, const st
   fs::create_directories(directory_, ec);
   const std::string file = path(key, image.size);
   const std::string temporary = file.substr(0, file.size() - 4) + ".tmp" + std::to_string(::getpid()) + ".exr";
-  OIIO::ImageSpec spec(image.size, image.size, 3, OIIO::TypeDesc::FLOAT);
-  spec.attribute("compression", "zip");
-  spec.attribute(kKeyAttribute, hex(key));
-  for (const auto& [name, value] : figures) spec.attribute(kFigurePrefix + name, static_cast<float>(value));
-  auto out = OIIO::ImageOutput::create(temporary);
-  if (!out || !out->open(temporary, spec)) return {};
-  const bool written = out->write_image(OIIO::TypeDesc::FLOAT, image.samples.data());
-  out->close();
-  if (!written) {
+  images::FloatImage stored;
+  stored.width = stored.height = image.size, stored.channels = 3;
+  stored.samples.reserve(image.samples.size() * 3);
+  for (const Point3& p : image.samples) stored.samples.insert(stored.samples.end(), p.begin(), p.end());
+  stored.strings[kKeyAttribute] = hex(key);
+  for (const auto& [name, value] : figures) stored.floats[kFigurePrefix + name] = static_cast<float>(value);
+  if (!images::image_codec().write_float(stored, temporary, "zip")) {
     fs::remove(temporary, ec);
     return {};
   }

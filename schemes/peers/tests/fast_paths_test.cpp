@@ -117,11 +117,16 @@ TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
     for (const std::string& name : corpus_shapes(rule)) {
       const ControlMesh mesh = load_mesh(name);
       const double d = diag(mesh);
+      // The GL evaluator sums the tables osd-stencil makes; at valence 360 making them again
+      // (isolated to level 8 around the pole) costs 25 s of the test per rule, and pole64 already
+      // gives the GL evaluator a 64-weight stencil.
+      const std::map<int, int> valences = compute_facts(mesh).valences;
+      const bool gl_here = on_device && !valences.empty() && valences.rbegin()->first <= 64;
       for (int depth : {2}) {
         Tessellation s, u;
         try {
           s = run(loop ? "osd-stencil-loop" : "osd-stencil", mesh, Backend::Cpu, depth);
-          if (on_device) {  // the same tables on the GL compute evaluator
+          if (gl_here) {  // the same tables on the GL compute evaluator
             const Tessellation g = run(loop ? "osd-glcompute-loop" : "osd-glcompute", mesh, Backend::OpenGl, depth);
             ASSERT_EQ(g.num_vertices(), s.num_vertices()) << name;
             EXPECT_LE(max_distance_referenced(g, s), 1e-6 * d) << name << ": osd-glcompute against osd-stencil";
