@@ -27,6 +27,41 @@ struct Terms {
   }
 };
 
+// The nodes a disk names (node_ids), each once, with the slots holding it.
+template <class Disk>
+std::vector<V3*> slots(Disk& d);
+template <>
+std::vector<V3*> slots(VertexDisk& d) {
+  std::vector<V3*> s{&d.c};
+  for (V3& e : d.e) s.push_back(&e);
+  for (V3& f : d.d) s.push_back(&f);
+  return s;
+}
+template <>
+std::vector<V3*> slots(EdgeDisk& d) {
+  std::vector<V3*> s{&d.v0, &d.v1};
+  for (int i = 0; i < d.faces; ++i) s.push_back(&d.f[i][0]), s.push_back(&d.f[i][1]);
+  return s;
+}
+
+// A rule's weights by probing it: with every node 0 but one at x = 1, the rule's x is that node's
+// weight (the rules are linear; the one nonzero term is rounded once, as a float weight).
+template <class Disk, class Rule>
+void probe(const Disk& disk, Rule&& rule, Terms<1>& step) {
+  Disk unit = disk;
+  const std::vector<V3*> at = slots(unit);
+  std::vector<uint32_t> ids;
+  for (const V3* p : at) ids.push_back(node_of(*p));
+  std::vector<uint32_t> distinct = ids;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  for (uint32_t id : distinct) {
+    for (size_t k = 0; k < at.size(); ++k) *at[k] = ids[k] == id ? V3{1, 0, 0} : V3{0, 0, 0};
+    const float w = rule(unit).x;
+    if (w != 0) step.add(V3{float(id & 0xFFFFFFu), float(id >> 24), 0.0f}, 0, w);
+  }
+}
+
 }  // namespace
 
 std::vector<V3> node_ids(uint32_t count) {
@@ -57,9 +92,13 @@ MaskTable build_mask_table(const MeshProcessor& processor, const MeshShader& sha
       projection.append_to(table, target);
       return;
     }
-    if (v) {
+    if (v && !shader.has_mask(*v)) {
+      probe(*v, [&](const VertexDisk& d) { return shader.vertex_vertex(d); }, step);
+    } else if (v) {
       shader.vertex_mask(*v, masks[0]);
       for_each_term(masks[0], *v, [&](V3 p, float w) { step.add(p, 0, w); });
+    } else if (!shader.has_mask(*e)) {
+      probe(*e, [&](const EdgeDisk& d) { return shader.edge_vertex(d); }, step);
     } else {
       shader.edge_mask(*e, masks[0]);
       for_each_term(masks[0], *e, [&](V3 p, float w) { step.add(p, 0, w); });

@@ -116,6 +116,8 @@ class QuadTriShader final : public MeshShader {
     if (d.faces == 1 || d.face_size[0] == d.face_size[1]) return (d.face_size[0] == 4 ? catmark_ : loop_)->edge_mask(d, m);
     throw std::logic_error("the quad/triangle shader's mixed rules are not Sdc masks");
   }
+  bool has_mask(const VertexDisk& d) const override { return pure_shader(d) != nullptr; }
+  bool has_mask(const EdgeDisk& d) const override { return d.faces == 1 || d.face_size[0] == d.face_size[1]; }
   void limit_masks(const VertexDisk& d, SdcMask& p, SdcMask& t1, SdcMask& t2) const override {
     if (const MeshShader* pure = pure_shader(d)) return pure->limit_masks(d, p, t1, t2);
     throw std::logic_error("the quad/triangle shader has no limit masks where quads and triangles meet");

@@ -71,7 +71,6 @@ SchemeInfo make_info(MeshRule rule) {
        false, 0.5, 0.05, 1, 0}};
   if (quadtri) {
     // No limit masks are known where quads and triangles meet: the last level's nodes, normals zero.
-    info.backends = {Backend::Cpu, Backend::CpuMt};
     info.parameters = {{"limit", "0 only: no limit masks are known where quads and triangles meet", true, 0, 0, 0, 1}};
     info.parameters.insert(info.parameters.end(), adaptive.begin(), adaptive.end());
     return info;
@@ -91,8 +90,6 @@ class MipghScheme final : public Scheme {
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
     if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
-    if (r.backend == Backend::Vulkan && rule_ == MeshRule::QuadTri)
-      return info_.name + " runs on cpu and cpu-mt (the Vulkan passes take D-facets of one kind)";
     if (r.backend == Backend::Vulkan && r.parameters.integer("adapt") != 0)
       return "adaptive refinement runs on cpu and cpu-mt (the Vulkan passes lay out every D-facet)";
     if (r.backend == Backend::Vulkan)

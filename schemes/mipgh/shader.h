@@ -97,6 +97,11 @@ class MeshShader {
   virtual void vertex_mask(const VertexDisk& disk, SdcMask& mask) const = 0;
   virtual void edge_mask(const EdgeDisk& disk, SdcMask& mask) const = 0;
   virtual void limit_masks(const VertexDisk& disk, SdcMask& position, SdcMask& t1, SdcMask& t2) const = 0;
+  // Whether vertex_mask and edge_mask give this disk's rule as Sdc masks. The quad/triangle
+  // shader's rules where quads and triangles meet are not; a mask table probes those
+  // (mask_table.cpp: the rules are linear in the disk's nodes).
+  virtual bool has_mask(const VertexDisk&) const { return true; }
+  virtual bool has_mask(const EdgeDisk&) const { return true; }
 };
 
 // Each (disk point, weight) a mask weighs, in the order the shaders sum them: the centre or the

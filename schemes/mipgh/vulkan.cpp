@@ -23,7 +23,8 @@ constexpr uint32_t kNoPick = 0xffffffffu;
 
 struct Push {
   uint32_t count = 0, per_item = 1, table = 0, lod_base = 0, n = 0, facet_nodes = 0, dst_base = 0, interior = 0,
-           rows = 0, begins = 0, sources = 0, weight_base = 0, pick = kNoPick, pad[3] = {0, 0, 0};
+           rows = 0, begins = 0, sources = 0, weight_base = 0, pick = kNoPick, facet_list = 0,
+           facet_lod = 0, pad = 0;
   float origin[4] = {0, 0, 0, 0};
 };
 
@@ -88,16 +89,14 @@ class VulkanMipghEvaluation final : public Evaluation {
                         std::shared_ptr<gpu::Context> ctx)
       : ctx_(std::move(ctx)), control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project) {
     const DAtlas& a = m_.atlas;
-    quad_ = a.num_facets() == 0 || a.facet_size[0] == 4;
-    for (int f = 0; f < a.num_facets(); ++f)
-      if ((a.facet_size[f] == 4) != quad_) throw gpu::Unsupported("the Vulkan passes take D-facets of one kind");
+    for (int f = 0; f < a.num_facets(); ++f) (a.facet_size[f] == 4 ? has_quads_ : has_triangles_) = true;
     const uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
     level_bytes_ = std::max<uint64_t>(uint64_t(inner_nodes) * 12, 16);
     output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
     // What one texel view takes, checked before the tables are built (the D-LoD's are the largest)
     gpu::check_texel_binding(*ctx_, level_bytes_ / 4, "a level's nodes");
     uint64_t lod_words_total = 0;
-    for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += uint64_t(a.num_facets()) * lod_words(sigma);
+    for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += level_lod_words(sigma);
     gpu::check_texel_binding(*ctx_, lod_words_total, "the D-LoD's index arrays");
     build_tables();
     gpu::check_memory(*ctx_,
@@ -109,6 +108,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     make_pipelines();
     plan_passes();
     compile_primitives(m_.atlas, m_.lod, depth, out_);
+    if (rule == MeshRule::QuadTri) out_.coords.clear();  // as the cpu's (cpu.cpp): no point of the reference
     out_.positions.resize(nodes);
     out_.normals.resize(nodes);
     record_frame();
@@ -140,40 +140,71 @@ class VulkanMipghEvaluation final : public Evaluation {
   }
 
  private:
-  uint32_t lod_words(int sigma) const {
+  bool mixed() const { return has_quads_ && has_triangles_; }
+  uint32_t lod_words(int sigma, bool quad) const {
     const size_t n = m_.lod.layout(sigma).n;
-    return checked_u32(quad_ ? n * n : n * (n + 1) / 2, "a D-facet's index array");
+    return checked_u32(quad ? n * n : n * (n + 1) / 2, "a D-facet's index array");
   }
+  uint64_t level_lod_words(int sigma) const {
+    uint64_t words = 0;
+    for (int f = 0; f < m_.atlas.num_facets(); ++f) words += lod_words(sigma, m_.atlas.facet_size[f] == 4);
+    return words;
+  }
+  // Nodes inside one D-facet of a kind at the level with s nodes inside a D-edge.
+  static size_t interior_nodes(size_t s, bool quad) { return quad ? s * s : s * (s - 1) / 2; }
 
   void build_tables() {
     const int inner = m_.inner_depth();
-    const int F = m_.atlas.num_facets();
     for (int sigma = 0; sigma <= inner; ++sigma) {
       lod_base_.push_back(checked_u32(tables_.lod.size(), "the D-LoD"));
       const uint32_t* first = m_.lod.facet(sigma, 0);
-      tables_.lod.insert(tables_.lod.end(), first, first + size_t(F) * lod_words(sigma));
+      tables_.lod.insert(tables_.lod.end(), first, first + level_lod_words(sigma));
       const int n = m_.lod.layout(sigma).n;
       const auto& rows = m_.processor.side_row_table(sigma);
       rows_.push_back(tables_.add(std::vector<uint32_t>(rows.begin(), rows.end())));
-      const auto classes = facet_classes(n, quad_, sigma == inner);
-      std::vector<std::pair<uint32_t, uint32_t>> at;
-      for (const auto& c : classes) at.push_back({tables_.add(c), uint32_t(c.size() / 2)});
-      classes_.push_back(at);
+      for (bool quad : {false, true}) {
+        std::vector<std::pair<uint32_t, uint32_t>> at;
+        if (quad ? has_quads_ : has_triangles_)
+          for (const auto& c : facet_classes(n, quad, sigma == inner)) at.push_back({tables_.add(c), uint32_t(c.size() / 2)});
+        classes_[quad].push_back(at);
+      }
+      if (mixed()) add_facet_lists(sigma, sigma == inner);
       const bool limit = sigma == inner;
       masks_.push_back(limit && !m_.project() ? MaskRange{}
                                               : add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit)));
     }
-    std::vector<uint32_t> fast;
+    std::vector<uint32_t> fast[2];  // fast D-edges between triangles, between quads
     for (int e = 0; e < m_.atlas.num_edges(); ++e) {
       if (!m_.processor.fast_edge(e)) continue;
       const DEdge& d = m_.atlas.edges[e];
-      const uint32_t kind = quad_ ? 3 : 0;  // side_row_table's kinds: a triangle's sides, then a quad's
-      fast.insert(fast.end(), {uint32_t(e), uint32_t(d.major.facet), kind + d.major.side, uint32_t(d.minor.facet),
-                               kind + d.minor.side});
+      const bool quad = m_.atlas.facet_size[d.major.facet] == 4;  // fast: the minor's kind too
+      const uint32_t kind = quad ? 3 : 0;  // side_row_table's kinds: a triangle's sides, then a quad's
+      fast[quad].insert(fast[quad].end(), {uint32_t(e), uint32_t(d.major.facet), kind + d.major.side,
+                                           uint32_t(d.minor.facet), kind + d.minor.side});
     }
-    num_fast_edges_ = uint32_t(fast.size() / 5);
-    fast_edges_ = tables_.add(fast);
+    for (bool quad : {false, true}) {
+      num_fast_edges_[quad] = uint32_t(fast[quad].size() / 5);
+      fast_edges_[quad] = tables_.add(fast[quad]);
+    }
     if (!m_.pick.empty()) pick_ = tables_.add(m_.pick);
+  }
+
+  // Both kinds: per level, each D-facet's D-LoD offset (for the D-edge passes), and per kind its
+  // D-facets' (D-LoD offset, first target node) for the D-facet passes (the target level's
+  // interiors; the limit's: the level's own).
+  void add_facet_lists(int sigma, bool limit) {
+    const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
+    const uint32_t* first = m_.lod.facet(sigma, 0);
+    std::vector<uint32_t> lod_at(m_.atlas.num_facets()), list[2];
+    for (int f = 0; f < m_.atlas.num_facets(); ++f) {
+      lod_at[f] = uint32_t(m_.lod.facet(sigma, f) - first);
+      list[m_.atlas.facet_size[f] == 4].insert(list[m_.atlas.facet_size[f] == 4].end(), {lod_at[f], dst.interior(f)});
+    }
+    facet_lod_.push_back(tables_.add(lod_at));
+    for (bool quad : {false, true}) {
+      facet_list_[quad].push_back(tables_.add(list[quad]));
+      facets_of_[quad].push_back(uint32_t(list[quad].size() / 2));
+    }
   }
 
   struct MaskRange {
@@ -212,8 +243,11 @@ class VulkanMipghEvaluation final : public Evaluation {
   }
 
   void make_pipelines() {
-    for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[k].emplace(*ctx_, desc("facets.comp", quad_, k));
-    for (uint32_t k = 0; k < 3; ++k) edges_[k].emplace(*ctx_, desc("edges.comp", quad_, k));
+    for (bool quad : {false, true}) {
+      if (!(quad ? has_quads_ : has_triangles_)) continue;
+      for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[quad][k].emplace(*ctx_, desc("facets.comp", quad, k));
+      for (uint32_t k = 0; k < 3; ++k) edges_[quad][k].emplace(*ctx_, desc("edges.comp", quad, k));
+    }
     const char* masks = ctx_->info().features.shader_float64 ? "masks_double.comp" : "masks.comp";
     masks_step_.emplace(*ctx_, desc(masks, 0, 0));
     masks_limit_.emplace(*ctx_, desc(masks, 1, 0));
@@ -242,25 +276,30 @@ class VulkanMipghEvaluation final : public Evaluation {
     Push base;
     if (to_output)
       for (int k = 0; k < 3; ++k) base.origin[k] = m_.origin[k];
-    base.lod_base = lod_base_[sigma], base.n = src.n, base.facet_nodes = lod_words(sigma), base.rows = rows_[sigma];
+    base.lod_base = lod_base_[sigma], base.n = src.n, base.rows = rows_[sigma];
+    if (mixed()) base.facet_lod = facet_lod_[sigma];
     const std::string name = limit ? "limit" : "step " + std::to_string(sigma + 1);
     Pass facets{name + " facets", {}}, edges{name + " edges", {}}, masks{name + " masks", {}};
-    const auto& classes = classes_[sigma];
-    for (size_t k = 0; k < classes.size(); ++k) {
-      Push p = base;
-      p.table = classes[k].first, p.per_item = classes[k].second;
-      p.count = checked_u32(size_t(F) * p.per_item, "a D-facet pass");
-      p.dst_base = dst.facet_base;
-      p.interior = checked_u32(quad_ ? size_t(dst.s) * dst.s : size_t(dst.s) * (dst.s - 1) / 2, "an interior");
-      facets.dispatches.push_back({&*facets_[limit ? kFacetLimit : k], p, reads});
-    }
-    const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
-    for (int k = 0; k < (limit ? 1 : 2); ++k) {
-      Push p = base;
-      p.table = fast_edges_, p.dst_base = dst.edge_base, p.interior = dst.s;
-      p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
-      p.count = checked_u32(size_t(num_fast_edges_) * p.per_item, "a D-edge pass");
-      edges.dispatches.push_back({&*edges_[parts[k]], p, reads});
+    for (bool quad : {false, true}) {
+      const auto& classes = classes_[quad][sigma];
+      base.facet_nodes = lod_words(sigma, quad);
+      for (size_t k = 0; k < classes.size(); ++k) {
+        Push p = base;
+        p.table = classes[k].first, p.per_item = classes[k].second;
+        p.count = checked_u32(size_t(mixed() ? facets_of_[quad][sigma] : F) * p.per_item, "a D-facet pass");
+        p.dst_base = dst.facet_base;
+        p.interior = checked_u32(interior_nodes(dst.s, quad), "an interior");
+        if (mixed()) p.facet_list = facet_list_[quad][sigma];
+        facets.dispatches.push_back({&*facets_[quad][limit ? kFacetLimit : k], p, reads});
+      }
+      const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
+      for (int k = 0; k < (limit ? 1 : 2) && num_fast_edges_[quad] > 0; ++k) {
+        Push p = base;
+        p.table = fast_edges_[quad], p.dst_base = dst.edge_base, p.interior = dst.s;
+        p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
+        p.count = checked_u32(size_t(num_fast_edges_[quad]) * p.per_item, "a D-edge pass");
+        edges.dispatches.push_back({&*edges_[quad][parts[k]], p, reads});
+      }
     }
     const MaskRange& r = masks_[sigma];
     Push p = base;
@@ -310,19 +349,22 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
   std::vector<Point3> control_;
   MeshMutation m_;
-  bool quad_ = true;
+  bool has_quads_ = false, has_triangles_ = false;
   uint64_t level_bytes_ = 0, output_bytes_ = 0;
   Tables tables_;
   std::vector<uint32_t> lod_base_, rows_;
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> classes_;  // per level: (table, targets per D-facet)
+  // Per kind (triangles, quads), per level: (table, targets per D-facet) per class.
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> classes_[2];
+  // Both kinds (mixed()), per level: add_facet_lists' tables, and per kind the D-facets listed.
+  std::vector<uint32_t> facet_lod_, facet_list_[2], facets_of_[2];
   std::vector<MaskRange> masks_;
-  uint32_t fast_edges_ = 0, num_fast_edges_ = 0, pick_ = 0;
+  uint32_t fast_edges_[2] = {0, 0}, num_fast_edges_[2] = {0, 0}, pick_ = 0;
   std::vector<Pass> passes_;
   std::vector<V3> level0_;
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
   gpu::Buffer positions_, out_normals_;
   std::optional<gpu::OutputReadback> readback_;
-  std::optional<gpu::ComputePipeline> facets_[kFacetClasses], edges_[3], masks_step_, masks_limit_, output_;
+  std::optional<gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][3], masks_step_, masks_limit_, output_;
   gpu::DescriptorSet sets_[4];
   std::optional<gpu::GpuTimer> frame_timer_;
   std::optional<gpu::Recording> frame_;

@@ -23,8 +23,9 @@ void main() {
   const uint q = i / pc.per_item, k = i - q * pc.per_item;
   const uint at = pc.table + 5u * q;
   const uint e = word(at);
-  g_major = pc.lod_base + word(at + 1u) * pc.facet_nodes;
-  g_minor = pc.lod_base + word(at + 3u) * pc.facet_nodes;
+  const bool listed = pc.facet_lod != 0u;  // D-facets of both kinds: arrays of two sizes
+  g_major = pc.lod_base + (listed ? word(pc.facet_lod + word(at + 1u)) : word(at + 1u) * pc.facet_nodes);
+  g_minor = pc.lod_base + (listed ? word(pc.facet_lod + word(at + 3u)) : word(at + 3u) * pc.facet_nodes);
   g_on = row(word(at + 2u), 0u), g_in = row(word(at + 2u), 1u), g_across = row(word(at + 4u), 1u);
   g_last = kQuad ? pc.n - 1u : pc.n - 2u;
   const uint edge = pc.dst_base + e * pc.interior;

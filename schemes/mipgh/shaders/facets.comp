@@ -20,9 +20,11 @@ void main() {
   const uint i = SDB_LINEAR_INVOCATION();
   if (i >= pc.count) return;
   const uint f = i / pc.per_item, k = i - f * pc.per_item;
-  const uint ab = word(pc.table + 2u * k), target = pc.dst_base + f * pc.interior + word(pc.table + 2u * k + 1u);
+  const bool listed = pc.facet_list != 0u;  // D-facets of both kinds: where each one's array and interior are
+  const uint first = listed ? word(pc.facet_list + 2u * f + 1u) : pc.dst_base + f * pc.interior;
+  const uint ab = word(pc.table + 2u * k), target = first + word(pc.table + 2u * k + 1u);
   const int a = int(ab >> 16u), b = int(ab & 0xffffu);
-  g_base = pc.lod_base + f * pc.facet_nodes;
+  g_base = pc.lod_base + (listed ? word(pc.facet_list + 2u * f) : f * pc.facet_nodes);
   precise vec3 p;
   if (kQuad) {
     if (kClass == 0u) {

@@ -32,7 +32,9 @@ layout(push_constant) uniform Push {
   uint sources;      // and its source nodes
   uint weight_base;  // and its weights, in floats
   uint pick;         // the output pass's node list (0xffffffff: node i is output i)
-  uint pad0, pad1, pad2;
+  uint facet_list;   // D-facets of mixed kinds: the pass's (D-LoD offset, first target) per D-facet; 0: uniform
+  uint facet_lod;    // D-facets of mixed kinds: each D-facet's D-LoD offset at level sigma; 0: f * facet_nodes
+  uint pad2;
   vec4 origin;       // the control box's centre (levels are relative to it): added where the output is written
 } pc;
 
