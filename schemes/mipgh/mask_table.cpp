@@ -73,14 +73,19 @@ std::vector<V3> node_ids(uint32_t count) {
 uint32_t node_of(V3 p) { return uint32_t(p.x) | (uint32_t(p.y) << 24); }
 
 MaskTable build_mask_table(const MeshProcessor& processor, const MeshShader& shader, const DLoD& lod, int sigma,
-                           bool limit) {
+                           bool limit, const LevelHomes& homes) {
   const std::vector<V3> ids = node_ids(lod.layout(sigma).num_nodes);
   MaskTable table;
   table.begin.push_back(0);
   SdcMask masks[3];
   Terms<1> step;
   Terms<3> projection;
-  processor.shader_disks(sigma, ids.data(), limit, [&](uint32_t target, const VertexDisk* v, const EdgeDisk* e) {
+  const auto interpolate = [&](uint32_t target, V3 p, V3 q) {  // adaptive: copy_edge's and copied nodes
+    if (node_of(p) == node_of(q)) step.add(p, 0, 1.0f);
+    else step.add(p, 0, 0.5f), step.add(q, 0, 0.5f);
+    step.append_to(table, target);
+  };
+  const auto visit = [&](uint32_t target, const VertexDisk* v, const EdgeDisk* e) {
     if (v && v->edges == 0) {  // copied
       if (limit) projection.add(v->c, 0, 1.0f), projection.append_to(table, target);
       else step.add(v->c, 0, 1.0f), step.append_to(table, target);
@@ -104,7 +109,9 @@ MaskTable build_mask_table(const MeshProcessor& processor, const MeshShader& sha
       for_each_term(masks[0], *e, [&](V3 p, float w) { step.add(p, 0, w); });
     }
     step.append_to(table, target);
-  });
+  };
+  if (lod.adaptive()) processor.adaptive_shader_disks(sigma, ids.data(), limit, homes, visit, interpolate);
+  else processor.shader_disks(sigma, ids.data(), limit, visit);
   return table;
 }
 

@@ -30,7 +30,9 @@ std::vector<V3> node_ids(uint32_t count);
 uint32_t node_of(V3 p);
 
 // Step sigma -> sigma + 1's masks (limit = false) or the limit projection's at level sigma.
+// Adaptive (DLoD's labels): a step's for what it makes of the held nodes (the interpolated and
+// copied ones too), the projection's for `homes` only.
 MaskTable build_mask_table(const MeshProcessor& processor, const MeshShader& shader, const DLoD& lod, int sigma,
-                           bool limit);
+                           bool limit, const LevelHomes& homes = {});
 
 }  // namespace sdb::mipgh

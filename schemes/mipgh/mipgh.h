@@ -25,7 +25,7 @@ inline MeshRule mesh_rule(SubdivisionRule r) { return r == SubdivisionRule::Loop
 // and the paper's mutation steps alone: the `limit=0` parameter); the normals are left zero.
 // mipgh-quadtri has no limit masks (none are known for its mixed vertices): project_to_limit
 // must be false for it.
-// A criterion other than Uniform refines adaptively (adaptive.h), on cpu and cpu-mt.
+// A criterion other than Uniform refines adaptively (adaptive.h), on every backend.
 std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule rule, const RunRequest& request,
                                             bool project_to_limit = true, AdaptiveCriterion criterion = {});
 inline std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, SubdivisionRule rule,

@@ -364,29 +364,63 @@ void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, 
   for_each(int(v.size()), parallel, 512, [&](int i) { project_vertex(sigma, v[i], src, position, normal); });
 }
 
-void MeshProcessor::shader_disks(int sigma, const V3* src, bool limit, const DiskVisitor& visit) const {
-  VertexDisk disk;
+void MeshProcessor::vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const {
+  VertexDisk& disk = t_disk;
+  if (atlas_.valence(v) == 0 || (!limit && atlas_.vertex_fans[v] > 1)) {  // as visit_vertex and project copy
+    disk.resize(0, 0), disk.c = src[v];
+  } else {
+    gather_vertex(sigma, v, src, disk);
+  }
+  visit(uint32_t(v), &disk, nullptr);
+}
+
+void MeshProcessor::edge_shader_disks(int sigma, int e, const V3* src, bool limit, const DiskVisitor& visit) const {
+  VertexDisk& disk = t_disk;
   EdgeDisk edge;
   const LevelLayout& target = lod_.layout(limit ? sigma : sigma + 1);
   const int n = lod_.layout(sigma).n;
-  for (int v = 0; v < atlas_.num_vertices; ++v) {
-    if (atlas_.valence(v) == 0 || (!limit && atlas_.vertex_fans[v] > 1)) {  // as visit_vertex and project copy
-      disk.resize(0, 0), disk.c = src[v];
-    } else {
-      gather_vertex(sigma, v, src, disk);
-    }
-    visit(uint32_t(v), &disk, nullptr);
+  load_strip(sigma, e, src);
+  for (int t = 0; !limit && t + 1 < n; ++t) {
+    edge_disk(sigma, e, t, edge);
+    visit(target.edge_node(e, 2 * t), nullptr, &edge);
   }
-  for (int e = 0; e < atlas_.num_edges(); ++e) {
-    if (fast_edge(e)) continue;
-    load_strip(sigma, e, src);
-    for (int t = 0; !limit && t + 1 < n; ++t) {
-      edge_disk(sigma, e, t, edge);
-      visit(target.edge_node(e, 2 * t), nullptr, &edge);
+  for (int t = 1; t + 1 < n; ++t) {
+    strip_disk(sigma, e, t, disk);
+    visit(target.edge_node(e, limit ? t - 1 : 2 * t - 1), &disk, nullptr);
+  }
+}
+
+void MeshProcessor::shader_disks(int sigma, const V3* src, bool limit, const DiskVisitor& visit) const {
+  for (int v = 0; v < atlas_.num_vertices; ++v) vertex_shader_disk(sigma, v, src, limit, visit);
+  for (int e = 0; e < atlas_.num_edges(); ++e)
+    if (!fast_edge(e)) edge_shader_disks(sigma, e, src, limit, visit);
+}
+
+void MeshProcessor::adaptive_shader_disks(int sigma, const V3* src, bool limit, const Homes& homes,
+                                          const DiskVisitor& visit, const Interpolation& interpolate) const {
+  if (limit) {
+    for (int v : homes.vertices) vertex_shader_disk(sigma, v, src, true, visit);
+    for (int e : homes.edges)
+      if (!fast_edge(e)) edge_shader_disks(sigma, e, src, true, visit);
+    return;
+  }
+  for (int v = 0; v < atlas_.num_vertices; ++v) {
+    if (vertex_readable(sigma, v)) vertex_shader_disk(sigma, v, src, false, visit);
+    else interpolate(uint32_t(v), src[v], src[v]);
+  }
+  const LevelLayout &l = lod_.layout(sigma), &next = lod_.layout(sigma + 1);
+  for (int e : lod_.edges_held(sigma + 1)) {
+    if (edge_readable(sigma, e)) {
+      if (!fast_edge(e)) edge_shader_disks(sigma, e, src, false, visit);
+      continue;
     }
-    for (int t = 1; t + 1 < n; ++t) {
-      strip_disk(sigma, e, t, disk);
-      visit(target.edge_node(e, limit ? t - 1 : 2 * t - 1), &disk, nullptr);
+    const HalfEdge& h = atlas_.edges[e].major;  // copy_edge's nodes
+    const uint32_t first = uint32_t(atlas_.facet_corners[h.facet][h.side]);
+    const uint32_t last = uint32_t(atlas_.facet_corners[h.facet][atlas_.next(h.facet, h.side)]);
+    auto a = [&](int t) { return src[t == 0 ? first : t == l.n - 1 ? last : l.edge_node(e, t - 1)]; };
+    for (int t = 0; t + 1 < l.n; ++t) {
+      interpolate(next.edge_node(e, 2 * t), a(t), a(t + 1));
+      if (t > 0) interpolate(next.edge_node(e, 2 * t - 1), a(t), a(t));
     }
   }
 }

@@ -48,6 +48,13 @@ class MeshProcessor {
   // D-vertex in no face, or joining several fans) as a VertexDisk with no edges.
   using DiskVisitor = std::function<void(uint32_t target, const VertexDisk* vertex, const EdgeDisk* edge)>;
   void shader_disks(int sigma, const V3* src, bool limit, const DiskVisitor& visit) const;
+  // Adaptive (DLoD's labels), the same for what a step makes besides the fast paths: level
+  // sigma + 1's held D-edges and the D-vertices, where readable as above, else interpolated as
+  // copy_edge does (`interpolate(target, p, q)`: the midpoint of p and q, or p where p is q) and
+  // copied; or (limit) the projection's of `homes` at level sigma.
+  using Interpolation = std::function<void(uint32_t target, V3 p, V3 q)>;
+  void adaptive_shader_disks(int sigma, const V3* src, bool limit, const Homes& homes, const DiskVisitor& visit,
+                             const Interpolation& interpolate) const;
   // Level sigma's offsets of the nodes along each side and one in from it, for every kind of side
   // (a triangle's three, then a quad's four): (kind * 2 + depth) * n + a.
   const std::vector<int32_t>& side_row_table(int sigma) const { return side_rows_[sigma]; }
@@ -84,6 +91,9 @@ class MeshProcessor {
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const;
   void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal) const;
   void step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const;
+  // shader_disks' parts: D-vertex v's node, and D-edge e's nodes.
+  void vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const;
+  void edge_shader_disks(int sigma, int e, const V3* src, bool limit, const DiskVisitor& visit) const;
 
   const DAtlas& atlas_;
   const DLoD& lod_;

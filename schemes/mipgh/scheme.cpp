@@ -90,8 +90,6 @@ class MipghScheme final : public Scheme {
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
     if (r.level < 0 || r.level > kMaxDepth) return "depth must be 0.." + std::to_string(kMaxDepth);
-    if (r.backend == Backend::Vulkan && r.parameters.integer("adapt") != 0)
-      return "adaptive refinement runs on cpu and cpu-mt (the Vulkan passes lay out every D-facet)";
     if (r.backend == Backend::Vulkan)
       if (auto why = vulkan_unavailable()) return *why;
     return std::nullopt;
@@ -143,9 +141,8 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule ru
                   r.level, bytes / 1e9, kMaxBytes / 1e9);
     throw Unsupported(why);
   }
-  if (r.backend == Backend::Vulkan && criterion.kind != Refinement::Uniform)
-    throw Unsupported("adaptive refinement runs on cpu and cpu-mt");
-  if (r.backend == Backend::Vulkan) return make_vulkan_evaluation(mesh, rule, std::move(atlas), r.level, project_to_limit);
+  if (r.backend == Backend::Vulkan)
+    return make_vulkan_evaluation(mesh, rule, std::move(atlas), r.level, project_to_limit, criterion);
   return std::make_unique<CpuMipghEvaluation>(mesh, rule, std::move(atlas), r.level, r.backend == Backend::CpuMt,
                                               r.threads, project_to_limit, criterion);
 }

@@ -24,7 +24,7 @@ constexpr uint32_t kNoPick = 0xffffffffu;
 struct Push {
   uint32_t count = 0, per_item = 1, table = 0, lod_base = 0, n = 0, facet_nodes = 0, dst_base = 0, interior = 0,
            rows = 0, begins = 0, sources = 0, weight_base = 0, pick = kNoPick, facet_list = 0,
-           facet_lod = 0, pad = 0;
+           facet_lod = 0, scatter = 0;
   float origin[4] = {0, 0, 0, 0};
 };
 
@@ -86,11 +86,16 @@ uint32_t checked_u32(size_t x, const char* what) {
 class VulkanMipghEvaluation final : public Evaluation {
  public:
   VulkanMipghEvaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas, int depth, bool project,
-                        std::shared_ptr<gpu::Context> ctx)
-      : ctx_(std::move(ctx)), control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project) {
+                        AdaptiveCriterion criterion, std::shared_ptr<gpu::Context> ctx)
+      : ctx_(std::move(ctx)), control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project, criterion) {
     const DAtlas& a = m_.atlas;
     for (int f = 0; f < a.num_facets(); ++f) (a.facet_size[f] == 4 ? has_quads_ : has_triangles_) = true;
-    const uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
+    uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
+    if (m_.lod.adaptive()) {  // levels are sized by what they hold; the output by what is drawn
+      for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) inner_nodes = std::max(inner_nodes, m_.lod.layout(sigma).num_nodes);
+      adaptive_ = compile_adaptive(m_.atlas, m_.lod, m_.render, m_.home, out_);
+      nodes = uint32_t(out_.coords.size());
+    }
     level_bytes_ = std::max<uint64_t>(uint64_t(inner_nodes) * 12, 16);
     output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
     // What one texel view takes, checked before the tables are built (the D-LoD's are the largest)
@@ -107,7 +112,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     make_buffers();
     make_pipelines();
     plan_passes();
-    compile_primitives(m_.atlas, m_.lod, depth, out_);
+    if (!m_.lod.adaptive()) compile_primitives(m_.atlas, m_.lod, depth, out_);
     if (rule == MeshRule::QuadTri) out_.coords.clear();  // as the cpu's (cpu.cpp): no point of the reference
     out_.positions.resize(nodes);
     out_.normals.resize(nodes);
@@ -140,6 +145,20 @@ class VulkanMipghEvaluation final : public Evaluation {
   }
 
  private:
+  struct MaskRange {
+    uint32_t entries = 0, target = 0, begins = 0, sources = 0, weights = 0;
+  };
+  struct LevelPasses {
+    std::vector<std::pair<uint32_t, uint32_t>> classes[2];  // per kind, per class: (table, targets per D-facet)
+    uint32_t facet_lod = 0;                               // listed(): each held D-facet's D-LoD offset
+    uint32_t facet_list[2] = {0, 0}, facets[2] = {0, 0};  // per kind: (D-LoD offset, first target) per D-facet listed; how many
+    uint32_t fast_edges[2] = {0, 0}, num_fast_edges[2] = {0, 0};
+    MaskRange masks;
+  };
+  struct OutputNodes {  // adaptive: a level's drawn nodes, and where each goes in the output
+    uint32_t at = 0, to = 0, count = 0;
+  };
+
   bool mixed() const { return has_quads_ && has_triangles_; }
   uint32_t lod_words(int sigma, bool quad) const {
     const size_t n = m_.lod.layout(sigma).n;
@@ -147,9 +166,13 @@ class VulkanMipghEvaluation final : public Evaluation {
   }
   uint64_t level_lod_words(int sigma) const {
     uint64_t words = 0;
-    for (int f = 0; f < m_.atlas.num_facets(); ++f) words += lod_words(sigma, m_.atlas.facet_size[f] == 4);
+    for (int f = 0; f < m_.atlas.num_facets(); ++f)
+      if (m_.lod.holds_facet(sigma, f)) words += lod_words(sigma, m_.atlas.facet_size[f] == 4);
     return words;
   }
+  // Whether the D-facet passes go through lists of D-facets (both kinds, or an adaptive level's
+  // held ones) instead of addressing D-facet f at f times the array's size.
+  bool listed() const { return mixed() || m_.lod.adaptive(); }
   // Nodes inside one D-facet of a kind at the level with s nodes inside a D-edge.
   static size_t interior_nodes(size_t s, bool quad) { return quad ? s * s : s * (s - 1) / 2; }
 
@@ -159,57 +182,70 @@ class VulkanMipghEvaluation final : public Evaluation {
       lod_base_.push_back(checked_u32(tables_.lod.size(), "the D-LoD"));
       const uint32_t* first = m_.lod.facet(sigma, 0);
       tables_.lod.insert(tables_.lod.end(), first, first + level_lod_words(sigma));
-      const int n = m_.lod.layout(sigma).n;
       const auto& rows = m_.processor.side_row_table(sigma);
       rows_.push_back(tables_.add(std::vector<uint32_t>(rows.begin(), rows.end())));
-      for (bool quad : {false, true}) {
-        std::vector<std::pair<uint32_t, uint32_t>> at;
-        if (quad ? has_quads_ : has_triangles_)
-          for (const auto& c : facet_classes(n, quad, sigma == inner)) at.push_back({tables_.add(c), uint32_t(c.size() / 2)});
-        classes_[quad].push_back(at);
-      }
-      if (mixed()) add_facet_lists(sigma, sigma == inner);
-      const bool limit = sigma == inner;
-      masks_.push_back(limit && !m_.project() ? MaskRange{}
-                                              : add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit)));
+      steps_.push_back(sigma < inner ? level_passes(sigma, false) : LevelPasses{});
+      const bool projected = m_.project() && (m_.lod.adaptive() ? !adaptive_.nodes[sigma].empty() : sigma == inner);
+      limits_.push_back(projected ? level_passes(sigma, true) : LevelPasses{});
     }
-    std::vector<uint32_t> fast[2];  // fast D-edges between triangles, between quads
-    for (int e = 0; e < m_.atlas.num_edges(); ++e) {
-      if (!m_.processor.fast_edge(e)) continue;
+    if (!m_.pick.empty()) pick_ = tables_.add(m_.pick);
+    if (m_.lod.adaptive())
+      for (const auto& level : adaptive_.nodes) {
+        std::vector<uint32_t> at, to;
+        for (const auto& [node, output] : level) at.push_back(node), to.push_back(output);
+        outputs_.push_back({tables_.add(at), tables_.add(to), uint32_t(level.size())});
+      }
+  }
+
+  // Level sigma's step to sigma + 1 (limit = false) or its projection: the D-facets the D-facet
+  // passes visit, the fast D-edges, the masks of the rest. Adaptive: the step's the next level
+  // holds, the projection's those whose home is this level (primitives.h).
+  LevelPasses level_passes(int sigma, bool limit) {
+    LevelPasses l;
+    const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
+    static const LevelHomes none;
+    const LevelHomes& homes = m_.lod.adaptive() && limit ? adaptive_.homes[sigma] : none;
+    std::vector<int32_t> facets, edges;
+    if (!m_.lod.adaptive()) {
+      for (int f = 0; f < m_.atlas.num_facets(); ++f) facets.push_back(f);
+      for (int e = 0; e < m_.atlas.num_edges(); ++e) edges.push_back(e);
+    } else {
+      facets = limit ? homes.facets : m_.lod.facets_held(sigma + 1);
+      edges = limit ? homes.edges : m_.lod.edges_held(sigma + 1);
+    }
+    for (bool quad : {false, true})
+      if (quad ? has_quads_ : has_triangles_)
+        for (const auto& c : facet_classes(m_.lod.layout(sigma).n, quad, limit))
+          l.classes[quad].push_back({tables_.add(c), uint32_t(c.size() / 2)});
+    const uint32_t* first = m_.lod.facet(sigma, 0);
+    auto lod_at = [&](int f) { return uint32_t(m_.lod.facet(sigma, f) - first); };
+    if (listed()) {
+      std::vector<uint32_t> offsets(m_.atlas.num_facets(), 0), list[2];
+      for (int f = 0; f < m_.atlas.num_facets(); ++f)
+        if (m_.lod.holds_facet(sigma, f)) offsets[f] = lod_at(f);
+      for (int f : facets) {
+        auto& to = list[m_.atlas.facet_size[f] == 4];
+        to.insert(to.end(), {lod_at(f), dst.interior(f)});
+      }
+      l.facet_lod = tables_.add(offsets);
+      for (bool quad : {false, true}) l.facet_list[quad] = tables_.add(list[quad]), l.facets[quad] = uint32_t(list[quad].size() / 2);
+    } else {
+      for (bool quad : {false, true}) l.facets[quad] = (quad ? has_quads_ : has_triangles_) ? uint32_t(m_.atlas.num_facets()) : 0;
+    }
+    std::vector<uint32_t> fast[2];  // fast D-edges between triangles, between quads: first target node, then the strip's D-facets
+    for (int e : edges) {
+      if (!m_.processor.fast_edge(e) || (m_.lod.adaptive() && !limit && !m_.processor.edge_readable(sigma, e))) continue;
       const DEdge& d = m_.atlas.edges[e];
       const bool quad = m_.atlas.facet_size[d.major.facet] == 4;  // fast: the minor's kind too
       const uint32_t kind = quad ? 3 : 0;  // side_row_table's kinds: a triangle's sides, then a quad's
-      fast[quad].insert(fast[quad].end(), {uint32_t(e), uint32_t(d.major.facet), kind + d.major.side,
+      fast[quad].insert(fast[quad].end(), {dst.edge_node(e, 0), uint32_t(d.major.facet), kind + d.major.side,
                                            uint32_t(d.minor.facet), kind + d.minor.side});
     }
-    for (bool quad : {false, true}) {
-      num_fast_edges_[quad] = uint32_t(fast[quad].size() / 5);
-      fast_edges_[quad] = tables_.add(fast[quad]);
-    }
-    if (!m_.pick.empty()) pick_ = tables_.add(m_.pick);
+    for (bool quad : {false, true}) l.fast_edges[quad] = tables_.add(fast[quad]), l.num_fast_edges[quad] = uint32_t(fast[quad].size() / 5);
+    l.masks = add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit, homes));
+    return l;
   }
 
-  // Both kinds: per level, each D-facet's D-LoD offset (for the D-edge passes), and per kind its
-  // D-facets' (D-LoD offset, first target node) for the D-facet passes (the target level's
-  // interiors; the limit's: the level's own).
-  void add_facet_lists(int sigma, bool limit) {
-    const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
-    const uint32_t* first = m_.lod.facet(sigma, 0);
-    std::vector<uint32_t> lod_at(m_.atlas.num_facets()), list[2];
-    for (int f = 0; f < m_.atlas.num_facets(); ++f) {
-      lod_at[f] = uint32_t(m_.lod.facet(sigma, f) - first);
-      list[m_.atlas.facet_size[f] == 4].insert(list[m_.atlas.facet_size[f] == 4].end(), {lod_at[f], dst.interior(f)});
-    }
-    facet_lod_.push_back(tables_.add(lod_at));
-    for (bool quad : {false, true}) {
-      facet_list_[quad].push_back(tables_.add(list[quad]));
-      facets_of_[quad].push_back(uint32_t(list[quad].size() / 2));
-    }
-  }
-
-  struct MaskRange {
-    uint32_t entries = 0, target = 0, begins = 0, sources = 0, weights = 0;
-  };
   MaskRange add_masks(const MaskTable& t) {
     return {uint32_t(t.entries()), tables_.add(t.target), tables_.add(t.begin), tables_.add(t.source),
             tables_.add_weights(t.weight)};
@@ -268,48 +304,68 @@ class VulkanMipghEvaluation final : public Evaluation {
   }
 
   // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma, written
-  // straight into the output (moved back from the box's centre) unless a deeper level is picked.
+  // straight into the output (moved back from the box's centre) where it is the whole output.
   void add_level(int sigma, bool limit) {
-    const LevelLayout &src = m_.lod.layout(sigma), &dst = m_.lod.layout(limit ? sigma : sigma + 1);
-    const bool to_output = limit && m_.pick.empty();
-    const uint32_t reads = sigma % 2 + (to_output ? 2 : 0), F = m_.atlas.num_facets();
+    const LevelLayout& src = m_.lod.layout(sigma);
+    const LevelPasses& l = limit ? limits_[sigma] : steps_[sigma];
+    const bool to_output = limit && m_.pick.empty() && !m_.lod.adaptive();
+    const uint32_t reads = sigma % 2 + (to_output ? 2 : 0);
     Push base;
     if (to_output)
       for (int k = 0; k < 3; ++k) base.origin[k] = m_.origin[k];
-    base.lod_base = lod_base_[sigma], base.n = src.n, base.rows = rows_[sigma];
-    if (mixed()) base.facet_lod = facet_lod_[sigma];
-    const std::string name = limit ? "limit" : "step " + std::to_string(sigma + 1);
+    base.lod_base = lod_base_[sigma], base.n = src.n, base.rows = rows_[sigma], base.facet_lod = l.facet_lod;
+    const std::string name = !limit ? "step " + std::to_string(sigma + 1)
+                             : m_.lod.adaptive() ? "limit " + std::to_string(sigma) : "limit";
     Pass facets{name + " facets", {}}, edges{name + " edges", {}}, masks{name + " masks", {}};
     for (bool quad : {false, true}) {
-      const auto& classes = classes_[quad][sigma];
+      const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
       base.facet_nodes = lod_words(sigma, quad);
-      for (size_t k = 0; k < classes.size(); ++k) {
+      for (size_t k = 0; k < l.classes[quad].size(); ++k) {
         Push p = base;
-        p.table = classes[k].first, p.per_item = classes[k].second;
-        p.count = checked_u32(size_t(mixed() ? facets_of_[quad][sigma] : F) * p.per_item, "a D-facet pass");
+        p.table = l.classes[quad][k].first, p.per_item = l.classes[quad][k].second;
+        p.count = checked_u32(size_t(l.facets[quad]) * p.per_item, "a D-facet pass");
         p.dst_base = dst.facet_base;
         p.interior = checked_u32(interior_nodes(dst.s, quad), "an interior");
-        if (mixed()) p.facet_list = facet_list_[quad][sigma];
+        p.facet_list = l.facet_list[quad];
         facets.dispatches.push_back({&*facets_[quad][limit ? kFacetLimit : k], p, reads});
       }
       const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
-      for (int k = 0; k < (limit ? 1 : 2) && num_fast_edges_[quad] > 0; ++k) {
+      for (int k = 0; k < (limit ? 1 : 2) && l.num_fast_edges[quad] > 0; ++k) {
         Push p = base;
-        p.table = fast_edges_[quad], p.dst_base = dst.edge_base, p.interior = dst.s;
+        p.table = l.fast_edges[quad], p.dst_base = 0, p.interior = 1;  // the table names each D-edge's first target
         p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
-        p.count = checked_u32(size_t(num_fast_edges_[quad]) * p.per_item, "a D-edge pass");
+        p.count = checked_u32(size_t(l.num_fast_edges[quad]) * p.per_item, "a D-edge pass");
         edges.dispatches.push_back({&*edges_[quad][parts[k]], p, reads});
       }
     }
-    const MaskRange& r = masks_[sigma];
+    const MaskRange& r = l.masks;
     Push p = base;
     p.count = r.entries, p.table = r.target, p.begins = r.begins, p.sources = r.sources, p.weight_base = r.weights;
     masks.dispatches.push_back({limit ? &*masks_limit_ : &*masks_step_, p, reads});
     passes_.push_back(std::move(facets)), passes_.push_back(std::move(edges)), passes_.push_back(std::move(masks));
   }
 
+  // Adaptive: level sigma's drawn nodes into the output, from its projection (written over the
+  // other level buffer) or from the level itself.
+  void add_adaptive_output(int sigma) {
+    const OutputNodes& o = outputs_[sigma];
+    Push p;
+    p.count = o.count, p.pick = o.at, p.scatter = o.to;
+    for (int k = 0; k < 3; ++k) p.origin[k] = m_.origin[k];
+    passes_.push_back({"output " + std::to_string(sigma), {{&*output_, p, uint32_t((sigma + (m_.project() ? 1 : 0)) % 2)}}});
+  }
+
   void plan_passes() {
     const int inner = m_.inner_depth();
+    if (m_.lod.adaptive()) {
+      for (int sigma = 0; sigma <= inner; ++sigma) {
+        if (sigma > 0) add_level(sigma - 1, false);
+        if (outputs_[sigma].count == 0) continue;
+        if (m_.project()) add_level(sigma, true);
+        add_adaptive_output(sigma);
+      }
+      return;
+    }
     for (int sigma = 0; sigma < inner; ++sigma) add_level(sigma, false);
     if (m_.project()) add_level(inner, true);
     if (m_.project() && m_.pick.empty()) return;  // the limit wrote the output
@@ -353,12 +409,10 @@ class VulkanMipghEvaluation final : public Evaluation {
   uint64_t level_bytes_ = 0, output_bytes_ = 0;
   Tables tables_;
   std::vector<uint32_t> lod_base_, rows_;
-  // Per kind (triangles, quads), per level: (table, targets per D-facet) per class.
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> classes_[2];
-  // Both kinds (mixed()), per level: add_facet_lists' tables, and per kind the D-facets listed.
-  std::vector<uint32_t> facet_lod_, facet_list_[2], facets_of_[2];
-  std::vector<MaskRange> masks_;
-  uint32_t fast_edges_[2] = {0, 0}, num_fast_edges_[2] = {0, 0}, pick_ = 0;
+  std::vector<LevelPasses> steps_, limits_;  // per level: its step to the next, its projection
+  AdaptiveOutput adaptive_;
+  std::vector<OutputNodes> outputs_;  // adaptive, per level
+  uint32_t pick_ = 0;
   std::vector<Pass> passes_;
   std::vector<V3> level0_;
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
@@ -380,9 +434,9 @@ std::optional<std::string> vulkan_unavailable() {
 }
 
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas,
-                                                   int depth, bool project_to_limit) {
+                                                   int depth, bool project_to_limit, AdaptiveCriterion criterion) {
   if (auto why = vulkan_unavailable()) throw gpu::Unsupported(*why);
-  return std::make_unique<VulkanMipghEvaluation>(mesh, rule, std::move(atlas), depth, project_to_limit,
+  return std::make_unique<VulkanMipghEvaluation>(mesh, rule, std::move(atlas), depth, project_to_limit, criterion,
                                                  gpu::shared_context());
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "harness/core/scheme.h"
+#include "schemes/mipgh/adaptive.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/mipgh.h"
 
@@ -21,6 +22,6 @@ std::optional<std::string> vulkan_unavailable();
 
 // Throws Unsupported where the device's limits or memory do not take the request.
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas,
-                                                   int depth, bool project_to_limit);
+                                                   int depth, bool project_to_limit, AdaptiveCriterion criterion);
 
 }  // namespace sdb::mipgh

@@ -34,7 +34,7 @@ layout(push_constant) uniform Push {
   uint pick;         // the output pass's node list (0xffffffff: node i is output i)
   uint facet_list;   // D-facets of mixed kinds: the pass's (D-LoD offset, first target) per D-facet; 0: uniform
   uint facet_lod;    // D-facets of mixed kinds: each D-facet's D-LoD offset at level sigma; 0: f * facet_nodes
-  uint pad2;
+  uint scatter;      // the output pass's output slots (0: slot i), for an adaptive level's drawn nodes
   vec4 origin;       // the control box's centre (levels are relative to it): added where the output is written
 } pc;
 
