@@ -202,7 +202,6 @@ class VulkanMipghEvaluation final : public Evaluation {
   // holds, the projection's those whose home is this level (primitives.h).
   LevelPasses level_passes(int sigma, bool limit) {
     LevelPasses l;
-    const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
     static const LevelHomes none;
     const LevelHomes& homes = m_.lod.adaptive() && limit ? adaptive_.homes[sigma] : none;
     std::vector<int32_t> facets, edges;
@@ -217,22 +216,38 @@ class VulkanMipghEvaluation final : public Evaluation {
       if (quad ? has_quads_ : has_triangles_)
         for (const auto& c : facet_classes(m_.lod.layout(sigma).n, quad, limit))
           l.classes[quad].push_back({tables_.add(c), uint32_t(c.size() / 2)});
+    add_facet_lists(sigma, limit, facets, l);
+    add_fast_edges(sigma, limit, edges, l);
+    l.masks = add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit, homes));
+    return l;
+  }
+
+  // listed(): each held D-facet's D-LoD offset at sigma (the D-edge passes), and per kind the
+  // visited D-facets' (D-LoD offset, first target node); otherwise how many of each kind.
+  void add_facet_lists(int sigma, bool limit, const std::vector<int32_t>& facets, LevelPasses& l) {
+    if (!listed()) {
+      for (bool quad : {false, true}) l.facets[quad] = (quad ? has_quads_ : has_triangles_) ? uint32_t(m_.atlas.num_facets()) : 0;
+      return;
+    }
+    const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
     const uint32_t* first = m_.lod.facet(sigma, 0);
     auto lod_at = [&](int f) { return uint32_t(m_.lod.facet(sigma, f) - first); };
-    if (listed()) {
-      std::vector<uint32_t> offsets(m_.atlas.num_facets(), 0), list[2];
-      for (int f = 0; f < m_.atlas.num_facets(); ++f)
-        if (m_.lod.holds_facet(sigma, f)) offsets[f] = lod_at(f);
-      for (int f : facets) {
-        auto& to = list[m_.atlas.facet_size[f] == 4];
-        to.insert(to.end(), {lod_at(f), dst.interior(f)});
-      }
-      l.facet_lod = tables_.add(offsets);
-      for (bool quad : {false, true}) l.facet_list[quad] = tables_.add(list[quad]), l.facets[quad] = uint32_t(list[quad].size() / 2);
-    } else {
-      for (bool quad : {false, true}) l.facets[quad] = (quad ? has_quads_ : has_triangles_) ? uint32_t(m_.atlas.num_facets()) : 0;
+    std::vector<uint32_t> offsets(m_.atlas.num_facets(), 0), list[2];
+    for (int f = 0; f < m_.atlas.num_facets(); ++f)
+      if (m_.lod.holds_facet(sigma, f)) offsets[f] = lod_at(f);
+    for (int f : facets) {
+      auto& to = list[m_.atlas.facet_size[f] == 4];
+      to.insert(to.end(), {lod_at(f), dst.interior(f)});
     }
-    std::vector<uint32_t> fast[2];  // fast D-edges between triangles, between quads: first target node, then the strip's D-facets
+    l.facet_lod = tables_.add(offsets);
+    for (bool quad : {false, true}) l.facet_list[quad] = tables_.add(list[quad]), l.facets[quad] = uint32_t(list[quad].size() / 2);
+  }
+
+  // The fast D-edges among `edges` (an adaptive step's: those it can read), between triangles and
+  // between quads: each one's first target node, then the strip's D-facets and their side kinds.
+  void add_fast_edges(int sigma, bool limit, const std::vector<int32_t>& edges, LevelPasses& l) {
+    const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
+    std::vector<uint32_t> fast[2];
     for (int e : edges) {
       if (!m_.processor.fast_edge(e) || (m_.lod.adaptive() && !limit && !m_.processor.edge_readable(sigma, e))) continue;
       const DEdge& d = m_.atlas.edges[e];
@@ -242,8 +257,6 @@ class VulkanMipghEvaluation final : public Evaluation {
                                            uint32_t(d.minor.facet), kind + d.minor.side});
     }
     for (bool quad : {false, true}) l.fast_edges[quad] = tables_.add(fast[quad]), l.num_fast_edges[quad] = uint32_t(fast[quad].size() / 5);
-    l.masks = add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit, homes));
-    return l;
   }
 
   MaskRange add_masks(const MaskTable& t) {
