@@ -38,7 +38,7 @@ struct ImageCodec {
   bool (*write_float)(const FloatImage& image, const std::string& path, const std::string& compression);
 };
 
-// The module's codec, opened on first use (beside this build's executables, where CMake put it).
+// The module's codec, opened on first use from where this build put it (SDB_IMAGE_IO_MODULE).
 // std::runtime_error naming the module when it cannot be opened.
 const ImageCodec& image_codec();
 

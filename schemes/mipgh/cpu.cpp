@@ -14,9 +14,9 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, D
       m_(mesh, rule, std::move(atlas), depth, project_to_limit, criterion),
       multithreaded_(multithreaded) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
-  uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
-  if (m_.lod.adaptive()) {  // levels are sized by what they hold: the largest may be any
-    for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) inner_nodes = std::max(inner_nodes, m_.lod.layout(sigma).num_nodes);
+  const uint32_t inner_nodes = m_.lod.most_nodes(m_.inner_depth());
+  uint32_t nodes = m_.lod.layout(depth).num_nodes;
+  if (m_.lod.adaptive()) {
     adaptive_ = compile_adaptive(m_.atlas, m_.lod, m_.render, m_.home, out_);
     nodes = uint32_t(out_.coords.size());
     if (m_.project()) limit_.resize(inner_nodes);  // the normals of a level's projection

@@ -4,6 +4,7 @@
 // edge tags of every level (the crease sharpness the Catmull-Clark mesh shader reads).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -86,6 +87,12 @@ class DLoD {
   // a D-facet the level holds.
   const uint32_t* facet(int sigma, int f) const { return facets_[sigma].data() + facet_at_[sigma][f]; }
   int depth() const { return static_cast<int>(layouts_.size()) - 1; }
+  // The most nodes any of levels 0..upto holds (uniform: level upto's; adaptive: any level's).
+  uint32_t most_nodes(int upto) const {
+    uint32_t most = 0;
+    for (int sigma = 0; sigma <= upto; ++sigma) most = std::max(most, layouts_[sigma].num_nodes);
+    return most;
+  }
 
   bool adaptive() const { return !labels_.empty(); }
   int label(int f) const { return adaptive() ? labels_[f] : depth(); }

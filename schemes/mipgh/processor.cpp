@@ -263,18 +263,24 @@ bool MeshProcessor::vertex_readable(int sigma, int v) const {
   return true;
 }
 
-void MeshProcessor::copy_edge(int sigma, int e, const V3* src, V3* dst) const {
+template <class F>
+void MeshProcessor::copied_edge_nodes(int sigma, int e, F&& node) const {
   const LevelLayout &l = lod_.layout(sigma), &next = lod_.layout(sigma + 1);
   const HalfEdge& h = atlas_.edges[e].major;
   const uint32_t first = uint32_t(atlas_.facet_corners[h.facet][h.side]);
   const uint32_t last = uint32_t(atlas_.facet_corners[h.facet][atlas_.next(h.facet, h.side)]);
-  auto a = [&](int t) { return src[t == 0 ? first : t == l.n - 1 ? last : l.edge_node(e, t - 1)]; };
-  V3* out = dst + next.edge_node(e, 0);
+  auto a = [&](int t) { return t == 0 ? first : t == l.n - 1 ? last : l.edge_node(e, t - 1); };
   for (int t = 0; t + 1 < l.n; ++t) {
-    const V3 p = a(t), q = a(t + 1);
-    out[2 * t] = {0.5f * (p.x + q.x), 0.5f * (p.y + q.y), 0.5f * (p.z + q.z)};
-    if (t > 0) out[2 * t - 1] = p;
+    node(next.edge_node(e, 2 * t), a(t), a(t + 1));
+    if (t > 0) node(next.edge_node(e, 2 * t - 1), a(t), a(t));
   }
+}
+
+void MeshProcessor::copy_edge(int sigma, int e, const V3* src, V3* dst) const {
+  copied_edge_nodes(sigma, e, [&](uint32_t target, uint32_t i, uint32_t j) {
+    const V3 p = src[i], q = src[j];
+    dst[target] = i == j ? p : V3{0.5f * (p.x + q.x), 0.5f * (p.y + q.y), 0.5f * (p.z + q.z)};
+  });
 }
 
 void MeshProcessor::step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const {
@@ -408,20 +414,11 @@ void MeshProcessor::adaptive_shader_disks(int sigma, const V3* src, bool limit, 
     if (vertex_readable(sigma, v)) vertex_shader_disk(sigma, v, src, false, visit);
     else interpolate(uint32_t(v), src[v], src[v]);
   }
-  const LevelLayout &l = lod_.layout(sigma), &next = lod_.layout(sigma + 1);
   for (int e : lod_.edges_held(sigma + 1)) {
-    if (edge_readable(sigma, e)) {
-      if (!fast_edge(e)) edge_shader_disks(sigma, e, src, false, visit);
-      continue;
-    }
-    const HalfEdge& h = atlas_.edges[e].major;  // copy_edge's nodes
-    const uint32_t first = uint32_t(atlas_.facet_corners[h.facet][h.side]);
-    const uint32_t last = uint32_t(atlas_.facet_corners[h.facet][atlas_.next(h.facet, h.side)]);
-    auto a = [&](int t) { return src[t == 0 ? first : t == l.n - 1 ? last : l.edge_node(e, t - 1)]; };
-    for (int t = 0; t + 1 < l.n; ++t) {
-      interpolate(next.edge_node(e, 2 * t), a(t), a(t + 1));
-      if (t > 0) interpolate(next.edge_node(e, 2 * t - 1), a(t), a(t));
-    }
+    if (!edge_readable(sigma, e))
+      copied_edge_nodes(sigma, e, [&](uint32_t target, uint32_t i, uint32_t j) { interpolate(target, src[i], src[j]); });
+    else if (!fast_edge(e))
+      edge_shader_disks(sigma, e, src, false, visit);
   }
 }
 

@@ -73,6 +73,10 @@ class MeshProcessor {
   void copy_edge(int sigma, int e, const V3* src, V3* dst) const;
 
  private:
+  // The nodes copy_edge makes of D-edge e at level sigma + 1, each as node(target, i, j) with the
+  // level-sigma nodes i and j it is the midpoint of (i == j: a copy of i).
+  template <class F>
+  void copied_edge_nodes(int sigma, int e, F&& node) const;
   // D-vertex v's 1-disk at level sigma (and its tags at sigma and sigma + 1).
   void gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk) const;
   // The 1-disk of the strip's node t on D-edge e (1 <= t <= n - 2), tags included; after

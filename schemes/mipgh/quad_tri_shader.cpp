@@ -84,8 +84,7 @@ class QuadTriShader final : public MeshShader {
   }
 
   V3 edge_vertex(const EdgeDisk& d) const override {
-    if (d.faces == 1 || d.face_size[0] == d.face_size[1])
-      return (d.face_size[0] == 4 ? catmark_ : loop_)->edge_vertex(d);
+    if (const MeshShader* pure = pure_shader(d)) return pure->edge_vertex(d);
     // A quad on one side, a triangle on the other (derived from the averaging: the new node has
     // two quads and three triangles around it, a = 1): 3/8 each end, 1/16 each of the quad's far
     // corners, 1/8 the triangle's.
@@ -113,11 +112,11 @@ class QuadTriShader final : public MeshShader {
     throw std::logic_error("the quad/triangle shader's mixed rules are not Sdc masks");
   }
   void edge_mask(const EdgeDisk& d, SdcMask& m) const override {
-    if (d.faces == 1 || d.face_size[0] == d.face_size[1]) return (d.face_size[0] == 4 ? catmark_ : loop_)->edge_mask(d, m);
+    if (const MeshShader* pure = pure_shader(d)) return pure->edge_mask(d, m);
     throw std::logic_error("the quad/triangle shader's mixed rules are not Sdc masks");
   }
   bool has_mask(const VertexDisk& d) const override { return pure_shader(d) != nullptr; }
-  bool has_mask(const EdgeDisk& d) const override { return d.faces == 1 || d.face_size[0] == d.face_size[1]; }
+  bool has_mask(const EdgeDisk& d) const override { return pure_shader(d) != nullptr; }
   void limit_masks(const VertexDisk& d, SdcMask& p, SdcMask& t1, SdcMask& t2) const override {
     if (const MeshShader* pure = pure_shader(d)) return pure->limit_masks(d, p, t1, t2);
     throw std::logic_error("the quad/triangle shader has no limit masks where quads and triangles meet");
@@ -131,6 +130,11 @@ class QuadTriShader final : public MeshShader {
     if (quads == d.faces) return catmark_.get();
     if (quads == 0) return loop_.get();
     return nullptr;
+  }
+  // The same for an edge: its one facet's kind, or its two facets' where they are of one kind.
+  const MeshShader* pure_shader(const EdgeDisk& d) const {
+    if (d.faces == 2 && d.face_size[0] != d.face_size[1]) return nullptr;
+    return d.face_size[0] == 4 ? catmark_.get() : loop_.get();
   }
 
   Sdc::Options options_;

@@ -90,9 +90,9 @@ class VulkanMipghEvaluation final : public Evaluation {
       : ctx_(std::move(ctx)), control_(mesh.positions), m_(mesh, rule, std::move(atlas), depth, project, criterion) {
     const DAtlas& a = m_.atlas;
     for (int f = 0; f < a.num_facets(); ++f) (a.facet_size[f] == 4 ? has_quads_ : has_triangles_) = true;
-    uint32_t inner_nodes = m_.lod.layout(m_.inner_depth()).num_nodes, nodes = m_.lod.layout(depth).num_nodes;
-    if (m_.lod.adaptive()) {  // levels are sized by what they hold; the output by what is drawn
-      for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) inner_nodes = std::max(inner_nodes, m_.lod.layout(sigma).num_nodes);
+    const uint32_t inner_nodes = m_.lod.most_nodes(m_.inner_depth());
+    uint32_t nodes = m_.lod.layout(depth).num_nodes;
+    if (m_.lod.adaptive()) {  // the output is what is drawn
       adaptive_ = compile_adaptive(m_.atlas, m_.lod, m_.render, m_.home, out_);
       nodes = uint32_t(out_.coords.size());
     }
@@ -345,7 +345,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
       for (int k = 0; k < (limit ? 1 : 2) && l.num_fast_edges[quad] > 0; ++k) {
         Push p = base;
-        p.table = l.fast_edges[quad], p.dst_base = 0, p.interior = 1;  // the table names each D-edge's first target
+        p.table = l.fast_edges[quad];
         p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
         p.count = checked_u32(size_t(l.num_fast_edges[quad]) * p.per_item, "a D-edge pass");
         edges.dispatches.push_back({&*edges_[quad][parts[k]], p, reads});

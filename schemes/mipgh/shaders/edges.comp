@@ -3,7 +3,8 @@
 // projection of its nodes, for the fast D-edges (untagged, two D-facets of one kind): one
 // invocation per target node, reading the strip's nodes it needs (processor.cpp's Strip: a on the
 // edge, b one in from the major side, c one in from the minor side) through the side rows. The
-// table holds per fast D-edge: the edge, the major D-facet and its side kind, the minor's.
+// table holds per fast D-edge: its first node at the target level, the major D-facet and its side
+// kind, the minor's.
 #include "mipgh.glsl"
 
 layout(constant_id = 1) const bool kQuad = true;
@@ -22,13 +23,12 @@ void main() {
   if (i >= pc.count) return;
   const uint q = i / pc.per_item, k = i - q * pc.per_item;
   const uint at = pc.table + 5u * q;
-  const uint e = word(at);
   const bool listed = pc.facet_lod != 0u;  // D-facets of both kinds: arrays of two sizes
   g_major = pc.lod_base + (listed ? word(pc.facet_lod + word(at + 1u)) : word(at + 1u) * pc.facet_nodes);
   g_minor = pc.lod_base + (listed ? word(pc.facet_lod + word(at + 3u)) : word(at + 3u) * pc.facet_nodes);
   g_on = row(word(at + 2u), 0u), g_in = row(word(at + 2u), 1u), g_across = row(word(at + 4u), 1u);
   g_last = kQuad ? pc.n - 1u : pc.n - 2u;
-  const uint edge = pc.dst_base + e * pc.interior;
+  const uint edge = word(at);  // the D-edge's first node at the target level
   precise vec3 p;
   if (kPart == kEdgePoints) {
     const uint t = k;

@@ -25,8 +25,8 @@ layout(push_constant) uniform Push {
   uint lod_base;     // level sigma's D-LoD, in words
   uint n;            // nodes along a D-facet's side at level sigma
   uint facet_nodes;  // a D-facet's index array at level sigma
-  uint dst_base;     // the first target node (a level's interiors or edge nodes)
-  uint interior;     // nodes per D-facet interior (or per D-edge) at the target level
+  uint dst_base;     // the first target node: a level's interiors (D-facet passes)
+  uint interior;     // nodes per D-facet interior at the target level
   uint rows;         // level sigma's side rows (MeshProcessor::side_row_table), in words
   uint begins;       // a mask table's term ranges, in words
   uint sources;      // and its source nodes
