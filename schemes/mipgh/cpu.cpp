@@ -52,15 +52,20 @@ void CpuMipghEvaluation::run() {
     for (size_t i = 0; i < n; ++i) out_.positions[i] = {src[i].x + o[0], src[i].y + o[1], src[i].z + o[2]};
     return;
   }
-  // The limit is written over the spare buffer and the normals straight into the output, or
-  // through limit_ where the depth's grid points are picked from a deeper level.
+  // The limit is written straight into the output, moved back by the origin there; or over the
+  // spare buffer and limit_ where the depth's grid points are picked from a deeper level.
   const std::vector<uint32_t>& pick = m_.pick;
-  V3* normal = pick.empty() ? reinterpret_cast<V3*>(out_.normals.data()) : limit_.data();
-  m_.processor.project(m_.inner_depth(), src, dst, normal, multithreaded_);
+  if (pick.empty()) {
+    const V3 origin{o[0], o[1], o[2]};
+    m_.processor.project(m_.inner_depth(), src, reinterpret_cast<V3*>(out_.positions.data()),
+                         reinterpret_cast<V3*>(out_.normals.data()), multithreaded_, &origin);
+    return;
+  }
+  m_.processor.project(m_.inner_depth(), src, dst, limit_.data(), multithreaded_);
   for (size_t i = 0; i < n; ++i) {
-    const size_t k = pick.empty() ? i : pick[i];
+    const size_t k = pick[i];
     out_.positions[i] = {dst[k].x + o[0], dst[k].y + o[1], dst[k].z + o[2]};
-    if (!pick.empty()) out_.normals[i] = {limit_[k].x, limit_[k].y, limit_[k].z};
+    out_.normals[i] = {limit_[k].x, limit_[k].y, limit_[k].z};
   }
 }
 

@@ -29,40 +29,44 @@ struct Strip {
   bool quad_major = true, quad_minor = true;
 };
 
-thread_local tile::Tile t_tile;
+// A tag-free D-edge this long or longer runs the tiles' SIMD stencils along a strip tile
+// (load_strip_rows); a shorter one the same sums node by node, where the loops' set-up would cost
+// more than they save (callgrind: +19% to +27% instructions on small meshes at N <= 9).
+constexpr int kStripTileNodes = 17;
+
+thread_local tile::Tile t_tile, t_strip_rows;
 thread_local Strip t_strip;
-thread_local tile::Planes t_planes;
+thread_local tile::Planes t_planes, t_strip_planes;
 thread_local VertexDisk t_disk;
 
 }  // namespace
 
-bool MeshProcessor::load_tile(int sigma, int f, const V3* src) const {
+bool MeshProcessor::load_tile(int sigma, TileFacets facets, const V3* src) const {
   const int n = lod_.layout(sigma).n;
-  const bool quad = atlas_.facet_size[f] == 4;
-  t_tile.load(lod_.facet(sigma, f), n, src, quad);
-  t_planes.fit(size_t(n) * n);
+  const LevelLayout& l = lod_.layout(sigma);
+  const bool quad = atlas_.facet_size[facets.first] == 4;
+  if (quad) {
+    t_tile.load_quad(lod_.facet(sigma, facets.first), src + l.interior(facets.first), n, src);
+  } else {
+    t_tile.load_triangle(lod_.facet(sigma, facets.first), src + l.interior(facets.first), n, src, false);
+    if (facets.second >= 0) t_tile.load_triangle(lod_.facet(sigma, facets.second), src + l.interior(facets.second), n, src, true);
+  }
+  t_planes.fit(size_t(t_tile.squares()));
   return quad;
 }
 
-void MeshProcessor::visit_facet(int sigma, int f, const V3* src, V3* dst) const {
+void MeshProcessor::visit_facets(int sigma, TileFacets facets, const V3* src, V3* dst) const {
   const int n = lod_.layout(sigma).n, width = lod_.layout(sigma + 1).s;  // target rows, columns 1 .. width
-  const bool quad = load_tile(sigma, f, src);
+  const bool quad = load_tile(sigma, facets, src);
   const tile::Tile& t = t_tile;
   tile::Planes& s = t_planes;
+  const int w = t.stride;
   for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data(),
-                                             s.v[3][k].data());
-  V3* out = dst + lod_.layout(sigma + 1).interior(f);
-  for (int r = 1; r <= width; ++r) {
-    // columns alternate between two classes: odd columns from `a`, even ones from `b`
-    const int row = (r >> 1) * n, odd = (r & 1) << 1, end = quad ? width : width - r;
-    const float *ax = s.v[odd | 1][0].data() + row, *ay = s.v[odd | 1][1].data() + row, *az = s.v[odd | 1][2].data() + row;
-    const float *bx = s.v[odd][0].data() + row, *by = s.v[odd][1].data() + row, *bz = s.v[odd][2].data() + row;
-    for (int c = 1; c <= end; ++c) {
-      const int L = c >> 1;
-      *out++ = (c & 1) ? V3{ax[L], ay[L], az[L]} : V3{bx[L], by[L], bz[L]};
-    }
-  }
+    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), w, t.squares(), s.v[0][k].data(), s.v[1][k].data(),
+                                                         s.v[2][k].data(), s.v[3][k].data());
+  const LevelLayout& next = lod_.layout(sigma + 1);
+  tile::assemble_targets(s, n, w, width, quad, false, dst + next.interior(facets.first));
+  if (facets.second >= 0) tile::assemble_targets(s, n, w, width, quad, true, dst + next.interior(facets.second));
 }
 
 MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const MeshShader& shader)
@@ -72,6 +76,30 @@ MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTag
   auto first = [&](int v) { return atlas.valence(v) ? atlas.ring[atlas.ring_offsets[v]].facet : -1; };
   for (int v = 0; v < atlas.num_vertices; ++v) vertex_order_[v] = v;
   std::stable_sort(vertex_order_.begin(), vertex_order_.end(), [&](int a, int b) { return first(a) < first(b); });
+  for (int f = 0; f < atlas.num_facets(); ++f) {
+    const bool pair = atlas.facet_size[f] == 3 && f + 1 < atlas.num_facets() && atlas.facet_size[f + 1] == 3;
+    tiles_.push_back({f, pair ? f + 1 : -1});
+    f += pair;
+  }
+  // Each D-edge and D-vertex visited right after the tile of the last D-facet it reads: the other
+  // D-facets (neighbours a mesh's face order keeps a few dozen faces apart) were loaded a few
+  // tiles before and are still in cache, where a pass of their own would fetch them again from
+  // memory, one cache line per node along a side.
+  std::vector<int32_t> tile_of(size_t(atlas.num_facets()), 0);
+  for (size_t i = 0; i < tiles_.size(); ++i) {
+    tile_of[size_t(tiles_[i].first)] = int32_t(i);
+    if (tiles_[i].second >= 0) tile_of[size_t(tiles_[i].second)] = int32_t(i);
+  }
+  std::vector<int32_t> edge_tile(size_t(atlas.num_edges())), vertex_tile(size_t(atlas.num_vertices), 0);
+  for (int e = 0; e < atlas.num_edges(); ++e) {
+    const DEdge& d = atlas.edges[e];
+    edge_tile[e] = std::max(tile_of[d.major.facet], d.minor.null() ? 0 : tile_of[d.minor.facet]);
+  }
+  for (int v = 0; v < atlas.num_vertices; ++v)
+    for (int i = atlas.ring_offsets[v]; i < atlas.ring_offsets[v + 1]; ++i)
+      vertex_tile[v] = std::max(vertex_tile[v], tile_of[atlas.ring[i].facet]);
+  tile_edges_ = PerTile(edge_tile, tiles_.size());
+  tile_vertices_ = PerTile(vertex_tile, tiles_.size());
   // Offsets of the rows along each side (depth 0 and 1) in a D-facet's array, every level:
   // a triangle's three sides, then a quad's four.
   for (int sigma = 0; sigma <= lod.depth(); ++sigma) {
@@ -109,6 +137,27 @@ void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
   // c[t] runs the major's way: a quad's node across from a[t]; a triangle's between a[t], a[t + 1]
   const int last = gs == 4 ? n - 1 : n - 2;
   for (int t = 0; t <= last; ++t) s.c[t] = src[g[across[last - t]]];
+}
+
+void MeshProcessor::load_strip_rows(int sigma, int e, const V3* src) const {
+  const int n = lod_.layout(sigma).n;
+  const DEdge& d = atlas_.edges[e];
+  tile::Tile& rows = t_strip_rows;
+  rows.shape(3, n);
+  float *x = rows.plane(0), *y = rows.plane(1), *z = rows.plane(2);
+  auto put = [&](int L, uint32_t node) {
+    const V3& p = src[node];
+    x[L] = p.x, y[L] = p.y, z[L] = p.z;
+  };
+  const int size = atlas_.facet_size[d.major.facet];
+  const uint32_t *f = lod_.facet(sigma, d.major.facet), *g = lod_.facet(sigma, d.minor.facet);
+  const int32_t *on = side_rows(sigma, size, d.major.side, 0), *in = side_rows(sigma, size, d.major.side, 1);
+  const int32_t* across = side_rows(sigma, size, d.minor.side, 1);
+  for (int t = 0; t < n; ++t) put(n + t, f[on[t]]);
+  for (int t = 0; t < n - (size == 3); ++t) put(2 * n + t, f[in[t]]);
+  // the minor's row runs the other way: its node last - t at column t (+ 1 in a triangle)
+  const int last = size == 4 ? n - 1 : n - 2, shift = size == 3;
+  for (int t = 0; t <= last; ++t) put(t + shift, g[across[last - t]]);
 }
 
 const int32_t* MeshProcessor::side_rows(int sigma, int size, int side, int depth) const {
@@ -170,12 +219,12 @@ void MeshProcessor::edge_disk(int sigma, int e, int t, EdgeDisk& disk) const {
 }
 
 void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
-  load_strip(sigma, e, src);
-  const Strip& s = t_strip;
-  const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
   const int n = lod_.layout(sigma).n;
   V3* out = dst + lod_.layout(sigma + 1).edge_node(e, 0);
-  if (fast_edge(e)) {  // tag-free: the fast paths
+  if (fast_edge(e) && n < kStripTileNodes) {  // tag-free and short: the stencils node by node
+    load_strip(sigma, e, src);
+    const Strip& s = t_strip;
+    const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
     if (s.quad_major) {  // Figure 20
       for (int t = 0; t + 1 < n; ++t) out[2 * t] = edge_vertex(A[t], A[t + 1], B[t], B[t + 1], C[t], C[t + 1]);
       for (int t = 1; t + 1 < n; ++t)
@@ -187,6 +236,22 @@ void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
     }
     return;
   }
+  if (fast_edge(e)) {  // tag-free: the tile's stencils (Figure 20's, or Loop's) along row 1
+    load_strip_rows(sigma, e, src);
+    const tile::Tile& rows = t_strip_rows;
+    tile::Planes& s = t_strip_planes;
+    s.fit(size_t(n));
+    const bool quad = atlas_.facet_size[atlas_.edges[e].major.facet] == 4;
+    for (int k = 0; k < 3; ++k)
+      (quad ? tile::quad_classes : tile::triangle_classes)(rows.plane(k) + n, n, n, s.v[0][k].data(), s.v[1][k].data(),
+                                                           s.v[2][k].data(), s.v[3][k].data());
+    const float *vx = s.v[0][0].data(), *vy = s.v[0][1].data(), *vz = s.v[0][2].data();
+    const float *ex = s.v[1][0].data(), *ey = s.v[1][1].data(), *ez = s.v[1][2].data();
+    for (int t = 0; t + 1 < n; ++t) out[2 * t] = {ex[t], ey[t], ez[t]};
+    for (int t = 1; t + 1 < n; ++t) out[2 * t - 1] = {vx[t], vy[t], vz[t]};
+    return;
+  }
+  load_strip(sigma, e, src);
   EdgeDisk edge;
   for (int t = 0; t + 1 < n; ++t) {
     edge_disk(sigma, e, t, edge);
@@ -247,9 +312,11 @@ void MeshProcessor::visit_vertex(int sigma, int v, const V3* src, V3* dst) const
 
 void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const {
   if (lod_.adaptive()) return step_adaptive(sigma, src, dst, parallel);
-  for_each(atlas_.num_facets(), parallel, 64, [&](int f) { visit_facet(sigma, f, src, dst); });
-  for_each(atlas_.num_edges(), parallel, 256, [&](int e) { visit_edge(sigma, e, src, dst); });
-  for_each(atlas_.num_vertices, parallel, 512, [&](int i) { visit_vertex(sigma, vertex_order_[i], src, dst); });
+  for_each(int(tiles_.size()), parallel, 32, [&](int i) {
+    visit_facets(sigma, tiles_[i], src, dst);
+    for (int32_t e : tile_edges_.of(i)) visit_edge(sigma, e, src, dst);
+    for (int32_t v : tile_vertices_.of(i)) visit_vertex(sigma, v, src, dst);
+  });
 }
 
 bool MeshProcessor::edge_readable(int sigma, int e) const {
@@ -285,7 +352,7 @@ void MeshProcessor::copy_edge(int sigma, int e, const V3* src, V3* dst) const {
 
 void MeshProcessor::step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const {
   const std::vector<int32_t>&facets = lod_.facets_held(sigma + 1), &edges = lod_.edges_held(sigma + 1);
-  for_each(int(facets.size()), parallel, 64, [&](int i) { visit_facet(sigma, facets[i], src, dst); });
+  for_each(int(facets.size()), parallel, 64, [&](int i) { visit_facets(sigma, {facets[i], -1}, src, dst); });
   for_each(int(edges.size()), parallel, 256, [&](int i) {
     const int e = edges[i];
     if (edge_readable(sigma, e)) visit_edge(sigma, e, src, dst);
@@ -298,76 +365,112 @@ void MeshProcessor::step_adaptive(int sigma, const V3* src, V3* dst, bool parall
   });
 }
 
-void MeshProcessor::project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const {
-  const LevelLayout& l = lod_.layout(sigma);
-  const int n = l.n;
-  const bool quad = load_tile(sigma, f, src);
-  const tile::Tile& t = t_tile;
-  tile::Planes& s = t_planes;
-  for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k), n, s.v[0][k].data(), s.v[1][k].data(), s.v[2][k].data());
-  tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
-               s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), n * n);
-  const uint32_t first = l.interior(f);
-  V3 *p = position + first, *q = normal + first;
-  const float *px = s.v[0][0].data(), *py = s.v[0][1].data(), *pz = s.v[0][2].data();
-  const float *nx = s.normal[0].data(), *ny = s.normal[1].data(), *nz = s.normal[2].data();
-  for (int i = 1; i <= l.s; ++i)
-    for (int j = 1; quad ? j <= l.s : i + j <= l.s; ++j, ++p, ++q) {
-      const int L = i * n + j;
-      *p = {px[L], py[L], pz[L]};
-      *q = {nx[L], ny[L], nz[L]};
-    }
+namespace {
+
+// A limit position, moved by the offset where there is one.
+inline V3 placed(float x, float y, float z, const V3* offset) {
+  return offset ? V3{x + offset->x, y + offset->y, z + offset->z} : V3{x, y, z};
 }
 
-void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const {
+}  // namespace
+
+void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal,
+                                   const V3* offset) const {
   const LevelLayout& l = lod_.layout(sigma);
-  load_strip(sigma, e, src);
-  const Strip& s = t_strip;
+  const int n = l.n;
+  const bool quad = load_tile(sigma, facets, src);
+  const tile::Tile& t = t_tile;
+  tile::Planes& s = t_planes;
+  const int w = t.stride;
+  for (int k = 0; k < 3; ++k)
+    (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k), w, t.squares(), s.v[0][k].data(), s.v[1][k].data(),
+                                                     s.v[2][k].data());
+  tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
+                     s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), t.squares());
+  auto assemble = [&](int f, bool turned) {
+    tile::assemble_limit(s, n, w, l.s, quad, turned, offset, position + l.interior(f), normal + l.interior(f));
+  };
+  assemble(facets.first, false);
+  if (facets.second >= 0) assemble(facets.second, true);
+}
+
+void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const {
+  const LevelLayout& l = lod_.layout(sigma);
+  const int n = l.n;
   if (!fast_edge(e)) {
+    load_strip(sigma, e, src);
     VertexDisk& disk = t_disk;
     for (int t = 1; t <= l.s; ++t) {
       strip_disk(sigma, e, t, disk);
-      shader_.limit(disk, position[l.edge_node(e, t - 1)], normal[l.edge_node(e, t - 1)]);
+      V3& p = position[l.edge_node(e, t - 1)];
+      shader_.limit(disk, p, normal[l.edge_node(e, t - 1)]);
+      if (offset) p = placed(p.x, p.y, p.z, offset);
     }
     return;
   }
-  const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
-  for (int t = 1; t <= l.s; ++t) {
-    V3 &p = position[l.edge_node(e, t - 1)], &q = normal[l.edge_node(e, t - 1)];
-    if (s.quad_major) {  // counter-clockwise seen from the major D-facet, as strip_disk orders them
-      const V3 ring[4] = {A[t + 1], B[t], A[t - 1], C[t]};
-      const V3 diag[4] = {B[t + 1], B[t - 1], C[t - 1], C[t + 1]};
-      catmark_limit_regular(A[t], ring, diag, p, q);
-    } else {
-      const V3 ring[6] = {A[t + 1], B[t], B[t - 1], A[t - 1], C[t - 1], C[t]};
-      loop_limit_regular(A[t], ring, p, q);
+  if (n < kStripTileNodes) {  // tag-free and short: the limit node by node
+    load_strip(sigma, e, src);
+    const Strip& s = t_strip;
+    const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
+    for (int t = 1; t <= l.s; ++t) {
+      V3 &p = position[l.edge_node(e, t - 1)], &q = normal[l.edge_node(e, t - 1)];
+      if (s.quad_major) {  // counter-clockwise seen from the major D-facet, as strip_disk orders them
+        const V3 ring[4] = {A[t + 1], B[t], A[t - 1], C[t]};
+        const V3 diag[4] = {B[t + 1], B[t - 1], C[t - 1], C[t + 1]};
+        catmark_limit_regular(A[t], ring, diag, p, q);
+      } else {
+        const V3 ring[6] = {A[t + 1], B[t], B[t - 1], A[t - 1], C[t - 1], C[t]};
+        loop_limit_regular(A[t], ring, p, q);
+      }
+      if (offset) p = placed(p.x, p.y, p.z, offset);
     }
+    return;
+  }
+  // tag-free: the tile's limit stencils along row 1 (load_strip_rows)
+  load_strip_rows(sigma, e, src);
+  const tile::Tile& rows = t_strip_rows;
+  tile::Planes& s = t_strip_planes;
+  s.fit(size_t(n));
+  const bool quad = atlas_.facet_size[atlas_.edges[e].major.facet] == 4;
+  for (int k = 0; k < 3; ++k)
+    (quad ? tile::quad_limit : tile::triangle_limit)(rows.plane(k) + n, n, n, s.v[0][k].data(), s.v[1][k].data(),
+                                                     s.v[2][k].data());
+  tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
+                     s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), n);
+  const float *px = s.v[0][0].data(), *py = s.v[0][1].data(), *pz = s.v[0][2].data();
+  const float *nx = s.normal[0].data(), *ny = s.normal[1].data(), *nz = s.normal[2].data();
+  V3 *p = position + l.edge_node(e, 0), *q = normal + l.edge_node(e, 0);
+  for (int t = 1; t <= l.s; ++t) {
+    p[t - 1] = placed(px[t], py[t], pz[t], offset);
+    q[t - 1] = {nx[t], ny[t], nz[t]};
   }
 }
 
-void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const {
-  for_each(atlas_.num_facets(), parallel, 64, [&](int f) { project_facet(sigma, f, src, position, normal); });
-  for_each(atlas_.num_edges(), parallel, 256, [&](int e) { project_edge(sigma, e, src, position, normal); });
-  for_each(atlas_.num_vertices, parallel, 512, [&](int i) { project_vertex(sigma, vertex_order_[i], src, position, normal); });
+void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset) const {
+  for_each(int(tiles_.size()), parallel, 32, [&](int i) {
+    project_facets(sigma, tiles_[i], src, position, normal, offset);
+    for (int32_t e : tile_edges_.of(i)) project_edge(sigma, e, src, position, normal, offset);
+    for (int32_t v : tile_vertices_.of(i)) project_vertex(sigma, v, src, position, normal, offset);
+  });
 }
 
-void MeshProcessor::project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal) const {
+void MeshProcessor::project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset) const {
   if (atlas_.valence(v) == 0) {
     position[v] = src[v], normal[v] = {0, 0, 0};
-    return;
+  } else {
+    VertexDisk& disk = t_disk;
+    gather_vertex(sigma, v, src, disk);
+    shader_.limit(disk, position[v], normal[v]);
   }
-  VertexDisk& disk = t_disk;
-  gather_vertex(sigma, v, src, disk);
-  shader_.limit(disk, position[v], normal[v]);
+  if (offset) position[v] = placed(position[v].x, position[v].y, position[v].z, offset);
 }
 
 void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, const Homes& homes,
                             bool parallel) const {
   const auto &f = homes.facets, &e = homes.edges, &v = homes.vertices;
-  for_each(int(f.size()), parallel, 64, [&](int i) { project_facet(sigma, f[i], src, position, normal); });
-  for_each(int(e.size()), parallel, 256, [&](int i) { project_edge(sigma, e[i], src, position, normal); });
-  for_each(int(v.size()), parallel, 512, [&](int i) { project_vertex(sigma, v[i], src, position, normal); });
+  for_each(int(f.size()), parallel, 64, [&](int i) { project_facets(sigma, {f[i], -1}, src, position, normal, nullptr); });
+  for_each(int(e.size()), parallel, 256, [&](int i) { project_edge(sigma, e[i], src, position, normal, nullptr); });
+  for_each(int(v.size()), parallel, 512, [&](int i) { project_vertex(sigma, v[i], src, position, normal, nullptr); });
 }
 
 void MeshProcessor::vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const {

@@ -1,7 +1,10 @@
 // The mesh processor (Section 3.1, Figures 7, 8, 24): one mutation step visits every node of the
-// next level, in the order D-facets, D-edges, D-vertices, gathers its 1-disk from the current
-// level through the D-LoD's index arrays, and hands it to the mesh shader; the refinement itself
-// is the next level's layout (lod.h), fixed in prepare. Then the limit projection, a last visit
+// next level, D-facets, D-edges and D-vertices, gathers its 1-disk from the current level through
+// the D-LoD's index arrays, and hands it to the mesh shader; the refinement itself is the next
+// level's layout (lod.h), fixed in prepare. Departure in order only: the paper visits all D-facets,
+// then all D-edges, then all D-vertices; here each tile of D-facets is followed by the D-edges and
+// D-vertices whose last D-facet it holds, while their neighbours are still in cache. Every node is
+// computed from the previous level alone, so the order changes no value. Then the limit projection, a last visit
 // without refinement (Figure 24's bypassed case), and primitive compilation.
 //
 // Attributes are node-morphic: a node shared by D-facets has one slot, computed once, so the
@@ -24,8 +27,9 @@ class MeshProcessor {
 
   // Level sigma's nodes in `src`, level sigma + 1's written to `dst`.
   void step(int sigma, const V3* src, V3* dst, bool parallel) const;
-  // Limit positions and unit normals of level sigma's nodes.
-  void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel) const;
+  // Limit positions and unit normals of level sigma's nodes; the positions moved by `offset` where
+  // one is given (the output's origin, so that they are written once, where they end).
+  void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset = nullptr) const;
   // Adaptive (DLoD's labels): the limit of the nodes whose home is level sigma only: the
   // interiors of these D-facets, the nodes of these D-edges and these D-vertices.
   using Homes = LevelHomes;
@@ -61,8 +65,12 @@ class MeshProcessor {
   // Whether D-edge e's nodes take the fast paths: untagged at every level, two D-facets of one kind.
   bool fast_edge(int e) const;
 
+  // The D-facets of one tile (tile.h): a quad, or one or two triangles (second -1 where none).
+  struct TileFacets {
+    int32_t first, second;
+  };
   // The parts of a step, public for the tests.
-  void visit_facet(int sigma, int f, const V3* src, V3* dst) const;
+  void visit_facets(int sigma, TileFacets facets, const V3* src, V3* dst) const;
   void visit_edge(int sigma, int e, const V3* src, V3* dst) const;
   void visit_vertex(int sigma, int v, const V3* src, V3* dst) const;
   // Adaptive: whether level sigma holds every D-facet a D-edge's (or a D-vertex's) next nodes
@@ -84,16 +92,21 @@ class MeshProcessor {
   void strip_disk(int sigma, int e, int t, VertexDisk& disk) const;
   // The 1-disk of the edge point of the strip's micro-edge t (t, t + 1); after load_strip.
   void edge_disk(int sigma, int e, int t, EdgeDisk& disk) const;
-  // D-facet f's nodes at level sigma into the thread's tile, its stencil planes sized; true for a
-  // quad.
-  bool load_tile(int sigma, int f, const V3* src) const;
+  // The D-facets' nodes at level sigma into the thread's tile, its stencil planes sized; true for
+  // a quad.
+  bool load_tile(int sigma, TileFacets facets, const V3* src) const;
   // Reads D-edge e's strip (processor.cpp, Strip) into the thread's scratch.
   void load_strip(int sigma, int e, const V3* src) const;
+  // A fast D-edge's strip as three rows of the thread's strip tile, where the tile's stencils
+  // read them along row 1 (the edge's nodes a[t]): row 2 the major side's b[t], row 0 the minor
+  // side's c[t], a quad's at column t (across from a[t]), a triangle's at t + 1 (between a[t] and
+  // a[t + 1]).
+  void load_strip_rows(int sigma, int e, const V3* src) const;
   // The array offsets of the nodes along a side (depth 0) or one in from it (1), at level sigma.
   const int32_t* side_rows(int sigma, int size, int side, int depth) const;
-  void project_facet(int sigma, int f, const V3* src, V3* position, V3* normal) const;
-  void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal) const;
-  void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal) const;
+  void project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal, const V3* offset) const;
+  void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const;
+  void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset) const;
   void step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const;
   // shader_disks' parts: D-vertex v's node, and D-edge e's nodes.
   void vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const;
@@ -104,6 +117,28 @@ class MeshProcessor {
   const EdgeTags& tags_;
   const MeshShader& shader_;
   std::vector<int> vertex_order_;
+  std::vector<TileFacets> tiles_;  // every D-facet, consecutive triangles paired
+  // Items (D-edges or D-vertices) listed by the tile they are visited with.
+  class PerTile {
+   public:
+    PerTile() = default;
+    PerTile(const std::vector<int32_t>& tile_of_item, size_t tiles) : begin_(tiles + 1, 0), items_(tile_of_item.size()) {
+      for (int32_t t : tile_of_item) ++begin_[size_t(t) + 1];
+      for (size_t t = 0; t < tiles; ++t) begin_[t + 1] += begin_[t];
+      std::vector<int32_t> next(begin_.begin(), begin_.end() - 1);
+      for (size_t i = 0; i < tile_of_item.size(); ++i) items_[size_t(next[size_t(tile_of_item[i])]++)] = int32_t(i);
+    }
+    struct Range {
+      const int32_t *b, *e;
+      const int32_t* begin() const { return b; }
+      const int32_t* end() const { return e; }
+    };
+    Range of(int tile) const { return {items_.data() + begin_[size_t(tile)], items_.data() + begin_[size_t(tile) + 1]}; }
+
+   private:
+    std::vector<int32_t> begin_, items_;
+  };
+  PerTile tile_edges_, tile_vertices_;
   std::vector<std::vector<int32_t>> side_rows_;
 };
 

@@ -11,35 +11,39 @@
 namespace sdb::mipgh::tile {
 
 // A D-facet's nodes of one level, gathered once through its index array into three planes (the
-// work-group tile a GPU would stage in shared memory). A plane is the n x n square, a triangle in
-// its lower-left half (row i holds n - i nodes), with n + 1 floats of padding on either side: the
-// stencils then run over the whole square as one long SIMD loop with fixed neighbour offsets
-// (+-1 along a row, +-n across), and the values at squares no target uses are dropped.
+// work-group tile a GPU would stage in shared memory), `rows` rows `stride` floats apart, with
+// stride + 1 floats of padding on either side: the stencils then run over the whole tile as one
+// long SIMD loop with fixed neighbour offsets (+-1 along a row, +-stride across), and the values
+// at squares no target uses are dropped.
+//   - A quad: its n x n array as it is (stride n).
+//   - Triangles, two to a tile (load_triangle): the first's node (i, j) at i (n + 1) + j, the
+//     lower-left half of an n x (n + 1) rectangle; the second turned half a turn into the other
+//     half, its (i, j) at (n - 1 - i)(n + 1) + n - j. Alone, a triangle would leave half of an
+//     n x n square to waste. Loop's stencils are symmetric under the turn, to the bit (each sum
+//     adds the same pairs, swapped): the second triangle's targets are its own, at the turned
+//     squares (target (R, C) of the doubled grid at (2n - 2 - R, 2n - C)), and its tangents
+//     change sign both, so its normals do not (but for the sign of a zero component: a - a is
+//     +0 either way round).
+//   - A strip (load_strip_rows in processor.cpp): three rows of a D-edge's nodes.
 struct Tile {
   std::vector<float> storage[3];
-  int n = 0;
-  float* plane(int k) { return storage[k].data() + n + 1; }
-  const float* plane(int k) const { return storage[k].data() + n + 1; }
-  void load(const uint32_t* idx, int size, const V3* src, bool quad) {
-    if (n != size)
-      for (auto& s : storage) s.assign(size_t(size) * size + 2 * (size + 1), 0.0f);
-    n = size;
-    float *x = plane(0), *y = plane(1), *z = plane(2);
-    // float by float: a V3 copied whole goes through the stack (store forwarding on every node)
-    const float* base = &src[0].x;
-    if (quad) {
-      for (int i = 0; i < n * n; ++i) {
-        const float* p = base + size_t(idx[i]) * 3;
-        x[i] = p[0], y[i] = p[1], z[i] = p[2];
-      }
-      return;
-    }
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; i + j < n; ++j) {
-        const float* p = base + size_t(*idx++) * 3;
-        x[i * n + j] = p[0], y[i * n + j] = p[1], z[i * n + j] = p[2];
-      }
+  int rows = 0, stride = 0;
+  float* plane(int k) { return storage[k].data() + stride + 1; }
+  const float* plane(int k) const { return storage[k].data() + stride + 1; }
+  int squares() const { return rows * stride; }
+  // Room for rows x stride; the floats a previous shape left are kept (finite, and read only for
+  // targets that are dropped).
+  void shape(int r, int w) {
+    rows = r, stride = w;
+    const size_t wanted = size_t(r) * w + 2 * size_t(w + 1);
+    for (auto& s : storage)
+      if (s.size() < wanted) s.resize(wanted, 0.0f);
   }
+  // A D-facet's nodes: `idx` its index array, `inside` its interior nodes (row-major, contiguous
+  // in the level's storage: copied row by row rather than gathered node by node).
+  void load_quad(const uint32_t* idx, const V3* inside, int n, const V3* src);
+  // One triangle, or (turned) the second of two.
+  void load_triangle(const uint32_t* idx, const V3* inside, int n, const V3* src, bool turned);
 };
 
 // The stencils' results over a tile's square: four classes of target per source square L = (a, b)
@@ -47,8 +51,8 @@ struct Tile {
 struct Planes {
   std::vector<float> v[4][3], normal[3];
   size_t size = 0;
-  void fit(size_t wanted) {
-    if (wanted == size) return;
+  void fit(size_t wanted) {  // grows only
+    if (wanted <= size) return;
     size = wanted;
     for (auto& c : v)
       for (auto& p : c) p.resize(size);
@@ -56,16 +60,27 @@ struct Planes {
   }
 };
 
-// Figure 20's stencils at every square of one coordinate's plane P (n x n, padded): vertex points
-// (class 0), horizontal edge points (1), vertical ones (2), facet points (3).
-void quad_classes(const float* P, int n, float* vv, float* eh, float* ev, float* fv);
-// Loop's, in a triangle's square: vertex points (0), edge points of (a, b)-(a, b+1) (1),
-// (a, b)-(a+1, b) (2) and the diagonal (a, b+1)-(a+1, b) (3).
-void triangle_classes(const float* P, int n, float* vv, float* eh, float* ev, float* ed);
-// The limit position and the two tangents at every square (catmark_limit_regular and
-// loop_limit_regular's masks).
-void quad_limit(const float* P, int n, float* pos, float* t1, float* t2);
-void triangle_limit(const float* P, int n, float* pos, float* t1, float* t2);
+// Each runs over squares 0 .. count - 1 of one coordinate's plane P, rows `stride` apart (a Tile's
+// plane, padded).
+// Figure 20's stencils: vertex points (class 0), horizontal edge points (1), vertical ones (2),
+// facet points (3).
+void quad_classes(const float* P, int stride, int count, float* vv, float* eh, float* ev, float* fv);
+// Loop's, in triangles: vertex points (0), edge points of (a, b)-(a, b+1) (1), (a, b)-(a+1, b) (2)
+// and the diagonal (a, b+1)-(a+1, b) (3).
+void triangle_classes(const float* P, int stride, int count, float* vv, float* eh, float* ev, float* ed);
+// The limit position and the two tangents (catmark_limit_regular and loop_limit_regular's masks).
+void quad_limit(const float* P, int stride, int count, float* pos, float* t1, float* t2);
+void triangle_limit(const float* P, int stride, int count, float* pos, float* t1, float* t2);
+// A step's targets in one D-facet of the tile whose class planes `s` holds (a quad, the first
+// triangle, or the turned one): level sigma + 1's interior rows 1 .. width, row-major into `out`.
+// Target (r, c) lies at square (r >> 1, c >> 1), class 2 (r & 1) + (c & 1), or at the turned
+// square (Tile); n the tile's nodes along a side, `stride` its rows' distance.
+void assemble_targets(const Planes& s, int n, int stride, int width, bool quad, bool turned, V3* out);
+// A projection's: the interior nodes' limit positions (class 0, moved by *offset where given) and
+// normals, rows 1 .. inner.
+void assemble_limit(const Planes& s, int n, int stride, int inner, bool quad, bool turned, const V3* offset,
+                    V3* position, V3* normal);
+
 // Unit T1 x T2 at every square.
 void unit_normals(const float* ax, const float* ay, const float* az, const float* bx, const float* by, const float* bz,
                   float* nx, float* ny, float* nz, int count);
