@@ -76,30 +76,7 @@ MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTag
   auto first = [&](int v) { return atlas.valence(v) ? atlas.ring[atlas.ring_offsets[v]].facet : -1; };
   for (int v = 0; v < atlas.num_vertices; ++v) vertex_order_[v] = v;
   std::stable_sort(vertex_order_.begin(), vertex_order_.end(), [&](int a, int b) { return first(a) < first(b); });
-  for (int f = 0; f < atlas.num_facets(); ++f) {
-    const bool pair = atlas.facet_size[f] == 3 && f + 1 < atlas.num_facets() && atlas.facet_size[f + 1] == 3;
-    tiles_.push_back({f, pair ? f + 1 : -1});
-    f += pair;
-  }
-  // Each D-edge and D-vertex visited right after the tile of the last D-facet it reads: the other
-  // D-facets (neighbours a mesh's face order keeps a few dozen faces apart) were loaded a few
-  // tiles before and are still in cache, where a pass of their own would fetch them again from
-  // memory, one cache line per node along a side.
-  std::vector<int32_t> tile_of(size_t(atlas.num_facets()), 0);
-  for (size_t i = 0; i < tiles_.size(); ++i) {
-    tile_of[size_t(tiles_[i].first)] = int32_t(i);
-    if (tiles_[i].second >= 0) tile_of[size_t(tiles_[i].second)] = int32_t(i);
-  }
-  std::vector<int32_t> edge_tile(size_t(atlas.num_edges())), vertex_tile(size_t(atlas.num_vertices), 0);
-  for (int e = 0; e < atlas.num_edges(); ++e) {
-    const DEdge& d = atlas.edges[e];
-    edge_tile[e] = std::max(tile_of[d.major.facet], d.minor.null() ? 0 : tile_of[d.minor.facet]);
-  }
-  for (int v = 0; v < atlas.num_vertices; ++v)
-    for (int i = atlas.ring_offsets[v]; i < atlas.ring_offsets[v + 1]; ++i)
-      vertex_tile[v] = std::max(vertex_tile[v], tile_of[atlas.ring[i].facet]);
-  tile_edges_ = PerTile(edge_tile, tiles_.size());
-  tile_vertices_ = PerTile(vertex_tile, tiles_.size());
+  plan_tiles();
   // Offsets of the rows along each side (depth 0 and 1) in a D-facet's array, every level:
   // a triangle's three sides, then a quad's four.
   for (int sigma = 0; sigma <= lod.depth(); ++sigma) {
@@ -114,6 +91,33 @@ MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTag
         }
     side_rows_.push_back(std::move(rows));
   }
+}
+
+void MeshProcessor::plan_tiles() {
+  for (int f = 0; f < atlas_.num_facets(); ++f) {
+    const bool pair = atlas_.facet_size[f] == 3 && f + 1 < atlas_.num_facets() && atlas_.facet_size[f + 1] == 3;
+    tiles_.push_back({f, pair ? f + 1 : -1});
+    f += pair;
+  }
+  // Each D-edge and D-vertex visited right after the tile of the last D-facet it reads: the other
+  // D-facets (neighbours a mesh's face order keeps a few dozen faces apart) were loaded a few
+  // tiles before and are still in cache, where a pass of their own would fetch them again from
+  // memory, one cache line per node along a side.
+  std::vector<int32_t> tile_of(size_t(atlas_.num_facets()), 0);
+  for (size_t i = 0; i < tiles_.size(); ++i) {
+    tile_of[size_t(tiles_[i].first)] = int32_t(i);
+    if (tiles_[i].second >= 0) tile_of[size_t(tiles_[i].second)] = int32_t(i);
+  }
+  std::vector<int32_t> edge_tile(size_t(atlas_.num_edges())), vertex_tile(size_t(atlas_.num_vertices), 0);
+  for (int e = 0; e < atlas_.num_edges(); ++e) {
+    const DEdge& d = atlas_.edges[e];
+    edge_tile[e] = std::max(tile_of[d.major.facet], d.minor.null() ? 0 : tile_of[d.minor.facet]);
+  }
+  for (int v = 0; v < atlas_.num_vertices; ++v)
+    for (int i = atlas_.ring_offsets[v]; i < atlas_.ring_offsets[v + 1]; ++i)
+      vertex_tile[v] = std::max(vertex_tile[v], tile_of[atlas_.ring[i].facet]);
+  tile_edges_ = PerTile(edge_tile, tiles_.size());
+  tile_vertices_ = PerTile(vertex_tile, tiles_.size());
 }
 
 void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {

@@ -108,6 +108,8 @@ class MeshProcessor {
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const;
   void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset) const;
   void step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const;
+  // tiles_, and the D-edges and D-vertices each tile's visit takes along.
+  void plan_tiles();
   // shader_disks' parts: D-vertex v's node, and D-edge e's nodes.
   void vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const;
   void edge_shader_disks(int sigma, int e, const V3* src, bool limit, const DiskVisitor& visit) const;
