@@ -29,11 +29,6 @@ struct Strip {
   bool quad_major = true, quad_minor = true;
 };
 
-// A tag-free D-edge this long or longer runs the tiles' SIMD stencils along a strip tile
-// (load_strip_rows); a shorter one the same sums node by node, where the loops' set-up would cost
-// more than they save (callgrind: +19% to +27% instructions on small meshes at N <= 9).
-constexpr int kStripTileNodes = 17;
-
 thread_local tile::Tile t_tile, t_strip_rows;
 thread_local Strip t_strip;
 thread_local tile::Planes t_planes, t_strip_planes;
@@ -42,8 +37,8 @@ thread_local VertexDisk t_disk;
 }  // namespace
 
 bool MeshProcessor::load_tile(int sigma, TileFacets facets, const V3* src) const {
-  const int n = lod_.layout(sigma).n;
   const LevelLayout& l = lod_.layout(sigma);
+  const int n = l.n;
   const bool quad = atlas_.facet_size[facets.first] == 4;
   if (quad) {
     t_tile.load_quad(lod_.facet(sigma, facets.first), src + l.interior(facets.first), n, src);
@@ -143,11 +138,12 @@ void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
   for (int t = 0; t <= last; ++t) s.c[t] = src[g[across[last - t]]];
 }
 
-void MeshProcessor::load_strip_rows(int sigma, int e, const V3* src) const {
+bool MeshProcessor::load_strip_rows(int sigma, int e, const V3* src) const {
   const int n = lod_.layout(sigma).n;
   const DEdge& d = atlas_.edges[e];
   tile::Tile& rows = t_strip_rows;
   rows.shape(3, n);
+  t_strip_planes.fit(size_t(n));
   float *x = rows.plane(0), *y = rows.plane(1), *z = rows.plane(2);
   auto put = [&](int L, uint32_t node) {
     const V3& p = src[node];
@@ -162,6 +158,7 @@ void MeshProcessor::load_strip_rows(int sigma, int e, const V3* src) const {
   // the minor's row runs the other way: its node last - t at column t (+ 1 in a triangle)
   const int last = size == 4 ? n - 1 : n - 2, shift = size == 3;
   for (int t = 0; t <= last; ++t) put(t + shift, g[across[last - t]]);
+  return size == 4;
 }
 
 const int32_t* MeshProcessor::side_rows(int sigma, int size, int side, int depth) const {
@@ -225,7 +222,8 @@ void MeshProcessor::edge_disk(int sigma, int e, int t, EdgeDisk& disk) const {
 void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
   const int n = lod_.layout(sigma).n;
   V3* out = dst + lod_.layout(sigma + 1).edge_node(e, 0);
-  if (fast_edge(e) && n < kStripTileNodes) {  // tag-free and short: the stencils node by node
+  const bool fast = fast_edge(e);
+  if (fast && n < tile::kLongRow) {  // tag-free and short: the stencils node by node
     load_strip(sigma, e, src);
     const Strip& s = t_strip;
     const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
@@ -240,12 +238,10 @@ void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
     }
     return;
   }
-  if (fast_edge(e)) {  // tag-free: the tile's stencils (Figure 20's, or Loop's) along row 1
-    load_strip_rows(sigma, e, src);
+  if (fast) {  // tag-free: the tile's stencils (Figure 20's, or Loop's) along row 1
+    const bool quad = load_strip_rows(sigma, e, src);
     const tile::Tile& rows = t_strip_rows;
     tile::Planes& s = t_strip_planes;
-    s.fit(size_t(n));
-    const bool quad = atlas_.facet_size[atlas_.edges[e].major.facet] == 4;
     for (int k = 0; k < 3; ++k)
       (quad ? tile::quad_classes : tile::triangle_classes)(rows.plane(k) + n, n, n, s.v[0][k].data(), s.v[1][k].data(),
                                                            s.v[2][k].data(), s.v[3][k].data());
@@ -412,7 +408,7 @@ void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, 
     }
     return;
   }
-  if (n < kStripTileNodes) {  // tag-free and short: the limit node by node
+  if (n < tile::kLongRow) {  // tag-free and short: the limit node by node
     load_strip(sigma, e, src);
     const Strip& s = t_strip;
     const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
@@ -431,11 +427,9 @@ void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, 
     return;
   }
   // tag-free: the tile's limit stencils along row 1 (load_strip_rows)
-  load_strip_rows(sigma, e, src);
+  const bool quad = load_strip_rows(sigma, e, src);
   const tile::Tile& rows = t_strip_rows;
   tile::Planes& s = t_strip_planes;
-  s.fit(size_t(n));
-  const bool quad = atlas_.facet_size[atlas_.edges[e].major.facet] == 4;
   for (int k = 0; k < 3; ++k)
     (quad ? tile::quad_limit : tile::triangle_limit)(rows.plane(k) + n, n, n, s.v[0][k].data(), s.v[1][k].data(),
                                                      s.v[2][k].data());

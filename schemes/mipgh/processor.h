@@ -100,8 +100,8 @@ class MeshProcessor {
   // A fast D-edge's strip as three rows of the thread's strip tile, where the tile's stencils
   // read them along row 1 (the edge's nodes a[t]): row 2 the major side's b[t], row 0 the minor
   // side's c[t], a quad's at column t (across from a[t]), a triangle's at t + 1 (between a[t] and
-  // a[t + 1]).
-  void load_strip_rows(int sigma, int e, const V3* src) const;
+  // a[t + 1]); the strip's stencil planes sized. True for quads.
+  bool load_strip_rows(int sigma, int e, const V3* src) const;
   // The array offsets of the nodes along a side (depth 0) or one in from it (1), at level sigma.
   const int32_t* side_rows(int sigma, int size, int side, int depth) const;
   void project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal, const V3* offset) const;

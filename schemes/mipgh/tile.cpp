@@ -7,91 +7,51 @@ namespace sdb::mipgh::tile {
 // The tile's loops in AVX2 lanes where the CPU has them, SSE2 otherwise (as the fragments' kernel).
 #define SDB_TILE_CLONES __attribute__((target_clones("avx2", "default")))
 
-// The stencils at square L of one coordinate's plane, rows w apart: one formula each, for the
-// tiles' loops and the strips' alike (the same sums in the same order: bit for bit the same).
-namespace {
-
-using Plane = const float* __restrict;
-
-// Figure 20: vertex points (class 0), horizontal edge points (1), vertical ones (2), facet points (3).
-[[gnu::always_inline]] inline float quad_vv(Plane P, int L, int w) {
-  return 0.5625f * P[L] + 0.09375f * ((P[L + 1] + P[L - 1]) + (P[L + w] + P[L - w])) +
-         0.015625f * ((P[L + w + 1] + P[L - w - 1]) + (P[L + w - 1] + P[L - w + 1]));
-}
-[[gnu::always_inline]] inline float quad_eh(Plane P, int L, int w) {
-  return 0.375f * (P[L] + P[L + 1]) + 0.0625f * ((P[L - w] + P[L - w + 1]) + (P[L + w] + P[L + w + 1]));
-}
-[[gnu::always_inline]] inline float quad_ev(Plane P, int L, int w) {
-  return 0.375f * (P[L] + P[L + w]) + 0.0625f * ((P[L - 1] + P[L + w - 1]) + (P[L + 1] + P[L + w + 1]));
-}
-[[gnu::always_inline]] inline float quad_fv(Plane P, int L, int w) {
-  return 0.25f * ((P[L] + P[L + w + 1]) + (P[L + 1] + P[L + w]));
-}
-// Loop's, in triangles: vertex points (0), edge points of (a, b)-(a, b+1) (1), (a, b)-(a+1, b) (2)
-// and the diagonal (a, b+1)-(a+1, b) (3).
-[[gnu::always_inline]] inline float tri_vv(Plane P, int L, int w) {
-  return 0.625f * P[L] + 0.0625f * (((P[L + 1] + P[L - 1]) + (P[L + w] + P[L - w])) + (P[L + w - 1] + P[L - w + 1]));
-}
-[[gnu::always_inline]] inline float tri_eh(Plane P, int L, int w) {
-  return 0.375f * (P[L] + P[L + 1]) + 0.125f * (P[L + w] + P[L - w + 1]);
-}
-[[gnu::always_inline]] inline float tri_ev(Plane P, int L, int w) {
-  return 0.375f * (P[L] + P[L + w]) + 0.125f * (P[L + 1] + P[L + w - 1]);
-}
-[[gnu::always_inline]] inline float tri_ed(Plane P, int L, int w) {
-  return 0.375f * (P[L + 1] + P[L + w]) + 0.125f * (P[L] + P[L + w + 1]);
-}
-
-// The limit position and the two tangents: Catmull-Clark's (16, 4, 1)/36 and Figure 21's stencils
-// (T1 along a row, T2 across), or Loop's 1/2, 1/12 and its regular tangents, as
-// catmark_limit_regular and loop_limit_regular compute them.
-struct Limit {
-  float pos, t1, t2;
-};
-[[gnu::always_inline]] inline Limit quad_limit_at(Plane P, int L, int w) {
-  const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L - 1], e3 = P[L - w];
-  const float d0 = P[L + w + 1], d1 = P[L + w - 1], d2 = P[L - w - 1], d3 = P[L - w + 1];
-  return {(1.0f / 36) * (16.0f * P[L] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3))),
-          4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2)), 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3))};
-}
-[[gnu::always_inline]] inline Limit tri_limit_at(Plane P, int L, int w) {
-  const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L + w - 1], e3 = P[L - 1], e4 = P[L - w], e5 = P[L - w + 1];
-  return {0.5f * P[L] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5)), (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5)),
-          (e1 + e2) - (e4 + e5)};
-}
-
-// Unit T1 x T2; a zero normal stays zero, with no branch, so SIMD lanes.
-[[gnu::always_inline]] inline void unit_cross(float ax, float ay, float az, float bx, float by, float bz, float& nx,
-                                              float& ny, float& nz) {
-  const float x = ay * bz - az * by, y = az * bx - ax * bz, z = ax * by - ay * bx;
-  const float inv = 1.0f / std::sqrt(x * x + y * y + z * z + 1e-37f);
-  nx = x * inv, ny = y * inv, nz = z * inv;
-}
-
-}  // namespace
-
-SDB_TILE_CLONES void quad_classes(Plane P, int w, int count, float* __restrict vv, float* __restrict eh,
+// Figure 20's stencils at every square of one coordinate's plane, rows w apart: vertex points
+// (class 0), horizontal edge points (1), vertical ones (2), facet points (3).
+SDB_TILE_CLONES void quad_classes(const float* __restrict P, int w, int count, float* __restrict vv, float* __restrict eh,
                                   float* __restrict ev, float* __restrict fv) {
-  for (int L = 0; L < count; ++L) vv[L] = quad_vv(P, L, w), eh[L] = quad_eh(P, L, w), ev[L] = quad_ev(P, L, w), fv[L] = quad_fv(P, L, w);
-}
-
-SDB_TILE_CLONES void triangle_classes(Plane P, int w, int count, float* __restrict vv, float* __restrict eh,
-                                      float* __restrict ev, float* __restrict ed) {
-  for (int L = 0; L < count; ++L) vv[L] = tri_vv(P, L, w), eh[L] = tri_eh(P, L, w), ev[L] = tri_ev(P, L, w), ed[L] = tri_ed(P, L, w);
-}
-
-SDB_TILE_CLONES void quad_limit(Plane P, int w, int count, float* __restrict pos, float* __restrict t1, float* __restrict t2) {
   for (int L = 0; L < count; ++L) {
-    const Limit l = quad_limit_at(P, L, w);
-    pos[L] = l.pos, t1[L] = l.t1, t2[L] = l.t2;
+    vv[L] = 0.5625f * P[L] + 0.09375f * ((P[L + 1] + P[L - 1]) + (P[L + w] + P[L - w])) +
+            0.015625f * ((P[L + w + 1] + P[L - w - 1]) + (P[L + w - 1] + P[L - w + 1]));
+    eh[L] = 0.375f * (P[L] + P[L + 1]) + 0.0625f * ((P[L - w] + P[L - w + 1]) + (P[L + w] + P[L + w + 1]));
+    ev[L] = 0.375f * (P[L] + P[L + w]) + 0.0625f * ((P[L - 1] + P[L + w - 1]) + (P[L + 1] + P[L + w + 1]));
+    fv[L] = 0.25f * ((P[L] + P[L + w + 1]) + (P[L + 1] + P[L + w]));
   }
 }
 
-SDB_TILE_CLONES void triangle_limit(Plane P, int w, int count, float* __restrict pos, float* __restrict t1,
-                                    float* __restrict t2) {
+// Loop's, in triangles: vertex points (class 0), edge points of (a, b)-(a, b+1) (1),
+// (a, b)-(a+1, b) (2) and the diagonal (a, b+1)-(a+1, b) (3).
+SDB_TILE_CLONES void triangle_classes(const float* __restrict P, int w, int count, float* __restrict vv,
+                                      float* __restrict eh, float* __restrict ev, float* __restrict ed) {
   for (int L = 0; L < count; ++L) {
-    const Limit l = tri_limit_at(P, L, w);
-    pos[L] = l.pos, t1[L] = l.t1, t2[L] = l.t2;
+    vv[L] = 0.625f * P[L] + 0.0625f * (((P[L + 1] + P[L - 1]) + (P[L + w] + P[L - w])) + (P[L + w - 1] + P[L - w + 1]));
+    eh[L] = 0.375f * (P[L] + P[L + 1]) + 0.125f * (P[L + w] + P[L - w + 1]);
+    ev[L] = 0.375f * (P[L] + P[L + w]) + 0.125f * (P[L + 1] + P[L + w - 1]);
+    ed[L] = 0.375f * (P[L + 1] + P[L + w]) + 0.125f * (P[L] + P[L + w + 1]);
+  }
+}
+
+// The limit position (class 0) and the two tangents (1, 2) at every square: Catmull-Clark's
+// (16, 4, 1)/36 and Figure 21's stencils (T1 along a row, T2 across), or Loop's 1/2, 1/12 and its
+// regular tangents, as catmark_limit_regular and loop_limit_regular compute them.
+SDB_TILE_CLONES void quad_limit(const float* __restrict P, int w, int count, float* __restrict pos, float* __restrict t1,
+                                float* __restrict t2) {
+  for (int L = 0; L < count; ++L) {
+    const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L - 1], e3 = P[L - w];
+    const float d0 = P[L + w + 1], d1 = P[L + w - 1], d2 = P[L - w - 1], d3 = P[L - w + 1];
+    pos[L] = (1.0f / 36) * (16.0f * P[L] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
+    t1[L] = 4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2));
+    t2[L] = 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3));
+  }
+}
+SDB_TILE_CLONES void triangle_limit(const float* __restrict P, int w, int count, float* __restrict pos,
+                                    float* __restrict t1, float* __restrict t2) {
+  for (int L = 0; L < count; ++L) {
+    const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L + w - 1], e3 = P[L - 1], e4 = P[L - w], e5 = P[L - w + 1];
+    pos[L] = 0.5f * P[L] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
+    t1[L] = (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5));
+    t2[L] = (e1 + e2) - (e4 + e5);
   }
 }
 
@@ -129,9 +89,9 @@ template <int kStep>
 void Tile::load_quad(const uint32_t* idx, const V3* inside, int n, const V3* src) {
   shape(n, n);
   float *x = plane(0), *y = plane(1), *z = plane(2);
-  // Short rows (n <= 9 at every level but the last): through the index array, node by node, with
-  // no per-row set-up; longer ones copy their interior.
-  if (n < 17) {
+  // Short rows: through the index array, node by node, with no per-row set-up; long ones copy
+  // their interior.
+  if (n < kLongRow) {
     for (int i = 0; i < n * n; ++i) {
       const V3& p = src[idx[i]];
       x[i] = p.x, y[i] = p.y, z[i] = p.z;
@@ -214,7 +174,12 @@ void assemble_limit(const Planes& s, int n, int stride, int inner, bool quad, bo
 SDB_TILE_CLONES void unit_normals(const float* __restrict ax, const float* __restrict ay, const float* __restrict az,
                                   const float* __restrict bx, const float* __restrict by, const float* __restrict bz,
                                   float* __restrict nx, float* __restrict ny, float* __restrict nz, int count) {
-  for (int L = 0; L < count; ++L) unit_cross(ax[L], ay[L], az[L], bx[L], by[L], bz[L], nx[L], ny[L], nz[L]);
+  for (int L = 0; L < count; ++L) {
+    const float x = ay[L] * bz[L] - az[L] * by[L], y = az[L] * bx[L] - ax[L] * bz[L], z = ax[L] * by[L] - ay[L] * bx[L];
+    const float l2 = x * x + y * y + z * z;
+    const float inv = 1.0f / std::sqrt(l2 + 1e-37f);  // a zero normal stays zero; no branch, so SIMD lanes
+    nx[L] = x * inv, ny[L] = y * inv, nz[L] = z * inv;
+  }
 }
 
 }  // namespace sdb::mipgh::tile

@@ -25,6 +25,12 @@ namespace sdb::mipgh::tile {
 //     change sign both, so its normals do not (but for the sign of a zero component: a - a is
 //     +0 either way round).
 //   - A strip (load_strip_rows in processor.cpp): three rows of a D-edge's nodes.
+// Nodes along a side from which a row is long enough for per-row work (a triangle tile's or a
+// quad's interior copied row by row, a D-edge strip run through the SIMD stencils) to pay for its
+// set-up: N = 17, the last level of depth 4. Below, node-by-node loops (callgrind: the per-row set-up
+// cost +19% to +27% instructions on small meshes at N <= 9).
+constexpr int kLongRow = 17;
+
 struct Tile {
   std::vector<float> storage[3];
   int rows = 0, stride = 0;
@@ -40,7 +46,8 @@ struct Tile {
       if (s.size() < wanted) s.resize(wanted, 0.0f);
   }
   // A D-facet's nodes: `idx` its index array, `inside` its interior nodes (row-major, contiguous
-  // in the level's storage: copied row by row rather than gathered node by node).
+  // in the level's storage: a triangle's, and a quad's from kLongRow on, copied row by row rather
+  // than gathered node by node).
   void load_quad(const uint32_t* idx, const V3* inside, int n, const V3* src);
   // One triangle, or (turned) the second of two.
   void load_triangle(const uint32_t* idx, const V3* inside, int n, const V3* src, bool turned);
