@@ -49,24 +49,12 @@ void CpuFragmentEvaluation::run_lanes(const FragmentSurface::Batch& batch, LaneB
   }
   project_to_limit(t.limit, src, s.net.data(), project_, s.position.data(), s.normal.data());
   const uint32_t lanes = std::min<uint32_t>(batch.count, kLanes);
-  if (t.block_in_order) {
-    float *pos[kLanes], *nrm[kLanes];
-    for (uint32_t l = 0; l < lanes; ++l) {
-      pos[l] = out_.positions[surface_.first_vertex[ids[l]]].data();
-      nrm[l] = out_.normals[surface_.first_vertex[ids[l]]].data();
-    }
-    return write_blocks(s.position.data(), s.normal.data(), static_cast<uint32_t>(t.block.size()), origin_, pos, nrm,
-                        lanes);
-  }
+  float *pos[kLanes], *nrm[kLanes];
   for (uint32_t l = 0; l < lanes; ++l) {
-    Point3* pos = out_.positions.data() + surface_.first_vertex[ids[l]];
-    Point3* nrm = out_.normals.data() + surface_.first_vertex[ids[l]];
-    for (size_t i = 0; i < t.block.size(); ++i) {
-      const Lanes<kLanes>&p = s.position[t.block[i]], &n = s.normal[t.block_normal[i]];
-      pos[i] = {p.x[l] + origin_[0], p.y[l] + origin_[1], p.z[l] + origin_[2]};
-      nrm[i] = {n.x[l], n.y[l], n.z[l]};
-    }
+    pos[l] = out_.positions[surface_.first_vertex[ids[l]]].data();
+    nrm[l] = out_.normals[surface_.first_vertex[ids[l]]].data();
   }
+  write_blocks(s.position.data(), s.normal.data(), static_cast<uint32_t>(t.block_vertices()), origin_, pos, nrm, lanes);
 }
 
 // A fragment of a shape of its own: its net refined twice at once, relative to the centre and
@@ -95,12 +83,11 @@ void CpuFragmentEvaluation::run_pair(uint32_t fragment, PairBuffers& s) {
     std::swap(dst, spare);
   }
   project_to_limit(t.limit, src, s.level0.data(), s.net.data(), project_, s.position.data(), s.normal.data());
-  const bool in_order = t.block_in_order;
   Point3* pos = out_.positions.data() + surface_.first_vertex[fragment];
   Point3* nrm = out_.normals.data() + surface_.first_vertex[fragment];
-  for (size_t i = 0; i < t.block.size(); ++i) {
-    const Pair& p = s.position[in_order ? i : t.block[i]];
-    const Lanes<1>& n = s.normal[in_order ? i : t.block_normal[i]];
+  for (size_t i = 0; i < t.block_vertices(); ++i) {
+    const Pair& p = s.position[i];
+    const Lanes<1>& n = s.normal[i];
     pos[i] = {p.centred[0] + origin_[0], p.centred[1] + origin_[1], p.centred[2] + origin_[2]};
     nrm[i] = {n.x[0], n.y[0], n.z[0]};
   }

@@ -76,9 +76,7 @@ void pack_shape(const ShapeTables& t, uint32_t header, std::vector<uint32_t>& wo
   f[kTangentSlot] = p.list(lim.tangent_slot);
   f[kTangentW1] = p.list(lim.tangent_w1);
   f[kTangentW2] = p.list(lim.tangent_w2);
-  f[kBlockVertices] = uint32_t(t.block.size());
-  f[kBlock] = p.list(t.block);
-  f[kBlockNormal] = p.list(t.block_normal);
+  f[kBlockVertices] = uint32_t(t.block_vertices());
   f[kNumSlots0] = t.num_slots0;
   f[kNetSize] = lim.net_size;
   f[kNetTangents] = p.list(lim.net_tangents);

@@ -20,12 +20,13 @@ namespace sdb::fragments {
 constexpr uint32_t kHeaderPerLevel = 8;
 // Limit header (at kHeaderPerLevel * levels): num_positions, positions, ring, stencil, stencil_begin,
 // stencil_slot, stencil_w, regular, regular_size, regular_slots, tangent_begin, tangent_slot,
-// tangent_w1, tangent_w2, block_vertices, block, block_normal, num_slots0, net_size, net_tangents.
-constexpr uint32_t kHeaderLimit = 20;
+// tangent_w1, tangent_w2, block_vertices, num_slots0, net_size, net_tangents. The limit's entries
+// are the output blocks' vertices in order (tables.h).
+constexpr uint32_t kHeaderLimit = 18;
 enum LimitField : uint32_t {
   kNumPositions, kPositions, kLimitRing, kStencil, kStencilBegin, kStencilSlot, kStencilW,
   kRegular, kRegularSize, kRegularSlots, kTangentBegin, kTangentSlot, kTangentW1, kTangentW2,
-  kBlockVertices, kBlock, kBlockNormal, kNumSlots0, kNetSize, kNetTangents,
+  kBlockVertices, kNumSlots0, kNetSize, kNetTangents,
 };
 
 struct DeviceTables {

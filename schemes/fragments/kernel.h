@@ -39,9 +39,8 @@ void refine_level(const LevelTable& table, bool catmark, const Slot* parent, Slo
 void project_to_limit(const LimitTable& table, const Lanes<kLanes>* last, const Lanes<kLanes>* net, bool project,
                       Lanes<kLanes>* position, Lanes<kLanes>* normal);
 
-// Copies the first `count` limit entries of `lanes` fragments, which take them in block order
-// (ShapeTables::block_in_order), into their output blocks pos[l], nrm[l], adding `origin` to the
-// positions.
+// Copies the first `count` limit entries of `lanes` fragments (their output blocks' vertices in
+// order, tables.h) into their outputs pos[l], nrm[l], adding `origin` to the positions.
 void write_blocks(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, uint32_t count, const float* origin,
                   float* const* pos, float* const* nrm, uint32_t lanes);
 

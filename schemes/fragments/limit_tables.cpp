@@ -2,6 +2,7 @@
 // the regular tangents' fast path, and the output blocks that take them.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "schemes/fragments/ring_limit.h"
 #include "schemes/fragments/table_builder.h"
@@ -15,11 +16,7 @@ namespace sdb::fragments::detail {
 template <Sdc::SchemeType S>
 void TableBuilder<S>::make_limit(ShapeTables& t) const {
   const Far::TopologyLevel& last = refiner_->GetLevel(depth_);
-  std::vector<int> entry(last.GetNumVertices(), -1);
-  std::map<std::pair<int, int>, int> tangent_entry;
   const int bs = block_size(rule_, out_depth_), shift = depth_ - out_depth_, mask = (1 << shift) - 1;
-  t.block.assign(static_cast<size_t>(num_owned_) * bs, 0);
-  t.block_normal.assign(t.block.size(), 0);
   LimitTable& lim = t.limit;
   lim.tangent_begin.push_back(0);
   std::vector<char> control(refiner_->GetLevel(0).GetNumVertices(), 1);
@@ -30,8 +27,9 @@ void TableBuilder<S>::make_limit(ShapeTables& t) const {
       if (control[v] && level.GetVertexChildVertex(v) >= 0) next[level.GetVertexChildVertex(v)] = 1;
     control = std::move(next);
   }
-  // Entries in the order of the blocks' vertices, so that a fragment of one face has its entries
-  // in block order (block[i] = i), which the output copy can stream.
+  // One entry per block vertex, in block order, so that the output copy streams (a point shared by
+  // two owned faces is computed in each, with the same rule: the same bits). Each vertex of a
+  // block is a corner of every last-level face around it, all on the block's side.
   struct Corner {
     size_t at;
     int v, face;
@@ -47,22 +45,16 @@ void TableBuilder<S>::make_limit(ShapeTables& t) const {
     }
   }
   std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.at < b.at; });
+  corners.erase(std::unique(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.at == b.at; }),
+                corners.end());
+  if (corners.size() != static_cast<size_t>(num_owned_) * bs)
+    throw std::logic_error("fragment tables: an output block vertex without a last-level point");
   for (const Corner& c : corners) {
-    if (entry[c.v] < 0) {
-      entry[c.v] = static_cast<int>(lim.position.size());
-      add_limit_position(last, c.v, lim);
-    }
-    const int side = side_of(last, c.v, c.face);
-    auto [it, fresh] = tangent_entry.try_emplace({c.v, side}, static_cast<int>(lim.regular.size()));
-    if (fresh) {
-      add_limit_tangents(last, c.v, side, c.face, lim);
-      lim.at_control_vertex.push_back(control[c.v]);
-    }
-    t.block[c.at] = entry[c.v];
-    t.block_normal[c.at] = it->second;
+    add_limit_position(last, c.v, lim);
+    add_limit_tangents(last, c.v, side_of(last, c.v, c.face), c.face, lim);
+    lim.at_control_vertex.push_back(control[c.v]);
   }
-  t.block_in_order = true;
-  for (size_t i = 0; i < t.block.size(); ++i) t.block_in_order &= t.block[i] == i && t.block_normal[i] == i;
+  t.owned_faces = num_owned_;
 }
 
 // Which of a vertex's sides face f lies on: for a corner the face's slot in the ring (-1 - slot);

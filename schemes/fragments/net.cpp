@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -46,12 +47,14 @@ class NetBuilder {
              const GlobalTags& tags)
       : mesh_(mesh), level_(level), offsets_(offsets), tags_(tags) {}
 
-  // The net of `owned` (global faces), its control vertices, and the key that names its shape.
-  std::pair<LocalNet, std::vector<int>> build(const std::vector<int>& owned, std::vector<int32_t>& key) {
+  // The net of `owned` (global faces, each taken from its corner `starts[k]` on: the corner at
+  // its output block's (0, 0)), its control vertices, and the key that names its shape.
+  std::pair<LocalNet, std::vector<int>> build(const std::vector<int>& owned, const std::vector<int>& starts,
+                                              std::vector<int32_t>& key) {
     local_.clear();
     control_.clear();
     faces_.clear();
-    for (int f : owned) add_face(f, 0);
+    for (size_t k = 0; k < owned.size(); ++k) add_face(owned[k], starts[k]);
     const int region_vertices = static_cast<int>(control_.size());
     for (int i = 0; i < region_vertices; ++i) add_ring(control_[i], owned);
     return {make_net(static_cast<int>(owned.size()), key), control_};
@@ -162,11 +165,17 @@ struct KeyHash {
   }
 };
 
+// The faces a fragment owns; `centre`: a vertex patch's extraordinary vertex, -1 for a facet patch.
+struct OwnedSet {
+  std::vector<int> faces;
+  int centre;
+};
+
 // Vertex patches for extraordinary vertices whose faces no earlier patch took; every other face
 // (with a surface) a facet patch.
-std::vector<std::vector<int>> owned_face_sets(const ControlMesh& mesh, const Far::TopologyLevel& level,
-                                              SubdivisionRule rule, const GlobalTags& tags, int& vertex_patches) {
-  std::vector<std::vector<int>> sets;
+std::vector<OwnedSet> owned_face_sets(const ControlMesh& mesh, const Far::TopologyLevel& level, SubdivisionRule rule,
+                                      const GlobalTags& tags, int& vertex_patches) {
+  std::vector<OwnedSet> sets;
   std::vector<char> taken(mesh.face_sizes.size(), 0);
   vertex_patches = 0;
   for (int v = 0; v < level.GetNumVertices(); ++v) {
@@ -174,13 +183,42 @@ std::vector<std::vector<int>> owned_face_sets(const ControlMesh& mesh, const Far
     Far::ConstIndexArray vf = level.GetVertexFaces(v);
     const bool free = std::none_of(vf.begin(), vf.end(), [&](int f) { return taken[f] || tags.hole[f]; });
     if (!free || vf.size() == 0) continue;
-    sets.emplace_back(vf.begin(), vf.end());
+    sets.push_back({{vf.begin(), vf.end()}, v});
     for (int f : vf) taken[f] = 1;
     ++vertex_patches;
   }
   for (int f = 0; f < static_cast<int>(mesh.face_sizes.size()); ++f)
-    if (!taken[f] && !tags.hole[f]) sets.push_back({f});
+    if (!taken[f] && !tags.hole[f]) sets.push_back({{f}, -1});
   return sets;
+}
+
+// The rotations a fragment can be built in: a facet patch's face from each of its corners; a
+// vertex patch's faces, each from the centre, the fan from each of its faces (Far orders a vertex's
+// faces around it). Nets that differ only in where the global mesh happens to start its faces and
+// fans then meet one rotation with the same key, and share a shape (and run eight to a call): the
+// bunny's valence-5 and -7 vertex patches were each a shape of its own before.
+struct Rotation {
+  std::vector<int> faces, starts;
+};
+
+std::vector<Rotation> rotations_of(const OwnedSet& set, const ControlMesh& mesh, const std::vector<int>& offsets) {
+  std::vector<Rotation> out;
+  const int n = static_cast<int>(set.faces.size());
+  if (set.centre < 0) {
+    for (int s = 0; s < mesh.face_sizes[set.faces[0]]; ++s) out.push_back({set.faces, {s}});
+    return out;
+  }
+  std::vector<int> starts(n);
+  for (int k = 0; k < n; ++k) {
+    const int f = set.faces[k];
+    while (mesh.face_vertices[offsets[f] + starts[k]] != set.centre) ++starts[k];
+  }
+  for (int r = 0; r < n; ++r) {
+    Rotation rot;
+    for (int k = 0; k < n; ++k) rot.faces.push_back(set.faces[(r + k) % n]), rot.starts.push_back(starts[(r + k) % n]);
+    out.push_back(std::move(rot));
+  }
+  return out;
 }
 
 }  // namespace
@@ -203,11 +241,20 @@ Partition partition_mesh(const ControlMesh& mesh, SubdivisionRule rule) {
   NetBuilder builder(mesh, level, offsets, tags);
   std::unordered_map<std::vector<int32_t>, int, KeyHash> shapes;
   std::vector<int32_t> key;
-  for (const std::vector<int>& owned : sets) {
-    auto [net, control] = builder.build(owned, key);
-    auto [it, fresh] = shapes.try_emplace(key, static_cast<int>(p.shapes.size()));
-    if (fresh) p.shapes.push_back(std::move(net));
-    p.fragments.push_back({owned, std::move(control), it->second});
+  std::vector<int32_t> best_key;
+  for (const OwnedSet& set : sets) {
+    // The rotation with the least key (the first of equals, so a facet patch with a symmetric net
+    // keeps the global mesh's rotation).
+    std::optional<std::pair<LocalNet, std::vector<int>>> best;
+    Rotation chosen;
+    for (Rotation& rot : rotations_of(set, mesh, offsets)) {
+      auto built = builder.build(rot.faces, rot.starts, key);
+      if (best && !(key < best_key)) continue;
+      best = std::move(built), best_key = key, chosen = std::move(rot);
+    }
+    auto [it, fresh] = shapes.try_emplace(best_key, static_cast<int>(p.shapes.size()));
+    if (fresh) p.shapes.push_back(std::move(best->first));
+    p.fragments.push_back({std::move(chosen.faces), std::move(chosen.starts), std::move(best->second), it->second});
   }
   return p;
 }

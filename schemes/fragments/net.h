@@ -24,6 +24,7 @@ struct LocalNet {
 
 struct Fragment {
   std::vector<int> owned_faces;  // global face indices; the output has one block per owned face
+  std::vector<int> owned_starts;  // per owned face, the corner at its block's (0, 0) (describe())
   std::vector<int> control;      // global control vertex of each local vertex (level-0 slot)
   int shape = 0;                 // index into Partition::shapes
 };

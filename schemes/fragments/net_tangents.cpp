@@ -106,9 +106,9 @@ void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last) {
   LimitTable& lim = t.limit;
   const uint32_t n = lim.net_size;
   const SubdivisionRule rule = catmark ? SubdivisionRule::CatmullClark : SubdivisionRule::Loop;
+  if (t.owned_faces != 1) return;
   int s = 0;
-  while (block_size(rule, s) < static_cast<int>(t.block.size())) ++s;
-  if (!t.block_in_order || block_size(rule, s) != static_cast<int>(t.block.size())) return;  // not one face
+  while (block_size(rule, s) < static_cast<int>(t.block_vertices())) ++s;
   for (int32_t stencil : lim.stencil)
     if (stencil >= 0) return;  // a dart's position: not a regular patch
   std::vector<std::array<uint8_t, 2>> powers;
@@ -116,7 +116,7 @@ void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last) {
     for (int b = 0; b <= 4; ++b)
       if (catmark ? a <= 3 && b <= 3 : a + b <= 4) powers.push_back({uint8_t(a), uint8_t(b)});
   const int segments = 1 << s, m = static_cast<int>(powers.size());
-  const size_t entries = t.block.size();
+  const size_t entries = t.block_vertices();
   Eigen::MatrixXd basis(entries, m), positions(entries, n);
   for (int j = 0; j <= segments; ++j)
     for (int i = 0; i + (catmark ? 0 : j) <= segments; ++i) {

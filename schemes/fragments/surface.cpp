@@ -55,6 +55,20 @@ std::vector<FragmentSurface::Batch> FragmentSurface::batches_of(uint32_t max_cou
   return out;
 }
 
+namespace {
+
+// A block's grid point (u, v), the block's (0, 0) at the face's corner `start`, in the face's own
+// ptex parametrization (corner 0 at (0, 0)). Each turn by one corner: a quad's (u, v) -> (1 - v, u),
+// a triangle's -> (1 - u - v, u). Exact on the grid: every value is a multiple of 2^-depth.
+SurfaceCoord in_face(SubdivisionRule rule, int start, uint32_t face, SurfaceCoord c) {
+  for (int turn = 0; turn < start; ++turn)
+    c = rule == SubdivisionRule::Loop ? SurfaceCoord{face, 1.0f - c.u - c.v, c.u} : SurfaceCoord{face, 1.0f - c.v, c.u};
+  c.face = face;
+  return c;
+}
+
+}  // namespace
+
 void FragmentSurface::describe(Tessellation& out) const {
   const int bs = block_size(rule, depth);
   const std::vector<uint32_t> pattern = block_triangles(rule, depth);
@@ -68,11 +82,12 @@ void FragmentSurface::describe(Tessellation& out) const {
       if (rule != SubdivisionRule::Loop || i + j <= s)
         grid[block_index(rule, depth, i, j)] = {0, static_cast<float>(i) * inv, static_cast<float>(j) * inv};
   for (size_t f = 0; f < partition.fragments.size(); ++f) {
-    const std::vector<int>& owned = partition.fragments[f].owned_faces;
-    for (size_t k = 0; k < owned.size(); ++k) {
+    const Fragment& fragment = partition.fragments[f];
+    for (size_t k = 0; k < fragment.owned_faces.size(); ++k) {
       const size_t base = first_vertex[f] + k * bs;
       for (uint32_t t : pattern) out.triangles.push_back(static_cast<uint32_t>(base + t));
-      for (int b = 0; b < bs; ++b) out.coords[base + b] = {static_cast<uint32_t>(owned[k]), grid[b].u, grid[b].v};
+      const auto face = static_cast<uint32_t>(fragment.owned_faces[k]);
+      for (int b = 0; b < bs; ++b) out.coords[base + b] = in_face(rule, fragment.owned_starts[k], face, grid[b]);
     }
   }
 }
@@ -88,7 +103,7 @@ FragmentStats FragmentSurface::stats() const {
       s.table_bytes += l.faces.size() * sizeof(FaceRule) + l.edges.size() * sizeof(EdgeRule) +
                        l.vertices.size() * sizeof(VertexRule) + l.ring.size() * sizeof(uint32_t);
     s.table_bytes += t.limit.position.size() * sizeof(VertexRule) + t.limit.ring.size() * 4 +
-                     t.limit.tangent_slot.size() * 12 + t.limit.regular_slots.size() * 4 + t.block.size() * 8;
+                     t.limit.tangent_slot.size() * 12 + t.limit.regular_slots.size() * 4;
   }
   return s;
 }

@@ -103,10 +103,10 @@ struct ShapeTables {
   uint32_t max_slots = 0;          // largest level, for scratch buffers
   std::vector<LevelTable> levels;  // levels[d - 1] makes level d from level d - 1
   LimitTable limit;
-  // Per owned face, per vertex of its output block (block_size(), ptex grid order), the limit
-  // position entry and the tangent entry it takes.
-  std::vector<uint32_t> block, block_normal;
-  bool block_in_order = false;  // block[i] = block_normal[i] = i: a fragment of one face
+  // The limit's entries are the output blocks' vertices, one block per owned face (block_size(),
+  // ptex grid order) after another.
+  int owned_faces = 0;
+  size_t block_vertices() const { return limit.position.size(); }
 };
 
 // Vertices per owned face at depth d: (2^d + 1)^2 for a quad, (2^d + 1)(2^d + 2) / 2 for a

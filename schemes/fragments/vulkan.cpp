@@ -66,8 +66,8 @@ std::vector<uint64_t> entry_costs(const ShapeTables& t, Part part, uint32_t leve
     return c;
   }
   const LimitTable& lim = t.limit;
-  for (size_t i = 0; i < t.block.size(); ++i) {
-    const uint32_t p = t.block[i], n = t.block_normal[i];
+  for (uint32_t i = 0; i < t.block_vertices(); ++i) {
+    const uint32_t p = i, n = i;
     uint64_t cost = 1 + (lim.stencil[p] < 0 ? vertex_rule_cost(lim.position[p])
                                             : lim.stencil_begin[lim.stencil[p] + 1] - lim.stencil_begin[lim.stencil[p]]);
     if (lim.net_size) cost += lim.net_size;

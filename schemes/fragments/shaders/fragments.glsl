@@ -54,8 +54,8 @@ const uint kHeaderPerLevel = 8u;
 // Limit header fields (device_tables.h).
 const uint kNumPositions = 0u, kPositions = 1u, kLimitRing = 2u, kStencil = 3u, kStencilBegin = 4u, kStencilSlot = 5u,
            kStencilW = 6u, kRegular = 7u, kRegularSize = 8u, kRegularSlots = 9u, kTangentBegin = 10u,
-           kTangentSlot = 11u, kTangentW1 = 12u, kTangentW2 = 13u, kBlockVertices = 14u, kBlock = 15u,
-           kBlockNormal = 16u, kNumSlots0 = 17u, kNetSize = 18u, kNetTangents = 19u;
+           kTangentSlot = 11u, kTangentW1 = 12u, kTangentW2 = 13u, kBlockVertices = 14u,
+           kNumSlots0 = 15u, kNetSize = 16u, kNetTangents = 17u;
 
 uint g_lane, g_group, g_shape, g_fragment, g_count, g_scratch;
 

@@ -97,12 +97,11 @@ precise vec3 limit_normal(uint lh, uint entry) {
 void main() {
   if (!begin_invocation()) return;
   const uint lh = limit_header();
-  const uint block = table_word(lh + kBlock), block_normal = table_word(lh + kBlockNormal);
   const uint first = 3u * (fragment_word(2u * g_fragment + 1u) - pc.wave_first_vertex) + pc.out_shift;
   const uvec2 range = chunk_of(table_word(lh + kBlockVertices));
   for (uint i = range.x; i < range.y; ++i) {
-    precise vec3 p = limit_position(lh, table_word(block + i)) + pc.origin.xyz;
-    const vec3 nrm = limit_normal(lh, table_word(block_normal + i));
+    precise vec3 p = limit_position(lh, i) + pc.origin.xyz;
+    const vec3 nrm = limit_normal(lh, i);
     const uint o = first + 3u * i;
     imageStore(out_position, int(o), vec4(p.x));
     imageStore(out_position, int(o + 1u), vec4(p.y));
