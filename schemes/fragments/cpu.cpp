@@ -16,6 +16,7 @@ CpuFragmentEvaluation::CpuFragmentEvaluation(const ControlMesh& mesh, Subdivisio
       multithreaded_(multithreaded),
       project_(project_to_limit) {
   if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
+  for (ShapeTables& t : surface_.tables) address_in_bytes(t);
   const Bounds box = bounds_of(control_);
   for (int k = 0; k < 3; ++k) origin_[k] = static_cast<float>(box.centre(k));
   surface_.describe(out_);
@@ -71,12 +72,12 @@ void CpuFragmentEvaluation::run_pair(uint32_t fragment, PairBuffers& s) {
   for (size_t i = 0; i < f.control.size(); ++i) {
     const Point3& p = control_[f.control[i]];
     const float x = p[0] - first[0], y = p[1] - first[1], z = p[2] - first[2];
-    s.level0[i] = {{p[0] - origin_[0], p[1] - origin_[1], p[2] - origin_[2], 0}, {x, y, z, 0}};
+    s.level0[i].pair = {{p[0] - origin_[0], p[1] - origin_[1], p[2] - origin_[2], 0}, {x, y, z, 0}};
     s.net[i] = {{x}, {y}, {z}};
   }
   const bool catmark = surface_.rule == SubdivisionRule::CatmullClark;
-  const Pair* src = s.level0.data();
-  Pair *dst = s.a.data(), *spare = s.b.data();
+  const PairSlot* src = s.level0.data();
+  PairSlot *dst = s.a.data(), *spare = s.b.data();
   for (const LevelTable& level : t.levels) {
     refine_level(level, catmark, src, dst);
     src = dst;

@@ -29,7 +29,8 @@ class CpuFragmentEvaluation final : public Evaluation {
     std::vector<Lanes<kLanes>> a, b, net, position, normal;
   };
   struct PairBuffers {
-    std::vector<Pair> level0, a, b, position;
+    std::vector<PairSlot> level0, a, b;
+    std::vector<Pair> position;
     std::vector<Lanes<1>> net, normal;
   };
   struct Scratch {

@@ -1,9 +1,13 @@
 #include "schemes/fragments/kernel.h"
 
+#include "harness/core/errors.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 
 
 // The vector helpers below are inlined into the kernel's clones (flatten): their ABI never matters.
@@ -24,8 +28,9 @@ struct V {
   F8 v[K];
 };
 
+// The vectors of a level buffer's slot that hold values: Lanes' x y z, a PairSlot's one Pair.
 template <class Slot>
-constexpr int vectors_of = static_cast<int>(sizeof(Slot) / sizeof(F8));
+constexpr int vectors_of = std::is_same_v<Slot, PairSlot> ? 1 : 3;
 static_assert(sizeof(Lanes<kLanes>) == 3 * sizeof(F8) && sizeof(Pair) == sizeof(F8));
 
 template <int K>
@@ -47,16 +52,19 @@ inline V<K> operator*(const V<K>& a, float s) {
   return r;
 }
 
-// A level's slots as K-vector values.
+// A level buffer's slots as K-vector values, kSlotBytes apart. The tables name them by byte
+// offset (address_in_bytes), so that a table entry is a load's displacement as it stands.
 template <int K>
 struct Slots {
-  const F8u* base;
-  V<K> operator[](uint32_t i) const {
-    const F8u* slot = base + size_t(i) * K;  // one address, the vectors at displacements
+  const char* base;
+  const F8u* at(uint32_t offset) const { return reinterpret_cast<const F8u*>(base + offset); }
+  V<K> operator[](uint32_t offset) const {
+    const F8u* slot = at(offset);  // one address, the vectors at displacements
     V<K> r;
     for (int k = 0; k < K; ++k) r.v[k] = slot[k];
     return r;
   }
+  V<K> slot(uint32_t i) const { return (*this)[i * kSlotBytes]; }  // the i-th, counting in order
 };
 template <int K>
 inline void store(void* to, const V<K>& a) {
@@ -94,7 +102,7 @@ V<K> sorted_sum_network(Slots<K> src, const uint32_t* ref, int n) {
   V<K> out;
   for (int k = 0; k < K; ++k) {
     F8 v[kNetworkRing];
-    for (int i = 0; i < n; ++i) v[i] = src.base[size_t(ref[i]) * K + k] + 0.0f;
+    for (int i = 0; i < n; ++i) v[i] = src.at(ref[i])[k] + 0.0f;
     for (int pass = 0; pass < n; ++pass)
       for (int i = pass & 1; i + 1 < n; i += 2) {
         const F8 a = v[i], b = v[i + 1];
@@ -113,7 +121,7 @@ V<K> sorted_sum_long(Slots<K> src, const uint32_t* ref, int n) {
   float v[1024];  // tables.cpp refuses longer rings
   for (int k = 0; k < K; ++k)
     for (int e = 0; e < 8; ++e) {
-      for (int i = 0; i < n; ++i) v[i] = src.base[size_t(ref[i]) * K + k][e];
+      for (int i = 0; i < n; ++i) v[i] = src.at(ref[i])[k][e];
       out.v[k][e] = sorted_sum(v, n);
     }
   return out;
@@ -171,7 +179,8 @@ inline V<K> apply_regular_first(const VertexRule& r, const uint32_t* ring, Slots
 
 template <class Slot>
 Slots<vectors_of<Slot>> slots(const Slot* p) {
-  return {reinterpret_cast<const F8u*>(p)};
+  static_assert(sizeof(Slot) == kSlotBytes);
+  return {reinterpret_cast<const char*>(p)};
 }
 
 // 1 / sqrt(v), IEEE-exact in every element: as a loop GCC vectorizes it (vsqrtps and vdivps on
@@ -237,7 +246,7 @@ void general_tangents(const LimitTable& t, size_t i, Slots<K> last, V<K>& a, V<K
       for (int e = 0; e < 8; ++e) {
         double da = 0, db = 0;
         for (uint32_t j = begin; j < end; ++j) {
-          const float p = last.base[size_t(slot[j]) * K + k][e];
+          const float p = last.at(slot[j])[k][e];
           da += double(w1[j]) * p, db += double(w2[j]) * p;
         }
         a.v[k][e] = float(da), b.v[k][e] = float(db);
@@ -250,15 +259,30 @@ void general_tangents(const LimitTable& t, size_t i, Slots<K> last, V<K>& a, V<K
   }
 }
 
-// The tangents as weights on the control points relative to the first (net[0] is 0).
-void net_normal(const float* w1, uint32_t n, Slots<3> net, Lanes<kLanes>& out) {
+// The tangents as weights on the control points relative to the first, the block's support
+// (tables.h, net_support) alone.
+void net_normal(const float* w1, uint32_t n, const uint32_t* support, uint32_t count, Slots<3> net,
+                Lanes<kLanes>& out) {
   const float* w2 = w1 + n;
   V<3> a{}, b{};
-  for (uint32_t j = 1; j < n; ++j) {
-    const V<3> p = net[j];
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t j = support[k];
+    const V<3> p = net.slot(j);
     a = a + p * w1[j], b = b + p * w2[j];
   }
   unit_normal(a, b, out);
+}
+
+void net_normals(const LimitTable& t, Slots<3> net, Lanes<kLanes>* normal) {
+  const uint32_t n = t.net_size, blocks = static_cast<uint32_t>(t.net_support_begin.size() - 1);
+  const size_t per_block = t.regular.size() / blocks;
+  const float* weights = t.net_tangents.data();
+  for (uint32_t b = 0; b < blocks; ++b) {
+    const uint32_t* support = t.net_support.data() + t.net_support_begin[b];
+    const uint32_t count = t.net_support_begin[b + 1] - t.net_support_begin[b];
+    for (size_t i = b * per_block; i < (b + 1) * per_block; ++i)
+      net_normal(weights + i * 2 * n, n, support, count, net, normal[i]);
+  }
 }
 
 // One fragment: the sums run across the net's slots instead, in the vector lanes (normals need
@@ -314,7 +338,7 @@ void patch_tangents(const LimitTable& t, Slots<K> net, Emit emit) {
   for (int k = 0; k < m; ++k) {
     V<K> sum{};
     const float* w = weights + size_t(k) * n;
-    for (uint32_t slot = 1; slot < n; ++slot) sum = sum + net[slot] * w[slot];
+    for (uint32_t slot = 1; slot < n; ++slot) sum = sum + net.slot(slot) * w[slot];
     c[k] = sum;
   }
   const bool triangle = t.patch_triangle;
@@ -457,20 +481,17 @@ SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Lanes<kLanes>
     patch_tangents(t, slots(net), [&](const V<3>& a, const V<3>& b) { unit_normal(a, b, *normal++); });
     return;
   }
+  if (t.net_size) return net_normals(t, slots(net), normal);
   const TangentView view(t);
   for (size_t i = 0; i < view.size; ++i) {
-    if (view.net_size) {
-      net_normal(view.net + i * 2 * view.net_size, view.net_size, slots(net), normal[i]);
-      continue;
-    }
     V<3> a, b;
     view.tangents(t, i, slots(last), a, b);
     unit_normal(a, b, normal[i]);
   }
 }
 
-SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const Pair* last, const Pair* level0, const Lanes<1>* net,
-                                        bool project, Pair* position, Lanes<1>* normal) {
+SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const PairSlot* last, const PairSlot* level0,
+                                        const Lanes<1>* net, bool project, Pair* position, Lanes<1>* normal) {
   project_positions(t, slots(last), project, position);
   constexpr int kLocal = 4;  // Pair::local
   if (!t.patch_weights.empty()) {
@@ -501,7 +522,31 @@ SDB_KERNEL_CLONES void write_blocks(const Lanes<kLanes>* position, const Lanes<k
   copy_entries(position, normal, count, offset, p, n, lanes);
 }
 
+namespace {
+
+void in_bytes(uint32_t& slot) { slot *= kSlotBytes; }
+void in_bytes(std::vector<uint32_t>& slots) {
+  for (uint32_t& s : slots) in_bytes(s);
+}
+void in_bytes(VertexRule& r) { in_bytes(r.centre), in_bytes(r.p0), in_bytes(r.p1); }
+
+}  // namespace
+
+void address_in_bytes(ShapeTables& t) {
+  if (uint64_t(t.max_slots) * kSlotBytes > std::numeric_limits<uint32_t>::max())
+    throw Unsupported("a fragment's level has more slots than 32-bit byte offsets reach");
+  for (LevelTable& l : t.levels) {
+    for (FaceRule& f : l.faces) in_bytes(f.a), in_bytes(f.b), in_bytes(f.c), in_bytes(f.d);
+    for (EdgeRule& e : l.edges) in_bytes(e.v0), in_bytes(e.v1), in_bytes(e.f0), in_bytes(e.f1);
+    for (VertexRule& v : l.vertices) in_bytes(v);
+    in_bytes(l.ring);
+  }
+  LimitTable& lim = t.limit;
+  for (VertexRule& v : lim.position) in_bytes(v);
+  in_bytes(lim.ring), in_bytes(lim.stencil_slot), in_bytes(lim.regular_slots), in_bytes(lim.tangent_slot);
+}
+
 template void refine_level<Lanes<kLanes>>(const LevelTable&, bool, const Lanes<kLanes>*, Lanes<kLanes>*);
-template void refine_level<Pair>(const LevelTable&, bool, const Pair*, Pair*);
+template void refine_level<PairSlot>(const LevelTable&, bool, const PairSlot*, PairSlot*);
 
 }  // namespace sdb::fragments

@@ -27,8 +27,23 @@ struct Pair {
   float centred[4], local[4];
 };
 
+// A Pair in a slot as wide as Lanes<kLanes>: both kernels' level buffers step kSlotBytes a slot,
+// so one set of tables, its slots named by byte offset, serves both (address_in_bytes).
+struct PairSlot {
+  Pair pair;
+  float unused[16];
+};
+constexpr uint32_t kSlotBytes = sizeof(Lanes<kLanes>);
+static_assert(sizeof(PairSlot) == kSlotBytes);
+
+// Every slot a table names (rules, rings, stencils, tangent slots) as its byte offset in a level
+// buffer, slot x kSlotBytes: the kernel's loads then take a table entry as their displacement,
+// where computing slot x 96 took two instructions a load (a tenth of the kernel's). In prepare,
+// once; the CPU kernel reads its tables only this way. Throws Unsupported past 2^32 bytes.
+void address_in_bytes(ShapeTables& t);
+
 // parent: level d - 1's slots; child: level d's (table.num_slots). Catmull-Clark edge and vertex
-// rules read the face points just written to `child`. Slot: Lanes<kLanes> or Pair.
+// rules read the face points just written to `child`. Slot: Lanes<kLanes> or PairSlot.
 template <class Slot>
 void refine_level(const LevelTable& table, bool catmark, const Slot* parent, Slot* child);
 
@@ -48,7 +63,7 @@ void write_blocks(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, ui
 // the local halves (net tangents, read from `net`, only at control vertices: streaming 2 x
 // net_size weights for every vertex made the bunny 33% slower), from the centred ones where the
 // shape has no net tangents. `level0`: the first level's slots (the patch polynomial's net).
-void project_to_limit(const LimitTable& table, const Pair* last, const Pair* level0, const Lanes<1>* net, bool project,
-                      Pair* position, Lanes<1>* normal);
+void project_to_limit(const LimitTable& table, const PairSlot* last, const PairSlot* level0, const Lanes<1>* net,
+                      bool project, Pair* position, Lanes<1>* normal);
 
 }  // namespace sdb::fragments

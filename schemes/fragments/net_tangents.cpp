@@ -64,6 +64,22 @@ NetRows refine_rows(const LevelTable& t, bool catmark, const NetRows& parent, ui
 
 void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last);
 
+void add_net_support(ShapeTables& t) {
+  LimitTable& lim = t.limit;
+  const uint32_t n = lim.net_size;
+  const size_t per_block = t.block_vertices() / t.owned_faces;
+  lim.net_support_begin = {0};
+  for (int b = 0; b < t.owned_faces; ++b) {
+    for (uint32_t j = 1; j < n; ++j) {
+      bool weighed = false;
+      for (size_t i = b * per_block; i < (b + 1) * per_block && !weighed; ++i)
+        weighed = lim.net_tangents[i * 2 * n + j] != 0 || lim.net_tangents[i * 2 * n + n + j] != 0;
+      if (weighed) lim.net_support.push_back(j);
+    }
+    lim.net_support_begin.push_back(static_cast<uint32_t>(lim.net_support.size()));
+  }
+}
+
 }  // namespace
 
 void add_net_tangents(ShapeTables& t, bool catmark) {
@@ -94,6 +110,7 @@ void add_net_tangents(ShapeTables& t, bool catmark) {
     float* out = lim.net_tangents.data() + i * 2 * n;
     for (uint32_t j = 0; j < n; ++j) out[j] = static_cast<float>(a[j]), out[n + j] = static_cast<float>(b[j]);
   }
+  add_net_support(t);
   add_patch_polynomial(t, catmark, rows);
 }
 

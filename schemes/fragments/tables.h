@@ -78,6 +78,11 @@ struct LimitTable {
   // precision at any depth; from the last level's points they lose a bit a level (README.md).
   uint32_t net_size = 0;
   std::vector<float> net_tangents;
+  // Per output block (owned face), the level-0 slots some of its entries' net tangents weigh
+  // (net_support[net_support_begin[b] .. [b + 1]), slot 0 left out: the first control point is
+  // the origin): a face's limit depends on its 1-ring alone, 13 of a valence-7 vertex patch's 22
+  // control points, so the CPU kernel skips the zeros.
+  std::vector<uint32_t> net_support_begin, net_support;
   // Per tangent entry: its vertex is a control vertex's (level 0's, refined on). A fragment whose
   // shape it has alone (the CPU's one-lane kernel) reads only these entries' net tangents, where a
   // low-valence ring shrinks fastest; the rest it takes from a second refinement of its net
