@@ -75,14 +75,11 @@ inline void store(void* to, const V<K>& a) {
 inline F8 vmin(F8 a, F8 b) { return b < a ? b : a; }
 inline F8 vmax(F8 a, F8 b) { return a < b ? b : a; }
 
-// Adding +0 first turns -0 into +0: min and max cannot order two zeros, so without it the sum
-// of {-0, +0, x} would depend on which came first.
-inline F8 sum3_sorted(F8 a, F8 b, F8 c) {
-  a += 0.0f, b += 0.0f, c += 0.0f;
-  const F8 lo = vmin(vmin(a, b), c), hi = vmax(vmax(a, b), c);
-  const F8 mid = vmax(vmin(a, b), vmin(vmax(a, b), c));
-  return (lo + mid) + hi;
-}
+// a + b + c the same whatever order the three come in: the largest of the three ways to add them
+// (each pair first, then the third), a set that any reordering leaves as it is. Eight operations
+// where sorting the three took eleven. No zero-sign care needed: a sum is -0 only when all three
+// are, and then every way gives -0.
+inline F8 sum3_symmetric(F8 a, F8 b, F8 c) { return vmax(vmax((a + b) + c, (b + c) + a), (c + a) + b); }
 
 // Ascending, so the sum is the same whatever order the terms came in.
 float sorted_sum(float* v, int n) {
@@ -142,7 +139,7 @@ V<K> ring_sum(Slots<K> src, const uint32_t* ref, int n) {
     case 6: {
       const V<K> a = src[ref[0]] + src[ref[3]], b = src[ref[1]] + src[ref[4]], c = src[ref[2]] + src[ref[5]];
       V<K> r;
-      for (int k = 0; k < K; ++k) r.v[k] = sum3_sorted(a.v[k], b.v[k], c.v[k]);
+      for (int k = 0; k < K; ++k) r.v[k] = sum3_symmetric(a.v[k], b.v[k], c.v[k]);
       return r;
     }
     case 8: {
@@ -300,59 +297,62 @@ void net_normal(const float* w1, uint32_t n, const Lanes<1>* net, Lanes<1>& out)
 }
 
 // A row's derivative coefficients: du[a - 1] = sum of a v^b c[k], dv[a] = sum of b v^(b - 1) c[k]
-// over the monomials k = u^a v^b, from 0 in the order of k. The monomials run a-major
-// (net_tangents.cpp), so each coefficient's terms are one run of k, summed in registers;
-// zero-initialising the arrays instead compiled to a rep stos a row, a tenth of the limit's time.
-template <int K>
-inline void row_coefficients(const std::array<uint8_t, 2>* powers, int m, const V<K>* c, const float* vp, V<K>* du,
-                             V<K>* dv) {
-  bool set_u[4] = {}, set_v[4] = {};
-  for (int k = 0; k < m;) {
-    const int a = powers[k][0];
+// over the monomials k = u^a v^b in net_tangents.cpp's order (a-major: a + b <= 4 for Loop's
+// triangle, a, b <= 3 for a bicubic), each coefficient's terms summed from 0 in the order of k.
+// The monomials are fixed per patch kind, so the loops unroll to straight code (a loop over the
+// table's powers, with its branches, was a twelfth of the kernel's instructions).
+template <bool kTriangle, int K>
+inline void row_coefficients(const V<K>* c, const float* vp, V<K>* du, V<K>* dv) {
+  constexpr int kMaxA = kTriangle ? 4 : 3;
+  int k = 0;
+#pragma GCC unroll 5
+  for (int a = 0; a <= kMaxA; ++a) {
     V<K> su{}, sv{};
-    for (; k < m && powers[k][0] == a; ++k) {
-      const int b = powers[k][1];
+#pragma GCC unroll 5
+    for (int b = 0; b <= (kTriangle ? 4 - a : 3); ++b, ++k) {
       if (a > 0) su = su + c[k] * (float(a) * vp[b]);
       if (b > 0) sv = sv + c[k] * (float(b) * vp[b - 1]);
     }
-    if (a > 0) du[a - 1] = su, set_u[a - 1] = true;
-    if (a < 4) dv[a] = sv, set_v[a] = true;
+    if (a > 0) du[a - 1] = su;
+    if (a < 4) dv[a] = sv;
   }
-  for (int i = 0; i < 4; ++i) {
-    if (!set_u[i]) du[i] = V<K>{};
-    if (!set_v[i]) dv[i] = V<K>{};
-  }
+  if (!kTriangle) du[3] = V<K>{};
 }
 
 // The patch polynomial (tables.h, patch_*): its coefficients from the net once, then per row the
 // derivatives' coefficients as cubics in u, then per vertex Horner's rule. `emit(a, b)` takes each
 // vertex's two tangents. The table's vectors are read into locals first: stores through the
 // may_alias vectors would make the compiler reload them after every store.
-template <int K, class Emit>
-void patch_tangents(const LimitTable& t, Slots<K> net, Emit emit) {
+template <bool kTriangle, int K, class Emit>
+void patch_tangents_of(const LimitTable& t, Slots<K> net, Emit emit) {
+  constexpr int m = kTriangle ? 15 : 16;  // the monomials (row_coefficients)
   const uint32_t n = t.net_size;
-  const int s = t.patch_segments, m = static_cast<int>(t.patch_powers.size());
-  const std::array<uint8_t, 2>* powers = t.patch_powers.data();
+  const int s = t.patch_segments;
   const float* weights = t.patch_weights.data();
-  V<K> c[25];
+  V<K> c[m];
   for (int k = 0; k < m; ++k) {
     V<K> sum{};
     const float* w = weights + size_t(k) * n;
     for (uint32_t slot = 1; slot < n; ++slot) sum = sum + net.slot(slot) * w[slot];
     c[k] = sum;
   }
-  const bool triangle = t.patch_triangle;
   for (int j = 0; j <= s; ++j) {
     const float v = float(j) / float(s);
     float vp[5] = {1, v, v * v, v * v * v, v * v * v * v};
     V<K> du[4], dv[4];  // coefficients of u^0 .. u^3
-    row_coefficients(powers, m, c, vp, du, dv);
-    const int points = triangle ? s + 1 - j : s + 1;
+    row_coefficients<kTriangle>(c, vp, du, dv);
+    const int points = kTriangle ? s + 1 - j : s + 1;
     for (int i = 0; i < points; ++i) {
       const float u = float(i) / float(s);
       emit(((du[3] * u + du[2]) * u + du[1]) * u + du[0], ((dv[3] * u + dv[2]) * u + dv[1]) * u + dv[0]);
     }
   }
+}
+
+template <int K, class Emit>
+void patch_tangents(const LimitTable& t, Slots<K> net, Emit emit) {
+  if (t.patch_triangle) return patch_tangents_of<true>(t, net, emit);
+  patch_tangents_of<false>(t, net, emit);
 }
 
 // A LimitTable's tangent entries, read into locals once (see patch_tangents).

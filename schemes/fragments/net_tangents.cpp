@@ -128,7 +128,7 @@ void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last) {
   while (block_size(rule, s) < static_cast<int>(t.block_vertices())) ++s;
   for (int32_t stencil : lim.stencil)
     if (stencil >= 0) return;  // a dart's position: not a regular patch
-  std::vector<std::array<uint8_t, 2>> powers;
+  std::vector<std::array<uint8_t, 2>> powers;  // the order kernel.cpp's row_coefficients unrolls (tables.h)
   for (int a = 0; a <= 4; ++a)
     for (int b = 0; b <= 4; ++b)
       if (catmark ? a <= 3 && b <= 3 : a + b <= 4) powers.push_back({uint8_t(a), uint8_t(b)});
@@ -178,7 +178,6 @@ void add_patch_polynomial(ShapeTables& t, bool catmark, const NetRows& last) {
   }
   lim.patch_segments = segments;
   lim.patch_triangle = !catmark;
-  lim.patch_powers = powers;
   lim.patch_weights.resize(size_t(m) * n);
   for (int k = 0; k < m; ++k)
     for (uint32_t w = 0; w < n; ++w) lim.patch_weights[size_t(k) * n + w] = static_cast<float>(c(k, w));

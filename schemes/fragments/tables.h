@@ -10,7 +10,6 @@
 // different orders in which two fragments meet a point's neighbours give the same float sums.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -90,15 +89,15 @@ struct LimitTable {
   // 2 x net_size weights a vertex from memory (kernel.h).
   std::vector<char> at_control_vertex;
   // Where a one-face block's limit is one polynomial in (u, v) (a regular patch: bicubic for
-  // Catmull-Clark, of total degree 4 for Loop), its monomials u^a v^b (patch_powers) with their
-  // coefficients as weights on the net (patch_weights, monomials x net_size), fitted to the limit
+  // Catmull-Clark, of total degree 4 for Loop), its monomials u^a v^b (a-major, b ascending: for
+  // Loop a + b <= 4, 15 of them; bicubic a, b <= 3, 16) with their coefficients as weights on
+  // the net (patch_weights, monomials x net_size), fitted to the limit
   // positions in prepare and kept where they reproduce them to 1e-9: the tangents are its
   // derivatives d/du and d/dv (ptex orientation), evaluated row by row with Horner's rule, a
   // fraction of net_tangents' work. Row j of `patch_segments` holds vertices (i, j), i = 0 .. s
   // (Loop: s - j).
   int patch_segments = 0;
   bool patch_triangle = false;
-  std::vector<std::array<uint8_t, 2>> patch_powers;
   std::vector<float> patch_weights;
 };
 

@@ -102,12 +102,10 @@ void store(uint slot, vec3 p) {
 // max cannot order two zeros.
 float canonical(float x) { return floatBitsToUint(x) == 0x80000000u ? 0.0 : x; }
 
-precise float sum3_sorted(float a, float b, float c) {
-  a = canonical(a), b = canonical(b), c = canonical(c);
-  const float lo = min(min(a, b), c), hi = max(max(a, b), c);
-  const float mid = max(min(a, b), min(max(a, b), c));
-  precise float s = (lo + mid) + hi;
-  return s;
+// kernel.cpp's sum3_symmetric: the largest of the three ways to add a, b and c.
+precise float sum3_symmetric(float a, float b, float c) {
+  precise float ab = (a + b) + c, bc = (b + c) + a, ca = (c + a) + b;
+  return max(max(ab, bc), ca);
 }
 
 // The ring's terms in ascending order, summed from the smallest (kernel.cpp's sorting network and
@@ -135,7 +133,7 @@ precise float sorted_sum(bool from_dst, uint ref, uint n, uint axis) {
   return s;
 }
 
-// kernel.cpp's ring_sum: pairs for valence 4 and 8, pairs and a sorted three for 6, sorted otherwise.
+// kernel.cpp's ring_sum: pairs for valence 4 and 8, pairs and a symmetric three for 6, sorted otherwise.
 precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
   precise vec3 r;
   if (n == 1u) {
@@ -148,7 +146,7 @@ precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
     precise vec3 a = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 3u));
     precise vec3 b = load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 4u));
     precise vec3 c = load(from_dst, table_word(ref + 2u)) + load(from_dst, table_word(ref + 5u));
-    r = vec3(sum3_sorted(a.x, b.x, c.x), sum3_sorted(a.y, b.y, c.y), sum3_sorted(a.z, b.z, c.z));
+    r = vec3(sum3_symmetric(a.x, b.x, c.x), sum3_symmetric(a.y, b.y, c.y), sum3_symmetric(a.z, b.z, c.z));
   } else if (n == 8u) {
     precise vec3 q0 = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 4u));
     precise vec3 q1 = load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 5u));
