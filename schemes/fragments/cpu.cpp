@@ -49,13 +49,12 @@ void CpuFragmentEvaluation::run_lanes(const FragmentSurface::Batch& batch, LaneB
     std::swap(src, dst);
   }
   project_to_limit(t.limit, src, s.net.data(), project_, s.position.data(), s.normal.data());
-  const uint32_t lanes = std::min<uint32_t>(batch.count, kLanes);
   float *pos[kLanes], *nrm[kLanes];
-  for (uint32_t l = 0; l < lanes; ++l) {
-    pos[l] = out_.positions[surface_.first_vertex[ids[l]]].data();
-    nrm[l] = out_.normals[surface_.first_vertex[ids[l]]].data();
+  for (uint32_t l = 0; l < kLanes; ++l) {
+    const size_t first = surface_.first_vertex[ids[std::min<uint32_t>(l, batch.count - 1)]];
+    pos[l] = out_.positions[first].data(), nrm[l] = out_.normals[first].data();
   }
-  write_blocks(s.position.data(), s.normal.data(), static_cast<uint32_t>(t.block_vertices()), origin_, pos, nrm, lanes);
+  write_blocks(s.position.data(), s.normal.data(), static_cast<uint32_t>(t.block_vertices()), origin_, pos, nrm);
 }
 
 // A fragment of a shape of its own: its net refined twice at once, relative to the centre and

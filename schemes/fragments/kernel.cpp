@@ -420,29 +420,29 @@ inline void transpose(F8* r) {
 // Eight entries of eight lanes, x y z each, are 24 rows of lanes; transposed in three blocks of
 // eight rows, each column of a block is 8 consecutive floats of one lane's xyz stream.
 // `offset`: x y z added to the rows (the origin), or none.
-inline void write_chunk(const Lanes<kLanes>* entry, const F8* offset, float* const* out, uint32_t lanes) {
+inline void write_chunk(const Lanes<kLanes>* entry, const F8* offset, float* const* out) {
   const F8u* rows = reinterpret_cast<const F8u*>(entry);
   for (int block = 0; block < 3; ++block) {
     F8 r[8];
     for (int i = 0; i < 8; ++i) r[i] = offset ? rows[8 * block + i] + offset[(8 * block + i) % 3] : rows[8 * block + i];
     transpose(r);
-    for (uint32_t l = 0; l < lanes; ++l) reinterpret_cast<F8u*>(out[l])[block] = r[l];
+    for (int l = 0; l < kLanes; ++l) reinterpret_cast<F8u*>(out[l])[block] = r[l];
   }
 }
 
 // m entries into the lanes' xyz streams p (positions, plus `offset`) and n (normals), eight at a
 // time through the transposes.
 inline void copy_entries(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, uint32_t m, const F8* offset,
-                         float** p, float** n, uint32_t lanes) {
+                         float** p, float** n) {
   uint32_t i = 0;
   for (; i + 8 <= m; i += 8) {
-    write_chunk(position + i, offset, p, lanes);
-    write_chunk(normal + i, nullptr, n, lanes);
-    for (uint32_t l = 0; l < lanes; ++l) p[l] += 24, n[l] += 24;
+    write_chunk(position + i, offset, p);
+    write_chunk(normal + i, nullptr, n);
+    for (int l = 0; l < kLanes; ++l) p[l] += 24, n[l] += 24;
   }
   for (; i < m; ++i) {
     const Lanes<kLanes>&a = position[i], &b = normal[i];
-    for (uint32_t l = 0; l < lanes; ++l) {
+    for (int l = 0; l < kLanes; ++l) {
       p[l][0] = a.x[l] + offset[0][0], p[l][1] = a.y[l] + offset[1][0], p[l][2] = a.z[l] + offset[2][0];
       n[l][0] = b.x[l], n[l][1] = b.y[l], n[l][2] = b.z[l];
       p[l] += 3, n[l] += 3;
@@ -515,11 +515,11 @@ SDB_KERNEL_CLONES void project_to_limit(const LimitTable& t, const PairSlot* las
 // kernel's instructions. (Staging a block and streaming it out lane by lane with stores that
 // bypass the cache measured 20% slower on the bunny, the same with plain stores.)
 SDB_KERNEL_CLONES void write_blocks(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, uint32_t count,
-                                    const float* origin, float* const* pos, float* const* nrm, uint32_t lanes) {
+                                    const float* origin, float* const* pos, float* const* nrm) {
   const F8 zero = {}, offset[3] = {zero + origin[0], zero + origin[1], zero + origin[2]};
   float *p[kLanes], *n[kLanes];
-  std::copy(pos, pos + lanes, p), std::copy(nrm, nrm + lanes, n);
-  copy_entries(position, normal, count, offset, p, n, lanes);
+  std::copy(pos, pos + kLanes, p), std::copy(nrm, nrm + kLanes, n);
+  copy_entries(position, normal, count, offset, p, n);
 }
 
 namespace {

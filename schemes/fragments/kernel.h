@@ -54,10 +54,12 @@ void refine_level(const LevelTable& table, bool catmark, const Slot* parent, Slo
 void project_to_limit(const LimitTable& table, const Lanes<kLanes>* last, const Lanes<kLanes>* net, bool project,
                       Lanes<kLanes>* position, Lanes<kLanes>* normal);
 
-// Copies the first `count` limit entries of `lanes` fragments (their output blocks' vertices in
-// order, tables.h) into their outputs pos[l], nrm[l], adding `origin` to the positions.
+// Copies the first `count` limit entries of the kLanes lanes (their output blocks' vertices in
+// order, tables.h) into their outputs pos[l], nrm[l], adding `origin` to the positions. Every lane
+// writes, the copy unrolled over all eight: lanes past a batch point at its last fragment's
+// output, which they computed again (run_lanes), so they write the same bits there.
 void write_blocks(const Lanes<kLanes>* position, const Lanes<kLanes>* normal, uint32_t count, const float* origin,
-                  float* const* pos, float* const* nrm, uint32_t lanes);
+                  float* const* pos, float* const* nrm);
 
 // The same for one fragment refined as Pairs: positions from the centred halves; tangents from
 // the local halves (net tangents, read from `net`, only at control vertices: streaming 2 x
