@@ -8,6 +8,7 @@
 
 #include <opensubdiv/far/primvarRefiner.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -147,6 +148,55 @@ TEST(Fragments, CubeAndIcosphere) {
       EXPECT_LE(limit.max_rel, 1e-6) << depth;
       EXPECT_LE(limit.max_deg, 0.01) << depth;
     }
+  }
+}
+
+// The point an output vertex stands for, independent of where its face's vertex list starts:
+// each corner's global vertex with its bilinear (quad) or barycentric (triangle) weight, in units
+// of 4^-depth, sorted.
+using PointKey = std::vector<std::pair<int, long>>;
+PointKey point_key(const ControlMesh& m, const std::vector<int>& offsets, const SurfaceCoord& c, int depth) {
+  const long s = 1L << depth, i = std::lround(c.u * s), j = std::lround(c.v * s);
+  const int* fv = m.face_vertices.data() + offsets[c.face];
+  PointKey k;
+  if (m.face_sizes[c.face] == 3) {
+    k = {{fv[0], (s - i - j) * s}, {fv[1], i * s}, {fv[2], j * s}};
+  } else {
+    k = {{fv[0], (s - i) * (s - j)}, {fv[1], i * (s - j)}, {fv[2], i * j}, {fv[3], (s - i) * j}};
+  }
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Nets are built in a canonical rotation (net.cpp), so a mesh whose faces start their vertex
+// lists at other corners has the same shapes, and every point of its surface the same bits.
+TEST(Fragments, WhereEachFaceStartsChangesNeitherShapesNorPoints) {
+  for (SubdivisionRule rule : {SubdivisionRule::CatmullClark, SubdivisionRule::Loop}) {
+    const ControlMesh m = rule == SubdivisionRule::Loop ? gen::icosphere(1) : gen::cube();
+    ControlMesh turned = m;
+    const std::vector<int> offsets = face_offsets(m);
+    for (size_t f = 0; f < m.face_sizes.size(); ++f) {
+      int* fv = turned.face_vertices.data() + offsets[f];
+      std::rotate(fv, fv + (f * 7 + 1) % m.face_sizes[f], fv + m.face_sizes[f]);
+    }
+    const int depth = 3;
+    EXPECT_EQ(fragments::FragmentSurface(m, rule, depth, depth).tables.size(),
+              fragments::FragmentSurface(turned, rule, depth, depth).tables.size());
+    const Tessellation a = run_fragments(m, rule, depth, true), b = run_fragments(turned, rule, depth, true);
+    std::map<PointKey, size_t> in_b;
+    for (size_t i = 0; i < b.coords.size(); ++i) in_b[point_key(turned, offsets, b.coords[i], depth)] = i;
+    size_t matched = 0;
+    double deg = 0;
+    for (size_t i = 0; i < a.coords.size(); ++i) {
+      auto it = in_b.find(point_key(m, offsets, a.coords[i], depth));
+      if (it == in_b.end()) continue;
+      ++matched;
+      EXPECT_EQ(a.positions[i], b.positions[it->second]) << i;
+      deg = std::max(deg, angle_deg(a.normals[i], {b.normals[it->second][0], b.normals[it->second][1],
+                                                   b.normals[it->second][2]}));
+    }
+    EXPECT_EQ(matched, a.coords.size());
+    EXPECT_LE(deg, 1e-4);
   }
 }
 
