@@ -22,6 +22,7 @@ class CpuFragmentEvaluation final : public Evaluation {
   void execute() override;
   const Tessellation& result() override { return out_; }
   size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+  // Its tables name slots by byte offset (address_in_bytes), as the CPU kernel reads them.
   const FragmentSurface& surface() const { return surface_; }
 
  private:

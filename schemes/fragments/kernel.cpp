@@ -3,7 +3,6 @@
 #include "harness/core/errors.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
