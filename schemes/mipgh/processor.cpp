@@ -56,8 +56,9 @@ void MeshProcessor::visit_facets(int sigma, TileFacets facets, const V3* src, V3
   const tile::Tile& t = t_tile;
   tile::Planes& s = t_planes;
   const int w = t.stride;
+  // every target lies at a square of rows 0 .. n - 2 (tile.h), the first triangle's and the turned one's
   for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), w, t.squares(), s.v[0][k].data(), s.v[1][k].data(),
+    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), w, (n - 1) * w, s.v[0][k].data(), s.v[1][k].data(),
                                                          s.v[2][k].data(), s.v[3][k].data());
   const LevelLayout& next = lod_.layout(sigma + 1);
   tile::assemble_targets(s, n, w, width, quad, false, dst + next.interior(facets.first));
@@ -124,7 +125,9 @@ void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
   const uint32_t* f = lod_.facet(sigma, d.major.facet);
   const int32_t* on = side_rows(sigma, fs, d.major.side, 0);
   const int32_t* in = side_rows(sigma, fs, d.major.side, 1);
-  for (int t = 0; t < n; ++t) s.a[t] = src[f[on[t]]];
+  // the edge's own nodes lie together in storage (lod.h), from the major's first corner on
+  s.a[0] = src[f[on[0]]], s.a[n - 1] = src[f[on[n - 1]]];
+  std::copy_n(src + lod_.layout(sigma).edge_node(e, 0), n - 2, s.a.data() + 1);
   // the row one in: n nodes in a quad, n - 1 in a triangle (node t next to a[t] and a[t + 1])
   for (int t = 0; t < n - (fs == 3); ++t) s.b[t] = src[f[in[t]]];
   s.quad_major = fs == 4;
@@ -153,7 +156,8 @@ bool MeshProcessor::load_strip_rows(int sigma, int e, const V3* src) const {
   const uint32_t *f = lod_.facet(sigma, d.major.facet), *g = lod_.facet(sigma, d.minor.facet);
   const int32_t *on = side_rows(sigma, size, d.major.side, 0), *in = side_rows(sigma, size, d.major.side, 1);
   const int32_t* across = side_rows(sigma, size, d.minor.side, 1);
-  for (int t = 0; t < n; ++t) put(n + t, f[on[t]]);
+  put(n, f[on[0]]), put(2 * n - 1, f[on[n - 1]]);
+  tile::split_run(src + lod_.layout(sigma).edge_node(e, 0), n - 2, x + n + 1, y + n + 1, z + n + 1);
   for (int t = 0; t < n - (size == 3); ++t) put(2 * n + t, f[in[t]]);
   // the minor's row runs the other way: its node last - t at column t (+ 1 in a triangle)
   const int last = size == 4 ? n - 1 : n - 2, shift = size == 3;
@@ -382,11 +386,14 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   const tile::Tile& t = t_tile;
   tile::Planes& s = t_planes;
   const int w = t.stride;
+  // the interior nodes lie in rows 1 .. n - 2 (tile.h), the first triangle's and the turned one's
+  const int first = w, count = (n - 2) * w;
+  auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
   for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k), w, t.squares(), s.v[0][k].data(), s.v[1][k].data(),
-                                                     s.v[2][k].data());
-  tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
-                     s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), t.squares());
+    (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k) + first, w, count, at(s.v[0][k]), at(s.v[1][k]),
+                                                     at(s.v[2][k]));
+  tile::unit_normals(at(s.v[1][0]), at(s.v[1][1]), at(s.v[1][2]), at(s.v[2][0]), at(s.v[2][1]), at(s.v[2][2]),
+                     at(s.normal[0]), at(s.normal[1]), at(s.normal[2]), count);
   auto assemble = [&](int f, bool turned) {
     tile::assemble_limit(s, n, w, l.s, quad, turned, offset, position + l.interior(f), normal + l.interior(f));
   };

@@ -53,6 +53,10 @@ struct Tile {
   void load_triangle(const uint32_t* idx, const V3* inside, int n, const V3* src, bool turned);
 };
 
+// `count` consecutive nodes from p into three planes (a D-edge's nodes, which lie together in
+// the level's storage).
+void split_run(const V3* p, int count, float* x, float* y, float* z);
+
 // The stencils' results over a tile's square: four classes of target per source square L = (a, b)
 // (the target at (2a + r, 2b + c) for class 2r + c), or the limit position and two tangents.
 struct Planes {
