@@ -120,7 +120,7 @@ void MeshProcessor::load_strip(int sigma, int e, const V3* src) const {
   const int n = lod_.layout(sigma).n;
   const DEdge& d = atlas_.edges[e];
   Strip& s = t_strip;
-  s.a.resize(n), s.b.resize(n), s.c.resize(n);
+  if (s.a.size() < size_t(n)) s.a.resize(n), s.b.resize(n), s.c.resize(n);  // a resize per visit cost a fifth of it
   const int fs = atlas_.facet_size[d.major.facet];
   const uint32_t* f = lod_.facet(sigma, d.major.facet);
   const int32_t* on = side_rows(sigma, fs, d.major.side, 0);
@@ -286,12 +286,20 @@ void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& d
     const HalfEdge& h = atlas_.ring[begin + i];
     const uint32_t* idx = lod_.facet(sigma, h.facet);
     const int size = atlas_.facet_size[h.facet];
-    disk.e[i] = src[idx[facet_side_offset(size, h.side, n, 1, 0)]];
+    disk.e[i] = src[idx[side_rows(sigma, size, h.side, 0)[1]]];
     // a quad's corner across from v (a triangle has none: Loop's masks weigh no faces)
-    disk.d[i] = size == 4 ? src[idx[side_offset(h.side, n, 1, 1)]] : disk.c;
+    disk.d[i] = size == 4 ? src[idx[side_rows(sigma, 4, h.side, 1)[1]]] : disk.c;
     disk.face_size[i] = uint8_t(size);
-    disk.edge_sharpness[i] = tags_.any ? sharpness(sigma, h.facet, h.side, true) : 0.0f;
-    disk.child_edge_sharpness[i] = child ? sharpness(sigma + 1, h.facet, h.side, true) : 0.0f;
+  }
+  if (!tags_.any) {
+    std::fill_n(disk.edge_sharpness.begin(), faces, 0.0f);
+    std::fill_n(disk.child_edge_sharpness.begin(), faces, 0.0f);
+  } else {
+    for (int i = 0; i < faces; ++i) {
+      const HalfEdge& h = atlas_.ring[begin + i];
+      disk.edge_sharpness[i] = sharpness(sigma, h.facet, h.side, true);
+      disk.child_edge_sharpness[i] = child ? sharpness(sigma + 1, h.facet, h.side, true) : 0.0f;
+    }
   }
   if (boundary) {
     const HalfEdge& h = atlas_.ring[begin + faces - 1];

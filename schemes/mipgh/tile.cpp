@@ -97,28 +97,49 @@ SDB_TILE_INLINE void interleave(F4 x, F4 y, F4 z, V3* p) {
   store4(f + 8, __builtin_shufflevector(zx, yz, 1, 3, 5, 7));
 }
 
-// One row of a D-facet's nodes into the planes, node k at x[k * kStep]: where `inner`, the two
-// ends through the index array and the others from `inside`, the interior's next nodes in storage.
+// Nodes 1 .. length - 2 of a row into the planes, node k at x[k * kStep], from a run in storage:
+// node k at run[k - 1], or (descending) at run[-(k - 1)].
+template <int kStep>
+SDB_TILE_INLINE void load_run(const V3* __restrict run, bool descending, int length, float* __restrict x,
+                              float* __restrict y, float* __restrict z) {
+  const bool flip = (kStep < 0) != descending;
+  int k = 1;
+  for (; k + 4 < length; k += 4) {  // nodes k .. k + 3, stored at k or (turned) at -(k + 3)
+    const Xyz4 v = deinterleave(descending ? run - (k + 2) : run + (k - 1));
+    const int at = kStep > 0 ? k : -(k + 3);
+    store4(x + at, flip ? reversed(v.x) : v.x);
+    store4(y + at, flip ? reversed(v.y) : v.y);
+    store4(z + at, flip ? reversed(v.z) : v.z);
+  }
+  for (; k + 1 < length; ++k) {
+    const V3& p = run[descending ? -(k - 1) : k - 1];
+    x[k * kStep] = p.x, y[k * kStep] = p.y, z[k * kStep] = p.z;
+  }
+}
+
+// One row of a D-facet's nodes into the planes, node k at x[k * kStep], the two ends through the
+// index array: where `inner`, the others from `inside`, the interior's next nodes in storage (the
+// pointer moves past them); else the row lies along a side, whose inner nodes are its D-edge's,
+// a run in storage either way (lod.h).
 template <int kStep>
 SDB_TILE_INLINE void load_row(const uint32_t* __restrict idx, int length, bool inner, const V3* __restrict& inside,
                               const V3* __restrict src, float* __restrict x, float* __restrict y,
                               float* __restrict z) {
   auto put = [&](int k, const V3& p) { x[k * kStep] = p.x, y[k * kStep] = p.y, z[k * kStep] = p.z; };
-  if (!inner || length <= 2) {
-    for (int k = 0; k < length; ++k) put(k, src[idx[k]]);
+  put(0, src[idx[0]]);
+  if (length == 1) return;
+  put(length - 1, src[idx[length - 1]]);
+  if (inner) {
+    load_run<kStep>(inside, false, length, x, y, z);
+    inside += length - 2;
     return;
   }
-  put(0, src[idx[0]]);
-  int k = 1;
-  for (; k + 4 < length; k += 4, inside += 4) {  // nodes k .. k + 3, turned: at -(k + 3) .. -k
-    const Xyz4 v = deinterleave(inside);
-    const int at = kStep > 0 ? k : -(k + 3);
-    store4(x + at, kStep > 0 ? v.x : reversed(v.x));
-    store4(y + at, kStep > 0 ? v.y : reversed(v.y));
-    store4(z + at, kStep > 0 ? v.z : reversed(v.z));
-  }
-  for (; k + 1 < length; ++k) put(k, *inside++);
-  put(length - 1, src[idx[length - 1]]);
+  if (length < 3) return;
+  const uint32_t first = idx[1], last = idx[length - 2];
+  if (last - first == uint32_t(length - 3)) load_run<kStep>(src + first, false, length, x, y, z);
+  else if (first - last == uint32_t(length - 3)) load_run<kStep>(src + first, true, length, x, y, z);
+  else
+    for (int k = 1; k + 1 < length; ++k) put(k, src[idx[k]]);
 }
 
 template <int kStep>
