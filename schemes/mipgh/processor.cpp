@@ -29,6 +29,11 @@ struct Strip {
   bool quad_major = true, quad_minor = true;
 };
 
+// `needed` squares rounded up to whole SIMD vectors of eight, within the `room` the tile has: a
+// loop's scalar remainder costs more than the squares it computes for nothing (at n = 3, 6 squares
+// left scalar took more instructions than 9 in one vector and one remainder).
+int whole_lanes(int needed, int room) { return std::min((needed + 7) & ~7, room); }
+
 thread_local tile::Tile t_tile, t_strip_rows;
 thread_local Strip t_strip;
 thread_local tile::Planes t_planes, t_strip_planes;
@@ -57,8 +62,9 @@ void MeshProcessor::visit_facets(int sigma, TileFacets facets, const V3* src, V3
   tile::Planes& s = t_planes;
   const int w = t.stride;
   // every target lies at a square of rows 0 .. n - 2 (tile.h), the first triangle's and the turned one's
+  const int count = whole_lanes((n - 1) * w, t.squares());
   for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), w, (n - 1) * w, s.v[0][k].data(), s.v[1][k].data(),
+    (quad ? tile::quad_classes : tile::triangle_classes)(t.plane(k), w, count, s.v[0][k].data(), s.v[1][k].data(),
                                                          s.v[2][k].data(), s.v[3][k].data());
   const LevelLayout& next = lod_.layout(sigma + 1);
   tile::assemble_targets(s, n, w, width, quad, false, dst + next.interior(facets.first));
@@ -395,7 +401,7 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   tile::Planes& s = t_planes;
   const int w = t.stride;
   // the interior nodes lie in rows 1 .. n - 2 (tile.h), the first triangle's and the turned one's
-  const int first = w, count = (n - 2) * w;
+  const int first = w, count = whole_lanes((n - 2) * w, t.squares() - first);
   auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
   for (int k = 0; k < 3; ++k)
     (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k) + first, w, count, at(s.v[0][k]), at(s.v[1][k]),
