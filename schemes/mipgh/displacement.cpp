@@ -44,8 +44,8 @@ DisplacementMap bumps(int size) {
   return m;
 }
 
-void displace_along_normals(const DAtlas& atlas, const DLoD& lod, int depth, const DisplacementMap& map, float scale,
-                            Tessellation& t) {
+void displace_along_normals(const DAtlas& atlas, const DLoD& lod, int depth, const ChartAttribute& coords,
+                            const DisplacementMap& map, float scale, Tessellation& t) {
   const int n = lod.layout(depth).n;
   std::vector<char> done(t.positions.size(), 0);
   for (int f = 0; f < atlas.num_facets(); ++f) {
@@ -56,7 +56,8 @@ void displace_along_normals(const DAtlas& atlas, const DLoD& lod, int depth, con
         const uint32_t node = idx[facet_offset(quad ? 4 : 3, n, {i, j})];
         if (done[node]) continue;
         done[node] = 1;
-        const float h = scale * map.sample(float(j) / float(n - 1), float(i) / float(n - 1));
+        const ChartValue& uv = coords.at(depth, f, {i, j});
+        const float h = scale * map.sample(uv[0], uv[1]);
         Point3& p = t.positions[node];
         const Point3& q = t.normals[node];
         for (int k = 0; k < 3; ++k) p[k] += h * q[k];

@@ -133,7 +133,8 @@ int run_fig22(const PaperTableOptions& options, std::ostream& out) {
   panels[3] = {"Catmull-Clark, normal displacement (refinement bypassed)", "", "", panels[0].surface};
   const float scale = 0.02f * float(bounds_of(cc_mesh.positions).diagonal());
   const DAtlas atlas = build_atlas(cc_mesh);
-  displace_along_normals(atlas, DLoD(atlas, depth), depth, map, scale, panels[3].surface);
+  displace_along_normals(atlas, DLoD(atlas, depth), depth, ChartAttribute::unit_charts(atlas, depth), map, scale,
+                         panels[3].surface);
   panels[3].note = "2% of the diagonal times the image; drawn with the displaced polyhedron's normals";
   bool watertight = true;
   // the limit normals moved with the surface no longer fit it: the picture shades the polyhedron's
