@@ -18,8 +18,11 @@ using namespace sdb;
 
 namespace {
 
-// Outputs above this are left to the benchmarks (the sword at N = 17 is 13M triangles).
-constexpr long kMaxTriangles = 3'000'000;
+// Outputs above this are left to the benchmarks (the sword at N = 17 is 13M triangles). At 3M the
+// three largest runs (the bunny at depth 4, the sword at 3, Stein's torus at 4) took half of each
+// peer's sweep (28 of 55 s for osd-stencil) and CI ran past its 30 minutes; every mesh is still
+// checked up to 1.5M triangles.
+constexpr long kMaxTriangles = 1'500'000;
 
 std::vector<std::string> peer_names() {
   std::vector<std::string> names;
