@@ -403,11 +403,9 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   // the interior nodes lie in rows 1 .. n - 2 (tile.h), the first triangle's and the turned one's
   const int first = w, count = whole_lanes((n - 2) * w, t.squares() - first);
   auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
-  for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_limit : tile::triangle_limit)(t.plane(k) + first, w, count, at(s.v[0][k]), at(s.v[1][k]),
-                                                     at(s.v[2][k]));
-  tile::unit_normals(at(s.v[1][0]), at(s.v[1][1]), at(s.v[1][2]), at(s.v[2][0]), at(s.v[2][1]), at(s.v[2][2]),
-                     at(s.normal[0]), at(s.normal[1]), at(s.normal[2]), count);
+  (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
+      t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]), at(s.v[0][2]),
+      at(s.normal[0]), at(s.normal[1]), at(s.normal[2]));
   auto assemble = [&](int f, bool turned) {
     tile::assemble_limit(s, n, w, l.s, quad, turned, offset, position + l.interior(f), normal + l.interior(f));
   };
@@ -451,11 +449,9 @@ void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, 
   const bool quad = load_strip_rows(sigma, e, src);
   const tile::Tile& rows = t_strip_rows;
   tile::Planes& s = t_strip_planes;
-  for (int k = 0; k < 3; ++k)
-    (quad ? tile::quad_limit : tile::triangle_limit)(rows.plane(k) + n, n, n, s.v[0][k].data(), s.v[1][k].data(),
-                                                     s.v[2][k].data());
-  tile::unit_normals(s.v[1][0].data(), s.v[1][1].data(), s.v[1][2].data(), s.v[2][0].data(), s.v[2][1].data(),
-                     s.v[2][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data(), n);
+  (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
+      rows.plane(0) + n, rows.plane(1) + n, rows.plane(2) + n, n, n, s.v[0][0].data(), s.v[0][1].data(),
+      s.v[0][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data());
   const float *px = s.v[0][0].data(), *py = s.v[0][1].data(), *pz = s.v[0][2].data();
   const float *nx = s.normal[0].data(), *ny = s.normal[1].data(), *nz = s.normal[2].data();
   V3 *p = position + l.edge_node(e, 0), *q = normal + l.edge_node(e, 0);

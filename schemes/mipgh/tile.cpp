@@ -32,27 +32,58 @@ SDB_TILE_CLONES void triangle_classes(const float* __restrict P, int w, int coun
   }
 }
 
-// The limit position (class 0) and the two tangents (1, 2) at every square: Catmull-Clark's
+// The limit position and the two tangents of one coordinate at square L: Catmull-Clark's
 // (16, 4, 1)/36 and Figure 21's stencils (T1 along a row, T2 across), or Loop's 1/2, 1/12 and its
 // regular tangents, as catmark_limit_regular and loop_limit_regular compute them.
-SDB_TILE_CLONES void quad_limit(const float* __restrict P, int w, int count, float* __restrict pos, float* __restrict t1,
-                                float* __restrict t2) {
+struct LimitAt {
+  float pos, t1, t2;
+};
+[[gnu::always_inline]] inline LimitAt quad_limit_at(const float* __restrict P, int w, int L) {
+  const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L - 1], e3 = P[L - w];
+  const float d0 = P[L + w + 1], d1 = P[L + w - 1], d2 = P[L - w - 1], d3 = P[L - w + 1];
+  return {(1.0f / 36) * (16.0f * P[L] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3))),
+          4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2)), 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3))};
+}
+[[gnu::always_inline]] inline LimitAt triangle_limit_at(const float* __restrict P, int w, int L) {
+  const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L + w - 1], e3 = P[L - 1], e4 = P[L - w], e5 = P[L - w + 1];
+  return {0.5f * P[L] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5)), (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5)),
+          (e1 + e2) - (e4 + e5)};
+}
+
+// Unit T1 x T2; a zero normal stays zero, without a branch, so SIMD lanes.
+[[gnu::always_inline]] inline void unit_cross(float ax, float ay, float az, float bx, float by, float bz, float& nx,
+                                              float& ny, float& nz) {
+  const float x = ay * bz - az * by, y = az * bx - ax * bz, z = ax * by - ay * bx;
+  const float inv = 1.0f / std::sqrt(x * x + y * y + z * z + 1e-37f);
+  nx = x * inv, ny = y * inv, nz = z * inv;
+}
+
+// Both in one loop over the three planes: the tangents stay in registers instead of going
+// through planes of their own and a second loop.
+template <class Stencil>
+[[gnu::always_inline]] inline void limit_normals(Stencil at, const float* __restrict X, const float* __restrict Y,
+                                                 const float* __restrict Z, int w, int count, float* __restrict px,
+                                                 float* __restrict py, float* __restrict pz, float* __restrict nx,
+                                                 float* __restrict ny, float* __restrict nz) {
+#pragma GCC ivdep
   for (int L = 0; L < count; ++L) {
-    const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L - 1], e3 = P[L - w];
-    const float d0 = P[L + w + 1], d1 = P[L + w - 1], d2 = P[L - w - 1], d3 = P[L - w + 1];
-    pos[L] = (1.0f / 36) * (16.0f * P[L] + 4.0f * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
-    t1[L] = 4.0f * (e0 - e2) + ((d0 + d3) - (d1 + d2));
-    t2[L] = 4.0f * (e1 - e3) + ((d0 + d1) - (d2 + d3));
+    const LimitAt x = at(X, w, L), y = at(Y, w, L), z = at(Z, w, L);
+    px[L] = x.pos, py[L] = y.pos, pz[L] = z.pos;
+    unit_cross(x.t1, y.t1, z.t1, x.t2, y.t2, z.t2, nx[L], ny[L], nz[L]);
   }
 }
-SDB_TILE_CLONES void triangle_limit(const float* __restrict P, int w, int count, float* __restrict pos,
-                                    float* __restrict t1, float* __restrict t2) {
-  for (int L = 0; L < count; ++L) {
-    const float e0 = P[L + 1], e1 = P[L + w], e2 = P[L + w - 1], e3 = P[L - 1], e4 = P[L - w], e5 = P[L - w + 1];
-    pos[L] = 0.5f * P[L] + (1.0f / 12) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
-    t1[L] = (e0 - e3) + 0.5f * ((e1 - e2) - (e4 - e5));
-    t2[L] = (e1 + e2) - (e4 + e5);
-  }
+
+SDB_TILE_CLONES void quad_limit_normals(const float* __restrict X, const float* __restrict Y, const float* __restrict Z,
+                                        int w, int count, float* __restrict px, float* __restrict py,
+                                        float* __restrict pz, float* __restrict nx, float* __restrict ny,
+                                        float* __restrict nz) {
+  limit_normals(quad_limit_at, X, Y, Z, w, count, px, py, pz, nx, ny, nz);
+}
+SDB_TILE_CLONES void triangle_limit_normals(const float* __restrict X, const float* __restrict Y,
+                                            const float* __restrict Z, int w, int count, float* __restrict px,
+                                            float* __restrict py, float* __restrict pz, float* __restrict nx,
+                                            float* __restrict ny, float* __restrict nz) {
+  limit_normals(triangle_limit_at, X, Y, Z, w, count, px, py, pz, nx, ny, nz);
 }
 
 namespace {
@@ -277,18 +308,6 @@ void assemble_limit(const Planes& s, int n, int stride, int inner, bool quad, bo
   } else {
     if (offset) assemble_limit_rows<false, true>(s, n, stride, inner, quad, o, position, normal);
     else assemble_limit_rows<false, false>(s, n, stride, inner, quad, o, position, normal);
-  }
-}
-
-// Unit T1 x T2 at every square.
-SDB_TILE_CLONES void unit_normals(const float* __restrict ax, const float* __restrict ay, const float* __restrict az,
-                                  const float* __restrict bx, const float* __restrict by, const float* __restrict bz,
-                                  float* __restrict nx, float* __restrict ny, float* __restrict nz, int count) {
-  for (int L = 0; L < count; ++L) {
-    const float x = ay[L] * bz[L] - az[L] * by[L], y = az[L] * bx[L] - ax[L] * bz[L], z = ax[L] * by[L] - ay[L] * bx[L];
-    const float l2 = x * x + y * y + z * z;
-    const float inv = 1.0f / std::sqrt(l2 + 1e-37f);  // a zero normal stays zero; no branch, so SIMD lanes
-    nx[L] = x * inv, ny[L] = y * inv, nz[L] = z * inv;
   }
 }
 

@@ -79,9 +79,13 @@ void quad_classes(const float* P, int stride, int count, float* vv, float* eh, f
 // Loop's, in triangles: vertex points (0), edge points of (a, b)-(a, b+1) (1), (a, b)-(a+1, b) (2)
 // and the diagonal (a, b+1)-(a+1, b) (3).
 void triangle_classes(const float* P, int stride, int count, float* vv, float* eh, float* ev, float* ed);
-// The limit position and the two tangents (catmark_limit_regular and loop_limit_regular's masks).
-void quad_limit(const float* P, int stride, int count, float* pos, float* t1, float* t2);
-void triangle_limit(const float* P, int stride, int count, float* pos, float* t1, float* t2);
+// The limit positions and unit normals (T1 x T2 of the regular tangents, as
+// catmark_limit_regular and loop_limit_regular compute them) over squares 0 .. count - 1 of the
+// three planes X, Y, Z.
+void quad_limit_normals(const float* X, const float* Y, const float* Z, int stride, int count, float* px, float* py,
+                        float* pz, float* nx, float* ny, float* nz);
+void triangle_limit_normals(const float* X, const float* Y, const float* Z, int stride, int count, float* px, float* py,
+                            float* pz, float* nx, float* ny, float* nz);
 // A step's targets in one D-facet of the tile whose class planes `s` holds (a quad, the first
 // triangle, or the turned one): level sigma + 1's interior rows 1 .. width, row-major into `out`.
 // Target (r, c) lies at square (r >> 1, c >> 1), class 2 (r & 1) + (c & 1), or at the turned
@@ -91,9 +95,5 @@ void assemble_targets(const Planes& s, int n, int stride, int width, bool quad, 
 // normals, rows 1 .. inner.
 void assemble_limit(const Planes& s, int n, int stride, int inner, bool quad, bool turned, const V3* offset,
                     V3* position, V3* normal);
-
-// Unit T1 x T2 at every square.
-void unit_normals(const float* ax, const float* ay, const float* az, const float* bx, const float* by, const float* bz,
-                  float* nx, float* ny, float* nz, int count);
 
 }  // namespace sdb::mipgh::tile
