@@ -29,6 +29,36 @@ struct Strip {
   bool quad_major = true, quad_minor = true;
 };
 
+// x, y, z in the lanes of one SSE register: a stencil's sum is one operation for the three
+// coordinates, each lane the same float operations as the scalar sum.
+using Xyz = float __attribute__((vector_size(16)));
+inline Xyz widen(const V3& p) { return Xyz{p.x, p.y, p.z, 0.0f}; }
+inline V3 narrow(Xyz v) { return {v[0], v[1], v[2]}; }
+
+// A tag-free D-edge's next nodes from its strip (edge points at even k, vertex points at odd k of
+// out), in node order; each strip node is widened once, the window of three columns rolled along.
+void strip_stencils(const V3* A, const V3* B, const V3* C, int n, bool quad, V3* out) {
+  Xyz a0 = widen(A[0]), a1 = widen(A[1]), b0 = widen(B[0]), c0 = widen(C[0]);
+  if (quad) {  // Figure 20
+    Xyz b1 = widen(B[1]), c1 = widen(C[1]);
+    out[0] = narrow(edge_vertex(a0, a1, b0, b1, c0, c1));
+    for (int t = 1; t + 1 < n; ++t) {
+      const Xyz a2 = widen(A[t + 1]), b2 = widen(B[t + 1]), c2 = widen(C[t + 1]);
+      out[2 * t - 1] = narrow(vertex_vertex4(a1, a2, b1, a0, c1, b2, b0, c0, c2));
+      out[2 * t] = narrow(edge_vertex(a1, a2, b1, b2, c1, c2));
+      a0 = a1, a1 = a2, b0 = b1, b1 = b2, c0 = c1, c1 = c2;
+    }
+    return;
+  }
+  out[0] = narrow(loop_edge_vertex(a0, a1, b0, c0));  // Loop
+  for (int t = 1; t + 1 < n; ++t) {
+    const Xyz a2 = widen(A[t + 1]), b1 = widen(B[t]), c1 = widen(C[t]);
+    out[2 * t - 1] = narrow(loop_vertex6(a1, a2, b1, b0, a0, c0, c1));
+    out[2 * t] = narrow(loop_edge_vertex(a1, a2, b1, c1));
+    a0 = a1, a1 = a2, b0 = b1, c0 = c1;
+  }
+}
+
 // `needed` squares rounded up to whole SIMD vectors of eight, within the `room` the tile has: a
 // loop's scalar remainder costs more than the squares it computes for nothing (at n = 3, 6 squares
 // left scalar took more instructions than 9 in one vector and one remainder).
@@ -236,16 +266,7 @@ void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
   if (fast && n < tile::kLongRow) {  // tag-free and short: the stencils node by node
     load_strip(sigma, e, src);
     const Strip& s = t_strip;
-    const V3 *A = s.a.data(), *B = s.b.data(), *C = s.c.data();
-    if (s.quad_major) {  // Figure 20
-      for (int t = 0; t + 1 < n; ++t) out[2 * t] = edge_vertex(A[t], A[t + 1], B[t], B[t + 1], C[t], C[t + 1]);
-      for (int t = 1; t + 1 < n; ++t)
-        out[2 * t - 1] = vertex_vertex4(A[t], A[t + 1], B[t], A[t - 1], C[t], B[t + 1], B[t - 1], C[t - 1], C[t + 1]);
-    } else {  // Loop
-      for (int t = 0; t + 1 < n; ++t) out[2 * t] = loop_edge_vertex(A[t], A[t + 1], B[t], C[t]);
-      for (int t = 1; t + 1 < n; ++t)
-        out[2 * t - 1] = loop_vertex6(A[t], A[t + 1], B[t], B[t - 1], A[t - 1], C[t - 1], C[t]);
-    }
+    strip_stencils(s.a.data(), s.b.data(), s.c.data(), n, s.quad_major, out);
     return;
   }
   if (fast) {  // tag-free: the tile's stencils (Figure 20's, or Loop's) along row 1

@@ -43,20 +43,30 @@ struct DoubleSum {
   V3 get() const { return {float(x), float(y), float(z)}; }
 };
 
-// Figure 20, the stencils of a tag-free regular 1-disk.
-inline V3 facet_vertex(V3 a, V3 b, V3 c, V3 d) { return 0.25f * ((a + c) + (b + d)); }
+// Figure 20, the stencils of a tag-free regular 1-disk. Templates over the point type: V3, or a
+// four-float SIMD vector holding x, y, z (processor.cpp), with the same operations per coordinate.
+template <class P>
+inline P facet_vertex(P a, P b, P c, P d) {
+  return 0.25f * ((a + c) + (b + d));
+}
 // v0, v1 the edge's ends; f the four other corners of its two quads.
-inline V3 edge_vertex(V3 v0, V3 v1, V3 f0, V3 f1, V3 f2, V3 f3) {
+template <class P>
+inline P edge_vertex(P v0, P v1, P f0, P f1, P f2, P f3) {
   return 0.375f * (v0 + v1) + 0.0625f * ((f0 + f1) + (f2 + f3));
 }
 // Valence 4: 36/64 centre, 6/64 direct, 1/64 diagonal neighbours.
-inline V3 vertex_vertex4(V3 c, V3 e0, V3 e1, V3 e2, V3 e3, V3 d0, V3 d1, V3 d2, V3 d3) {
+template <class P>
+inline P vertex_vertex4(P c, P e0, P e1, P e2, P e3, P d0, P d1, P d2, P d3) {
   return 0.5625f * c + 0.09375f * ((e0 + e2) + (e1 + e3)) + 0.015625f * ((d0 + d2) + (d1 + d3));
 }
 // Loop on a tag-free regular triangle 1-disk: the edge's ends 3/8, the two opposite corners 1/8;
 // a valence-6 vertex 10/16 and 1/16 per neighbour.
-inline V3 loop_edge_vertex(V3 v0, V3 v1, V3 o0, V3 o1) { return 0.375f * (v0 + v1) + 0.125f * (o0 + o1); }
-inline V3 loop_vertex6(V3 c, V3 e0, V3 e1, V3 e2, V3 e3, V3 e4, V3 e5) {
+template <class P>
+inline P loop_edge_vertex(P v0, P v1, P o0, P o1) {
+  return 0.375f * (v0 + v1) + 0.125f * (o0 + o1);
+}
+template <class P>
+inline P loop_vertex6(P c, P e0, P e1, P e2, P e3, P e4, P e5) {
   return 0.625f * c + 0.0625f * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
 }
 
