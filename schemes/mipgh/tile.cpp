@@ -173,6 +173,8 @@ SDB_TILE_INLINE void load_row(const uint32_t* __restrict idx, int length, bool i
     for (int k = 1; k + 1 < length; ++k) put(k, src[idx[k]]);
 }
 
+// Here and in the assembly below, no auto-vectorization: the scalar tails are at most three
+// nodes, and vectorized, their alias checks and set-up cost more than the moves.
 template <int kStep>
 [[gnu::optimize("no-tree-vectorize")]] void load_triangle_rows(const uint32_t* idx, const V3* inside, int n, const V3* src, float* x, float* y, float* z) {
   const int w = n + 1;

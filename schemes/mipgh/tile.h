@@ -58,7 +58,7 @@ struct Tile {
 void split_run(const V3* p, int count, float* x, float* y, float* z);
 
 // The stencils' results over a tile's square: four classes of target per source square L = (a, b)
-// (the target at (2a + r, 2b + c) for class 2r + c), or the limit position and two tangents.
+// (the target at (2a + r, 2b + c) for class 2r + c), or the limit position (class 0) and `normal`.
 struct Planes {
   std::vector<float> v[4][3], normal[3];
   size_t size = 0;
