@@ -45,10 +45,7 @@ struct DoubleSum {
 
 // Figure 20, the stencils of a tag-free regular 1-disk. Templates over the point type: V3, or a
 // four-float SIMD vector holding x, y, z (processor.cpp), with the same operations per coordinate.
-template <class P>
-inline P facet_vertex(P a, P b, P c, P d) {
-  return 0.25f * ((a + c) + (b + d));
-}
+// (The facet point, 1/4 each, is tile.cpp's quad_classes alone.)
 // v0, v1 the edge's ends; f the four other corners of its two quads.
 template <class P>
 inline P edge_vertex(P v0, P v1, P f0, P f1, P f2, P f3) {

@@ -94,7 +94,6 @@ namespace {
 // than eight would. Pure copies and the same additions: the bits do not change.
 static_assert(sizeof(V3) == 3 * sizeof(float), "V3 is three packed floats");
 using F4 = float __attribute__((vector_size(16)));
-using F2 = float __attribute__((vector_size(8)));
 #define SDB_TILE_INLINE [[gnu::always_inline]] inline
 
 SDB_TILE_INLINE F4 load4(const float* p) {
@@ -203,12 +202,8 @@ void Tile::load_quad(const uint32_t* idx, const V3* inside, int n, const V3* src
 }
 
 void split_run(const V3* p, int count, float* x, float* y, float* z) {
-  int k = 0;
-  for (; k + 4 <= count; k += 4, p += 4) {
-    const Xyz4 v = deinterleave(p);
-    store4(x + k, v.x), store4(y + k, v.y), store4(z + k, v.z);
-  }
-  for (; k < count; ++k, ++p) x[k] = p->x, y[k] = p->y, z[k] = p->z;
+  // load_run's nodes 1 .. count of a row count + 2 long, node k at x[k - 1]
+  load_run<1>(p, false, count + 2, x - 1, y - 1, z - 1);
 }
 
 void Tile::load_triangle(const uint32_t* idx, const V3* inside, int n, const V3* src, bool turned) {
@@ -245,16 +240,6 @@ template <bool kTurned>
       pair(ax, bx, x0, x1), pair(ay, by, y0, y1), pair(az, bz, z0, z1);
       interleave(x0, y0, z0, out);
       interleave(x1, y1, z1, out + 4);
-    }
-    if (c + 3 <= end) {  // columns c .. c + 3: two squares of each, read as 8 bytes
-      const int k = c >> 1, La = kTurned ? -(k + 2) : k, Lb = kTurned ? -(k + 2) : k + 1;
-      auto pair = [&](const float* a, const float* b) {
-        F2 u, v;
-        __builtin_memcpy(&u, a + La, 8), __builtin_memcpy(&v, b + Lb, 8);
-        return kTurned ? __builtin_shufflevector(u, v, 1, 3, 0, 2) : __builtin_shufflevector(u, v, 0, 2, 1, 3);
-      };
-      interleave(pair(ax, bx), pair(ay, by), pair(az, bz), out);
-      c += 4, out += 4;
     }
     for (; c < end; c += 2, out += 2) {
       const int k = c >> 1, La = kTurned ? -(k + 1) : k, Lb = kTurned ? -(k + 1) : k + 1;
