@@ -323,6 +323,24 @@ TEST(ReadMesh, PlyVersionOtherThanOneIsRefusedBeforeOpenMesh) {
   fs::remove(p);
 }
 
+// tests/fuzz: an element without properties takes no bytes, so a binary body could not bound its
+// count and the walk over 9e18 empty instances hung.
+TEST(ReadMesh, PlyElementWithoutPropertiesIsRefused) {
+  const fs::path p = fs::temp_directory_path() / "sdb_mesh_test_empty_element.ply";
+  std::ofstream(p) << "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                      "property float z\nelement junk 9000000000000000000\nelement face 0\n"
+                      "property list uchar int vertex_indices\nend_header\n";
+  try {
+    read_mesh(p.string());
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":7: element 'junk' announces 9000000000000000000 instances but no properties"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove(p);
+}
+
 // R1 for quad/triangle schemes: a pentagon becomes a quad and a triangle, a hexagon two quads, a
 // heptagon two quads and a triangle, fanned from the first corner; quads and triangles stay; a
 // hole's parts are holes and every part keeps its face's line.

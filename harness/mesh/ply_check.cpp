@@ -24,6 +24,7 @@ struct Element {
   std::string name;
   long count = 0;
   std::vector<Property> properties;
+  int line = 0;  // of its header line
 };
 
 enum class Format { Ascii, BinaryLittle, BinaryBig };
@@ -62,6 +63,14 @@ Property parse_property(const text::LineParser& p, const std::vector<std::string
   return prop;
 }
 
+// An element without properties takes no bytes, so a binary body cannot bound its count: walking
+// (or letting OpenMesh walk) 10^18 empty instances hangs (tests/fuzz/regressions/ply).
+void require_properties(const Element& e, const std::string& path) {
+  if (e.count > 0 && e.properties.empty())
+    text::LineParser(path, e.line).fail("element '" + e.name + "' announces " + std::to_string(e.count) +
+                                        " instances but no properties");
+}
+
 Header read_header(std::string_view data, const std::string& path) {
   if (data.empty()) throw InputError(path, "empty file");
   Header h;
@@ -80,7 +89,10 @@ Header read_header(std::string_view data, const std::string& path) {
       continue;
     }
     if (tok.empty() || tok[0] == "comment" || tok[0] == "obj_info") continue;
-    if (tok[0] == "end_header") break;
+    if (tok[0] == "end_header") {
+      if (!h.elements.empty()) require_properties(h.elements.back(), path);
+      break;
+    }
     if (tok[0] == "format") {
       if (tok.size() != 3) p.fail("malformed format line");
       if (tok[1] == "ascii") h.format = Format::Ascii;
@@ -94,7 +106,8 @@ Header read_header(std::string_view data, const std::string& path) {
       if (tok.size() != 3) p.fail("malformed element line");
       const long n = p.integer(tok[2]);
       if (n < 0) p.fail("negative element count " + text::quoted(tok[2]));
-      h.elements.push_back({std::string(tok[1]), n, {}});
+      if (!h.elements.empty()) require_properties(h.elements.back(), path);
+      h.elements.push_back({std::string(tok[1]), n, {}, no});
     } else if (tok[0] == "property") {
       if (h.elements.empty()) p.fail("property before any element");
       h.elements.back().properties.push_back(parse_property(p, tok));
