@@ -71,6 +71,18 @@ void require_properties(const Element& e, const std::string& path) {
                                         " instances but no properties");
 }
 
+// OpenMesh splits the header on every isspace byte and reads a NUL as part of a word; ours splits on
+// blanks. A form feed, vertical tab or NUL inside a line made the two read different words, and
+// OpenMesh looped forever on the count it could not parse (tests/fuzz/regressions/ply). A header is
+// ASCII text: control bytes are refused on every line, bytes past ASCII outside comments.
+void require_header_text(const text::LineParser& p, std::string_view line, bool comment) {
+  for (const char ch : line) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f || (c >= 0x80 && !comment))
+      p.fail("byte " + std::to_string(c) + " in the header (a PLY header is ASCII text)");
+  }
+}
+
 Header read_header(std::string_view data, const std::string& path) {
   if (data.empty()) throw InputError(path, "empty file");
   Header h;
@@ -88,7 +100,9 @@ Header read_header(std::string_view data, const std::string& path) {
       if (line != "ply") p.fail("not a PLY file (first line is not 'ply')");
       continue;
     }
-    if (tok.empty() || tok[0] == "comment" || tok[0] == "obj_info") continue;
+    const bool comment = !tok.empty() && (tok[0] == "comment" || tok[0] == "obj_info");
+    require_header_text(p, line, comment);
+    if (tok.empty() || comment) continue;
     if (tok[0] == "end_header") {
       if (!h.elements.empty()) require_properties(h.elements.back(), path);
       break;

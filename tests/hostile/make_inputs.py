@@ -157,6 +157,8 @@ def files():
     # tests/fuzz: an element without properties takes no bytes; 9e18 of them hung the binary walk.
     f["empty_element.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS).replace(
         b"element face", b"element junk 9000000000000000000\nelement face")
+    # tests/fuzz: a NUL or form feed in a header word made OpenMesh read other words than ours, and hang.
+    f["header_nul.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS).replace(b"element face", b"element f\0ace")
     f["truncated_bin.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS)[:-10]
     f["nan.ply"] = ply_ascii(8, 6, PLY_V.replace("1 1 1", "nan 1 1"), PLY_F)
     f["idx.ply"] = ply_ascii(8, 6, PLY_V, PLY_F.replace("4 3 0 4 7", "4 3 0 4 8"))
