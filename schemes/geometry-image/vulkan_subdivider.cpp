@@ -78,6 +78,14 @@ gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings)
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
 }
 
+// An output pass (output_grid.glsl): its four vertices share one fetch window where the n x n grid
+// has n >= 4 (four consecutive vertices then cross at most one row's end).
+gpu::ComputePipelineDesc output_pass(const char* shader, std::vector<Binding> bindings, uint64_t n) {
+  gpu::ComputePipelineDesc desc = pass(shader, std::move(bindings));
+  desc.constants.push_back({1, n >= 4 ? 1u : 0u});
+  return desc;
+}
+
 gpu::BufferRange image_view(const gpu::Buffer& image) { return image.texels(VK_FORMAT_R32G32B32A32_SFLOAT); }
 
 
@@ -174,16 +182,17 @@ VulkanSubdivider::DeviceImage VulkanSubdivider::make_image(int side, const std::
 void VulkanSubdivider::make_pipelines() {
   pipelines_ = std::make_unique<Pipelines>();
   Pipelines& p = *pipelines_;
+  const uint64_t n = uint64_t(size(levels_));
   p.pad.emplace(ctx_, pass("pad.comp", {kTable, kTable, kWrite}));
   p.cut_normal.emplace(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
   if (plan_ == PassPlan::Fused) {
     p.split_average.emplace(ctx_, pass("split_average.comp", {kRead, kWrite}));
-    p.limit_normal.emplace(ctx_, pass("limit_normal.comp", {kRead, kWrite, kWrite}));
+    p.limit_normal.emplace(ctx_, output_pass("limit_normal.comp", {kRead, kWrite, kWrite}, n));
   } else {
     p.split.emplace(ctx_, pass("split.comp", {kRead, kWrite}));
     p.average.emplace(ctx_, pass("average.comp", {kRead, kWrite}));
-    p.limit.emplace(ctx_, pass("limit.comp", {kRead, kWrite}));
-    p.normal.emplace(ctx_, pass("normal.comp", {kRead, kWrite}));
+    p.limit.emplace(ctx_, output_pass("limit.comp", {kRead, kWrite}, n));
+    p.normal.emplace(ctx_, output_pass("normal.comp", {kRead, kWrite}, n));
   }
 }
 

@@ -10,7 +10,8 @@ layout(binding = 1, rgba32f) uniform restrict writeonly imageBuffer positions;
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();
   if (4u * t >= chunk_vertices()) return;
-  vec3 p[4];
-  [[unroll]] for (int k = 0; k < 4; ++k) p[k] = limit_at(vertex_source(4u * t + uint(k)));
+  vec3 s[4][9], p[4];
+  four_neighbourhoods(t, s);
+  [[unroll]] for (int k = 0; k < 4; ++k) p[k] = limit_of(s[k]);
   STORE_FOUR(positions, t, p);
 }

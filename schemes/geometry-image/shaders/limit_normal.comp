@@ -12,11 +12,11 @@ layout(binding = 2, rgba32f) uniform restrict writeonly imageBuffer normals;
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();
   if (4u * t >= chunk_vertices()) return;
-  vec3 p[4], n[4];
+  vec3 s[4][9], p[4], n[4];
+  four_neighbourhoods(t, s);
   [[unroll]] for (int k = 0; k < 4; ++k) {
-    const uint c = vertex_source(4u * t + uint(k));
-    p[k] = limit_at(c);
-    n[k] = normal_at(c);
+    p[k] = limit_of(s[k]);
+    n[k] = normal_of(s[k]);
   }
   STORE_FOUR(positions, t, p);
   STORE_FOUR(normals, t, n);

@@ -10,7 +10,8 @@ layout(binding = 1, rgba32f) uniform restrict writeonly imageBuffer normals;
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();
   if (4u * t >= chunk_vertices()) return;
-  vec3 n[4];
-  [[unroll]] for (int k = 0; k < 4; ++k) n[k] = normal_at(vertex_source(4u * t + uint(k)));
+  vec3 s[4][9], n[4];
+  four_neighbourhoods(t, s);
+  [[unroll]] for (int k = 0; k < 4; ++k) n[k] = normal_of(s[k]);
   STORE_FOUR(normals, t, n);
 }

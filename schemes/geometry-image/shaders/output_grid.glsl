@@ -28,13 +28,48 @@ uint vertex_source(uint j) {
     imageStore(out_image, texel_ + 2, vec4(v[2].z, v[3]));                   \
   }
 
+// A vertex's 3 x 3 source samples: s[3 r + q] at padded index c + (r - 1) S + (q - 1).
+void neighbourhood(uint c, out vec3 s[9]) {
+  [[unroll]] for (int r = 0; r < 3; ++r)
+    [[unroll]] for (int q = 0; q < 3; ++q) s[3 * r + q] = src(c + uint(r) * pc.src_side + uint(q) - pc.src_side - 1u);
+}
+
+// Whether an invocation's four vertices share one fetch window (host: the grid's side n >= 4).
+// Vertex d after the first lies d + 2 texels on in the padded image, past a row's end (padded
+// rows are n + 2 long), and with n >= 4 four vertices cross at most one row's end: all four
+// neighbourhoods lie in 3 rows x 8 columns from the first's, 24 fetches where four apart take 36
+// (a texel fetch is a gather per component on lavapipe). Smaller grids fetch per vertex.
+layout(constant_id = 1) const bool kSharedWindow = false;
+
+// The neighbourhoods of the invocation's vertices 4 t .. 4 t + 3; past the chunk's end, the last
+// vertex's (vertex_source's clamp).
+void four_neighbourhoods(uint t, out vec3 s[4][9]) {
+  if (!kSharedWindow) {
+    [[unroll]] for (int k = 0; k < 4; ++k) neighbourhood(vertex_source(4u * t + uint(k)), s[k]);
+    return;
+  }
+  const uint v0 = 4u * t, x0 = v0 % pc.dst_side;
+  const uint first = padded_index(x0, pc.first_row + v0 / pc.dst_side) - pc.src_side - 1u;
+  const uint last = pc.src_side * pc.src_side - 1u;  // the window of the grid's last group runs past it
+  vec3 w[24];  // w[8 r + q] at first + r S + q
+  [[unroll]] for (int r = 0; r < 3; ++r)
+    [[unroll]] for (int q = 0; q < 8; ++q) w[8 * r + q] = src(min(first + uint(r) * pc.src_side + uint(q), last));
+  [[unroll]] for (int k = 0; k < 4; ++k) {
+    const bool crossed = x0 + uint(k) >= pc.dst_side;
+    [[unroll]] for (int r = 0; r < 3; ++r)
+      [[unroll]] for (int q = 0; q < 3; ++q) s[k][3 * r + q] = crossed ? w[8 * r + k + 2 + q] : w[8 * r + k + q];
+  }
+  const uint count = chunk_vertices();
+  [[unroll]] for (int k = 1; k < 4; ++k)
+    if (v0 + uint(k) >= count) s[k] = s[k - 1];
+}
+
 // E: 1/36 [1 4 1; 4 16 4; 1 4 1]. The constant is 1.0f / 36.0f as C++ rounds it, given by its
 // bits so that no compiler rounds it differently.
-vec3 limit_at(uint c) {
-  uint s = pc.src_side;
-  precise vec3 edges = (src(c - 1u) + src(c + 1u)) + (src(c - s) + src(c + s));
-  precise vec3 corners = (src(c - s - 1u) + src(c + s + 1u)) + (src(c - s + 1u) + src(c + s - 1u));
-  precise vec3 p = ((16.0 * src(c) + 4.0 * edges) + corners) * uintBitsToFloat(0x3ce38e39u);
+vec3 limit_of(vec3 s[9]) {
+  precise vec3 edges = (s[3] + s[5]) + (s[1] + s[7]);
+  precise vec3 corners = (s[0] + s[8]) + (s[2] + s[6]);
+  precise vec3 p = ((16.0 * s[4] + 4.0 * edges) + corners) * uintBitsToFloat(0x3ce38e39u);
   return p;
 }
 
@@ -48,12 +83,9 @@ vec3 positive_zero(vec3 v) {
 
 // unit(T_s x T_t), the masks' 1/6 left out. A half turn negates each difference and swaps the two
 // outer ones, so the tangents come out exactly negated across the cut and the normal identical.
-vec3 normal_at(uint c) {
-  uint s = pc.src_side;
-  precise vec3 ts = 4.0 * (src(c + 1u) - src(c - 1u)) +
-                    ((src(c - s + 1u) - src(c - s - 1u)) + (src(c + s + 1u) - src(c + s - 1u)));
-  precise vec3 tt = 4.0 * (src(c + s) - src(c - s)) +
-                    ((src(c + s - 1u) - src(c - s - 1u)) + (src(c + s + 1u) - src(c - s + 1u)));
+vec3 normal_of(vec3 s[9]) {
+  precise vec3 ts = 4.0 * (s[5] - s[3]) + ((s[2] - s[0]) + (s[8] - s[6]));
+  precise vec3 tt = 4.0 * (s[7] - s[1]) + ((s[6] - s[0]) + (s[8] - s[2]));
   precise float cx = ts.y * tt.z - ts.z * tt.y;
   precise float cy = ts.z * tt.x - ts.x * tt.z;
   precise float cz = ts.x * tt.y - ts.y * tt.x;
