@@ -21,8 +21,8 @@ constexpr uint32_t kLocalSize = 64;
 static_assert(kLocalSize >= 4 && kLocalSize % 2 == 0,
               "the cut-vertex pass runs its four invocations in one work group; "
               "L gives half of each group the even columns, half the odd ones");
-// The most storage buffers one pass binds (pad: the gather table and the control points; cut_normal: the stencils and the normals).
-constexpr uint32_t kMaxBindings = 2;  // storage buffers per stage: pad's gather table and control points
+// The most storage buffers one pass binds: pad's gather table, control points and destination.
+constexpr uint32_t kMaxBindings = 3;
 
 // The shaders' push constants (gim_common.glsl).
 struct Push {
@@ -36,9 +36,10 @@ gpu::Groups row_groups(uint64_t width, uint64_t rows) {
 
 constexpr uint64_t kOutputPadding = 3 * sizeof(Point3);
 
-// A chunk's outputs as rgba32f texels, rounded up to whole texels (into the padding).
-gpu::BufferRange vec4_view(const gpu::Buffer& output, const gpu::Chunk& c) {
-  return output.texels(VK_FORMAT_R32G32B32A32_SFLOAT, c.byte_offset, (c.bytes + 15) / 16 * 16);
+// A chunk's outputs as the output passes write them: whole groups of four vertices (48 bytes),
+// into the padding after the last.
+gpu::BufferRange output_range(const gpu::Buffer& output, const gpu::Chunk& c) {
+  return output.range(c.byte_offset, (c.bytes + 47) / 48 * 48);
 }
 
 uint64_t image_bytes(int side) { return uint64_t(side) * uint64_t(side) * 4 * sizeof(float); }
@@ -67,12 +68,12 @@ std::vector<int32_t> stencil_words(const std::array<CutVertexStencil, 4>& stenci
   return words;
 }
 
-// Images are read through vec4 texel views (source_planes.glsl) and written through rgba32f
-// storage texel views (destination_planes.glsl); outputs through rgba32f views (output_grid.glsl);
-// tables stay storage buffers.
-constexpr Binding kRead = Binding::UniformTexelBuffer, kWrite = Binding::StorageTexelBuffer,
+// Images are read through vec4 texel views (source_planes.glsl) and written through storage
+// buffers, or rgba32f storage texel views past one storage binding (destination_planes.glsl);
+// outputs through storage buffers (output_grid.glsl); tables are storage buffers.
+constexpr Binding kRead = Binding::UniformTexelBuffer, kTexelWrite = Binding::StorageTexelBuffer,
                   kTable = Binding::StorageBuffer;
-const BufferUsage kImageUsage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
+const BufferUsage kImageUsage = BufferUsage::UniformTexel | BufferUsage::StorageTexel | BufferUsage::Storage;
 
 gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings) {
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
@@ -100,6 +101,8 @@ std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx
                                                          PassPlan plan) {
   const gpu::DeviceLimits& limits = ctx.limits();
   const std::string& device = ctx.info().name;
+  if (!ctx.info().features.shader_int64)
+    return device + " lacks shaderInt64; the geometry-image output passes store 64-bit words";
   if (limits.max_per_stage_storage_buffers < kMaxBindings)
     return device + " binds " + std::to_string(limits.max_per_stage_storage_buffers) +
            " storage buffers per shader stage; the geometry-image passes bind " + std::to_string(kMaxBindings);
@@ -149,19 +152,25 @@ VulkanSubdivider::VulkanSubdivider(gpu::Context& ctx, int base_size, int levels,
   stencils_ = gpu::device_buffer_with(ctx, stencil_words(cut_stencils_), BufferUsage::Storage, "cut-vertex stencils");
 
   for (int k = 0; k <= levels; ++k) images_.push_back(make_image(size(k) + 2, "g^" + std::to_string(k)));
+  const std::vector<int> sides = image_sides(base_size, levels, plan);
+  const uint64_t binding = options.max_image_binding_bytes ? std::min(options.max_image_binding_bytes, ctx.limits().max_storage_buffer_range)
+                                                           : ctx.limits().max_storage_buffer_range;
+  texel_destinations_ = image_bytes(*std::max_element(sides.begin(), sides.end())) > binding;
   if (plan == PassPlan::PerMask && levels > 0) split_ = make_image(2 * images_[levels - 1].side - 1, "L[g^k]");
 
   const uint64_t n = uint64_t(size(levels));
   // Chunks of whole groups of four rows: a multiple of four vertices, as an output pass writes
-  // them (output_grid.glsl), but in the last chunk.
-  outputs_ = gpu::plan_chunks(ctx.limits(),
-                              {n * n, sizeof(Point3), std::lcm(n, uint64_t(4)), kLocalSize, options.max_output_chunk_bytes});
+  // them (output_grid.glsl), but in the last chunk, whose binding rounds up to a whole group: one
+  // group's bytes are kept free under the binding range for it.
+  const uint64_t range_cap = ctx.limits().max_storage_buffer_range - 4 * sizeof(Point3);
+  const uint64_t chunk_cap = options.max_output_chunk_bytes ? std::min(options.max_output_chunk_bytes, range_cap) : range_cap;
+  outputs_ = gpu::plan_chunks(ctx.limits(), {n * n, sizeof(Point3), std::lcm(n, uint64_t(4)), kLocalSize, chunk_cap});
   if (outputs_.buffer_bytes.size() != 1)
     throw gpu::Unsupported("the positions of a " + std::to_string(n) + " x " + std::to_string(n) +
                            " grid do not fit one buffer of " + ctx.info().name);
   // Padded by three vertices: the last group of four of the last chunk writes there.
   const uint64_t output_bytes = outputs_.buffer_bytes[0] + kOutputPadding;
-  const BufferUsage output_usage = BufferUsage::Storage | BufferUsage::StorageTexel | BufferUsage::Vertex;
+  const BufferUsage output_usage = BufferUsage::Storage | BufferUsage::Vertex;
   positions_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "p^k positions");
   normals_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "n^k normals");
   positions_staging_ = gpu::Buffer::readback(ctx, output_bytes, "p^k positions (readback)");
@@ -183,25 +192,34 @@ void VulkanSubdivider::make_pipelines() {
   pipelines_ = std::make_unique<Pipelines>();
   Pipelines& p = *pipelines_;
   const uint64_t n = uint64_t(size(levels_));
-  p.pad.emplace(ctx_, pass("pad.comp", {kTable, kTable, kWrite}));
+  // The image passes' destination: a storage buffer, or (the *_texels variants) a texel view.
+  const Binding write = texel_destinations_ ? kTexelWrite : kTable;
+  auto image_pass = [&](const std::string& name, std::vector<Binding> bindings) {
+    return pass((name + (texel_destinations_ ? "_texels.comp" : ".comp")).c_str(), std::move(bindings));
+  };
+  p.pad.emplace(ctx_, image_pass("pad", {kTable, kTable, write}));
   p.cut_normal.emplace(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
   if (plan_ == PassPlan::Fused) {
-    p.split_average.emplace(ctx_, pass("split_average.comp", {kRead, kWrite}));
-    p.limit_normal.emplace(ctx_, output_pass("limit_normal.comp", {kRead, kWrite, kWrite}, n));
+    p.split_average.emplace(ctx_, image_pass("split_average", {kRead, write}));
+    p.limit_normal.emplace(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n));
   } else {
-    p.split.emplace(ctx_, pass("split.comp", {kRead, kWrite}));
-    p.average.emplace(ctx_, pass("average.comp", {kRead, kWrite}));
-    p.limit.emplace(ctx_, output_pass("limit.comp", {kRead, kWrite}, n));
-    p.normal.emplace(ctx_, output_pass("normal.comp", {kRead, kWrite}, n));
+    p.split.emplace(ctx_, image_pass("split", {kRead, write}));
+    p.average.emplace(ctx_, image_pass("average", {kRead, write}));
+    p.limit.emplace(ctx_, output_pass("limit.comp", {kRead, kTable}, n));
+    p.normal.emplace(ctx_, output_pass("normal.comp", {kRead, kTable}, n));
   }
+}
+
+gpu::BufferRange VulkanSubdivider::destination(const DeviceImage& image) const {
+  return texel_destinations_ ? image_view(image.texels) : image.texels.range();
 }
 
 void VulkanSubdivider::make_descriptor_sets() {
   const Pipelines& p = *pipelines_;
   auto image_to_image = [&](const gpu::ComputePipeline& pipeline, const DeviceImage& src, const DeviceImage& dst) {
-    return gpu::DescriptorSet(pipeline, {image_view(src.texels), image_view(dst.texels)});
+    return gpu::DescriptorSet(pipeline, {image_view(src.texels), destination(dst)});
   };
-  pad_set_ = gpu::DescriptorSet(*p.pad, {gather_.range(), control_.range(), image_view(images_[0].texels)});
+  pad_set_ = gpu::DescriptorSet(*p.pad, {gather_.range(), control_.range(), destination(images_[0])});
   for (int k = 0; k < levels_; ++k) {
     if (plan_ == PassPlan::Fused) {
       fused_sets_.push_back(image_to_image(*p.split_average, images_[k], images_[k + 1]));
@@ -214,7 +232,7 @@ void VulkanSubdivider::make_descriptor_sets() {
   const gpu::BufferRange last = image_view(images_[levels_].texels);
   for (const gpu::Chunk& c : outputs_.chunks) {
     const gpu::BufferRange nrm = normals_.range(c.byte_offset, c.bytes);
-    const gpu::BufferRange pos4 = vec4_view(positions_, c), nrm4 = vec4_view(normals_, c);
+    const gpu::BufferRange pos4 = output_range(positions_, c), nrm4 = output_range(normals_, c);
     if (plan_ == PassPlan::Fused) {
       limit_normal_sets_.push_back(gpu::DescriptorSet(*p.limit_normal, {last, pos4, nrm4}));
     } else {

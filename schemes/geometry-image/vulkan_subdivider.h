@@ -32,6 +32,10 @@ struct VulkanSubdividerOptions {
   // Caps the bytes of one output binding below the device's maxStorageBufferRange (0: no cap), so
   // that tests reach the chunked output path on small outputs.
   uint64_t max_output_chunk_bytes = 0;
+  // Caps the bytes an image pass may write through one storage binding (0: maxStorageBufferRange);
+  // past it the image passes write through texel views (destination_planes.glsl), so that tests
+  // reach that path on small images.
+  uint64_t max_image_binding_bytes = 0;
 };
 
 class VulkanSubdivider {
@@ -50,6 +54,7 @@ class VulkanSubdivider {
   int size(int k) const { return level_size(base_size_, k); }
   PassPlan plan() const { return plan_; }
   size_t output_chunks() const { return outputs_.chunks.size(); }
+  bool texel_destinations() const { return texel_destinations_; }
 
   // One frame: the control positions of g0 (closed-mesh vertex order, CutSymmetry::num_vertices()
   // of them) into the upload buffer, then the recorded upload and passes; waits for the device.
@@ -75,6 +80,8 @@ class VulkanSubdivider {
   struct Pipelines;
 
   DeviceImage make_image(int side, const std::string& name) const;
+  // The binding an image pass writes `image` through (destination_planes.glsl).
+  gpu::BufferRange destination(const DeviceImage& image) const;
   void make_pipelines();
   void make_descriptor_sets();
   void record_frame();
@@ -94,6 +101,8 @@ class VulkanSubdivider {
   gpu::Context& ctx_;
   int base_size_, levels_;
   PassPlan plan_;
+  // The largest image is past one storage binding: image passes write through texel views.
+  bool texel_destinations_ = false;
   size_t control_vertices_ = 0;
   std::array<CutVertexStencil, 4> cut_stencils_{};
 

@@ -5,7 +5,7 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(binding = 1, rgba32f) uniform restrict writeonly imageBuffer normals;
+layout(std430, binding = 1) restrict writeonly buffer Normals { u64vec2 normals[]; };
 
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();

@@ -1,9 +1,9 @@
 // Output passes (E, T, fused E+T): invocation t computes vertices 4 t .. 4 t + 3 of its chunk
-// (row-major over the chunk's rows of the n x n grid), whose 12 floats are three vec4 texels of the
-// chunk's rgba32f views: a quarter of the stores that one float at a time would take (lavapipe
-// stores lane by lane). Chunks hold whole groups of four rows (vulkan_subdivider.cpp plans them
-// with gpu::plan_chunks); the last chunk's last group may run past the grid's end, and writes up
-// to three copies of the last vertex into the padding after the outputs.
+// (row-major over the chunk's rows of the n x n grid), whose 12 floats are three 16-byte stores
+// into the chunk's storage-buffer range (STORE_FOUR). Chunks hold whole groups of four rows
+// (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the last chunk's last group may run
+// past the grid's end, and writes up to three copies of the last vertex into the padding after
+// the outputs.
 #extension GL_EXT_control_flow_attributes : require
 #include "sdb/dispatch.glsl"
 
@@ -18,14 +18,14 @@ uint vertex_source(uint j) {
   return padded_index(v % pc.dst_side, pc.first_row + v / pc.dst_side);
 }
 
-// Vertices 4 t .. 4 t + 3 (vec3 v[4]) as texels 3 t .. 3 t + 2 of an rgba32f view. A macro: GLSL
-// passes no image to a function.
-#define STORE_FOUR(out_image, t, v)                                          \
-  {                                                                          \
-    const int texel_ = int(3u * (t));                                        \
-    imageStore(out_image, texel_, vec4(v[0], v[1].x));                       \
-    imageStore(out_image, texel_ + 1, vec4(v[1].y, v[1].z, v[2].x, v[2].y)); \
-    imageStore(out_image, texel_ + 2, vec4(v[2].z, v[3]));                   \
+// Vertices 4 t .. 4 t + 3 (vec3 v[4]), 48 bytes, as 16-byte elements 3 t .. 3 t + 2 of a storage
+// buffer of u64vec2 (as_words). A macro: GLSL passes no buffer to a function.
+#define STORE_FOUR(out_array, t, v)                                                 \
+  {                                                                                 \
+    const uint element_ = 3u * (t);                                                 \
+    out_array[element_] = as_words(vec4(v[0], v[1].x));                             \
+    out_array[element_ + 1u] = as_words(vec4(v[1].y, v[1].z, v[2].x, v[2].y));      \
+    out_array[element_ + 2u] = as_words(vec4(v[2].z, v[3]));                        \
   }
 
 // A vertex's 3 x 3 source samples: s[3 r + q] at padded index c + (r - 1) S + (q - 1).

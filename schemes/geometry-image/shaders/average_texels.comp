@@ -1,0 +1,5 @@
+#version 450
+// average.glsl, storing through a texel view: for images past one storage binding
+// (destination_planes.glsl).
+#define GIM_TEXEL_DESTINATION 1
+#include "average.glsl"
