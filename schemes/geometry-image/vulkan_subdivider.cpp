@@ -34,12 +34,16 @@ gpu::Groups row_groups(uint64_t width, uint64_t rows) {
   return {static_cast<uint32_t>((width + kLocalSize - 1) / kLocalSize), static_cast<uint32_t>(rows), 1};
 }
 
-constexpr uint64_t kOutputPadding = 3 * sizeof(Point3);
+constexpr uint64_t kOutputPadding = 8 * sizeof(Point3);
 
-// A chunk's outputs as the output passes write them: whole groups of four vertices (48 bytes),
+// Vertices per output-pass invocation (output_grid.glsl).
+constexpr uint64_t kOutputGroup = 8;
+constexpr uint64_t kOutputGroupBytes = kOutputGroup * sizeof(Point3);
+
+// A chunk's outputs as the output passes write them: whole groups of eight vertices (96 bytes),
 // into the padding after the last.
 gpu::BufferRange output_range(const gpu::Buffer& output, const gpu::Chunk& c) {
-  return output.range(c.byte_offset, (c.bytes + 47) / 48 * 48);
+  return output.range(c.byte_offset, (c.bytes + kOutputGroupBytes - 1) / kOutputGroupBytes * kOutputGroupBytes);
 }
 
 uint64_t image_bytes(int side) { return uint64_t(side) * uint64_t(side) * 4 * sizeof(float); }
@@ -79,8 +83,8 @@ gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings)
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
 }
 
-// An output pass (output_grid.glsl): its four vertices share one fetch window where the n x n grid
-// has n >= 4 (four consecutive vertices then cross at most one row's end).
+// An output pass (output_grid.glsl): each four of its vertices share one fetch window where the
+// n x n grid has n >= 4 (four consecutive vertices then cross at most one row's end).
 gpu::ComputePipelineDesc output_pass(const char* shader, std::vector<Binding> bindings, uint64_t n) {
   gpu::ComputePipelineDesc desc = pass(shader, std::move(bindings));
   desc.constants.push_back({1, n >= 4 ? 1u : 0u});
@@ -159,16 +163,16 @@ VulkanSubdivider::VulkanSubdivider(gpu::Context& ctx, int base_size, int levels,
   if (plan == PassPlan::PerMask && levels > 0) split_ = make_image(2 * images_[levels - 1].side - 1, "L[g^k]");
 
   const uint64_t n = uint64_t(size(levels));
-  // Chunks of whole groups of four rows: a multiple of four vertices, as an output pass writes
+  // Chunks of whole groups of eight rows: a multiple of eight vertices, as an output pass writes
   // them (output_grid.glsl), but in the last chunk, whose binding rounds up to a whole group: one
   // group's bytes are kept free under the binding range for it.
-  const uint64_t range_cap = ctx.limits().max_storage_buffer_range - 4 * sizeof(Point3);
+  const uint64_t range_cap = ctx.limits().max_storage_buffer_range - kOutputGroupBytes;
   const uint64_t chunk_cap = options.max_output_chunk_bytes ? std::min(options.max_output_chunk_bytes, range_cap) : range_cap;
-  outputs_ = gpu::plan_chunks(ctx.limits(), {n * n, sizeof(Point3), std::lcm(n, uint64_t(4)), kLocalSize, chunk_cap});
+  outputs_ = gpu::plan_chunks(ctx.limits(), {n * n, sizeof(Point3), std::lcm(n, kOutputGroup), kLocalSize, chunk_cap});
   if (outputs_.buffer_bytes.size() != 1)
     throw gpu::Unsupported("the positions of a " + std::to_string(n) + " x " + std::to_string(n) +
                            " grid do not fit one buffer of " + ctx.info().name);
-  // Padded by three vertices: the last group of four of the last chunk writes there.
+  // Padded by a group: the last group of eight of the last chunk writes up to seven vertices there.
   const uint64_t output_bytes = outputs_.buffer_bytes[0] + kOutputPadding;
   const BufferUsage output_usage = BufferUsage::Storage | BufferUsage::Vertex;
   positions_ = gpu::Buffer::device(ctx, output_bytes, output_usage, "p^k positions");
@@ -265,7 +269,7 @@ void VulkanSubdivider::record_output_pass(gpu::Commands& cmd, const gpu::Compute
     cmd.bind(sets[i]);
     cmd.push(Push{uint32_t(src_side), uint32_t(n), uint32_t(first_row), uint32_t(rows)});
     if (work == OutputWork::EveryVertex)
-      cmd.dispatch(gpu::groups_for((c.elements + 3) / 4, kLocalSize, ctx_.limits()));
+      cmd.dispatch(gpu::groups_for((c.elements + kOutputGroup - 1) / kOutputGroup, kLocalSize, ctx_.limits()));
     else
       cmd.dispatch(1);  // four invocations, one per cut vertex
   }

@@ -5,13 +5,18 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(std430, binding = 1) restrict writeonly buffer Normals { u64vec2 normals[]; };
+layout(std430, binding = 1) restrict writeonly buffer Normals { u64vec4 normals[]; };
 
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();
-  if (4u * t >= chunk_vertices()) return;
-  vec3 s[4][9], n[4];
-  four_neighbourhoods(t, s);
-  [[unroll]] for (int k = 0; k < 4; ++k) n[k] = normal_of(s[k]);
-  STORE_FOUR(normals, t, n);
+  if (8u * t >= chunk_vertices()) return;
+  vec3 n[8];
+  [[unroll]] for (int g = 0; g < 2; ++g) {
+    vec3 s[4][9];
+    four_neighbourhoods(2u * t + uint(g), s);
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+      n[4 * g + k] = normal_of(s[k]);
+    }
+  }
+  STORE_EIGHT(normals, t, n);
 }

@@ -1,9 +1,9 @@
-// Output passes (E, T, fused E+T): invocation t computes vertices 4 t .. 4 t + 3 of its chunk
-// (row-major over the chunk's rows of the n x n grid), whose 12 floats are three 16-byte stores
-// into the chunk's storage-buffer range (STORE_FOUR). Chunks hold whole groups of four rows
-// (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the last chunk's last group may run
-// past the grid's end, and writes up to three copies of the last vertex into the padding after
-// the outputs.
+// Output passes (E, T, fused E+T): invocation t computes vertices 8 t .. 8 t + 7 of its chunk
+// (row-major over the chunk's rows of the n x n grid), as two groups of four, and stores their 24
+// floats as three 32-byte elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks
+// hold whole groups of eight rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the
+// last chunk's last invocation may run past the grid's end, and writes up to seven copies of the
+// last vertex into the padding after the outputs.
 #extension GL_EXT_control_flow_attributes : require
 #include "sdb/dispatch.glsl"
 
@@ -18,14 +18,18 @@ uint vertex_source(uint j) {
   return padded_index(v % pc.dst_side, pc.first_row + v / pc.dst_side);
 }
 
-// Vertices 4 t .. 4 t + 3 (vec3 v[4]), 48 bytes, as 16-byte elements 3 t .. 3 t + 2 of a storage
-// buffer of u64vec2 (as_words). A macro: GLSL passes no buffer to a function.
-#define STORE_FOUR(out_array, t, v)                                                 \
-  {                                                                                 \
-    const uint element_ = 3u * (t);                                                 \
-    out_array[element_] = as_words(vec4(v[0], v[1].x));                             \
-    out_array[element_ + 1u] = as_words(vec4(v[1].y, v[1].z, v[2].x, v[2].y));      \
-    out_array[element_ + 2u] = as_words(vec4(v[2].z, v[3]));                        \
+// Vertices 8 t .. 8 t + 7 (vec3 v[8]), 96 bytes, as 32-byte elements 3 t .. 3 t + 2 of a storage
+// buffer of u64vec4 (four 64-bit words; as_words, gim_common.glsl). A macro: GLSL passes no
+// buffer to a function.
+u64vec4 words_of_eight(vec3 v[8], int m) {
+  float f[8];
+  [[unroll]] for (int q = 0; q < 8; ++q) f[q] = v[(8 * m + q) / 3][(8 * m + q) % 3];
+  return u64vec4(as_words(vec4(f[0], f[1], f[2], f[3])), as_words(vec4(f[4], f[5], f[6], f[7])));
+}
+#define STORE_EIGHT(out_array, t, v)                                        \
+  {                                                                         \
+    [[unroll]] for (int m_ = 0; m_ < 3; ++m_)                               \
+      out_array[3u * (t) + uint(m_)] = words_of_eight(v, m_);               \
   }
 
 // A vertex's 3 x 3 source samples: s[3 r + q] at padded index c + (r - 1) S + (q - 1).
@@ -41,14 +45,15 @@ void neighbourhood(uint c, out vec3 s[9]) {
 // (a texel fetch is a gather per component on lavapipe). Smaller grids fetch per vertex.
 layout(constant_id = 1) const bool kSharedWindow = false;
 
-// The neighbourhoods of the invocation's vertices 4 t .. 4 t + 3; past the chunk's end, the last
-// vertex's (vertex_source's clamp).
-void four_neighbourhoods(uint t, out vec3 s[4][9]) {
+// The neighbourhoods of vertices 4 g .. 4 g + 3; past the chunk's end, the last vertex's
+// (vertex_source's clamp).
+void four_neighbourhoods(uint g, out vec3 s[4][9]) {
   if (!kSharedWindow) {
-    [[unroll]] for (int k = 0; k < 4; ++k) neighbourhood(vertex_source(4u * t + uint(k)), s[k]);
+    [[unroll]] for (int k = 0; k < 4; ++k) neighbourhood(vertex_source(4u * g + uint(k)), s[k]);
     return;
   }
-  const uint v0 = 4u * t, x0 = v0 % pc.dst_side;
+  const uint count = chunk_vertices();
+  const uint v0 = min(4u * g, count - 1u), x0 = v0 % pc.dst_side;
   const uint first = padded_index(x0, pc.first_row + v0 / pc.dst_side) - pc.src_side - 1u;
   const uint last = pc.src_side * pc.src_side - 1u;  // the window of the grid's last group runs past it
   vec3 w[24];  // w[8 r + q] at first + r S + q
@@ -59,7 +64,6 @@ void four_neighbourhoods(uint t, out vec3 s[4][9]) {
     [[unroll]] for (int r = 0; r < 3; ++r)
       [[unroll]] for (int q = 0; q < 3; ++q) s[k][3 * r + q] = crossed ? w[8 * r + k + 2 + q] : w[8 * r + k + q];
   }
-  const uint count = chunk_vertices();
   [[unroll]] for (int k = 1; k < 4; ++k)
     if (v0 + uint(k) >= count) s[k] = s[k - 1];
 }
