@@ -120,6 +120,8 @@ std::optional<std::string> vulkan_unsupported(GpuVariant variant, GpuMode mode, 
   if (storage_bindings_needed(variant, mode) > l.max_per_stage_storage_buffers)
     return name + " binds " + std::to_string(storage_bindings_needed(variant, mode)) + " storage buffers per stage; " +
            device + " allows " + std::to_string(l.max_per_stage_storage_buffers);
+  if (variant == GpuVariant::TwoPass && mode == GpuMode::Evaluate && !f.scalar_block_layout)
+    return name + " (evaluate-only) stores vec3 arrays with a 12-byte stride; " + device + " lacks scalarBlockLayout";
   const bool stores = variant != GpuVariant::TwoPass && mode == GpuMode::Evaluate;
   if (stores && !f.vertex_pipeline_stores_and_atomics)
     return name + " (evaluate-only) stores from the " +

@@ -104,7 +104,7 @@ DeviceOutput::DeviceOutput(gpu::Context& ctx, int num_quads, int rate, uint32_t 
     : samples_(uint64_t(rate) * rate) {
   plan_ = gpu::plan_chunks(ctx.limits(), {uint64_t(num_quads) * samples_, 12, samples_, local_size, max_chunk_bytes});
   for (uint64_t bytes : plan_.buffer_bytes) {
-    const gpu::BufferUsage usage = gpu::BufferUsage::Storage | gpu::BufferUsage::StorageTexel;
+    const gpu::BufferUsage usage = gpu::BufferUsage::Storage;
     positions_.push_back(gpu::Buffer::device(ctx, bytes, usage, "c-patch output positions"));
     normals_.push_back(gpu::Buffer::device(ctx, bytes, usage, "c-patch output normals"));
     positions_staging_.push_back(gpu::Buffer::readback(ctx, bytes, "c-patch output positions (readback)"));

@@ -65,13 +65,6 @@ class DeviceOutput {
   const gpu::ChunkPlan& plan() const { return plan_; }
   gpu::BufferRange positions(const gpu::Chunk& c) const { return positions_[c.buffer].range(c.byte_offset, c.bytes); }
   gpu::BufferRange normals(const gpu::Chunk& c) const { return normals_[c.buffer].range(c.byte_offset, c.bytes); }
-  // The same ranges as float texels (the 2-pass evaluate kernel writes them with imageStore).
-  gpu::BufferRange position_texels(const gpu::Chunk& c) const {
-    return positions_[c.buffer].texels(VK_FORMAT_R32_SFLOAT, c.byte_offset, c.bytes);
-  }
-  gpu::BufferRange normal_texels(const gpu::Chunk& c) const {
-    return normals_[c.buffer].texels(VK_FORMAT_R32_SFLOAT, c.byte_offset, c.bytes);
-  }
   uint32_t first_quad(const gpu::Chunk& c) const { return static_cast<uint32_t>(c.first_element / samples_); }
   uint32_t quads(const gpu::Chunk& c) const { return static_cast<uint32_t>(c.elements / samples_); }
 

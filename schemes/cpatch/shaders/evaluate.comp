@@ -15,10 +15,12 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "buffers.glsl"
-// Float3 positions and normals of the output chunk, as float texels: an image store is a vector
-// scatter on lavapipe, a storage-buffer store a branch per lane.
-layout(binding = 2, r32f) uniform restrict writeonly imageBuffer out_positions;
-layout(binding = 3, r32f) uniform restrict writeonly imageBuffer out_normals;
+// Float3 positions and normals of the output chunk, one vec3 store each (scalar block layout: a
+// 12-byte stride). Lavapipe stores lane by lane and component by component; one three-component
+// store costs less than three r32f imageStores (README.md, "The evaluate pass").
+#extension GL_EXT_scalar_block_layout : require
+layout(scalar, binding = 2) restrict writeonly buffer OutPositions { vec3 out_positions[]; };
+layout(scalar, binding = 3) restrict writeonly buffer OutNormals { vec3 out_normals[]; };
 layout(binding = 0) uniform samplerBuffer record_texels;  // conversion.h PatchRecord, a vec4 per entry
 layout(binding = 1) uniform samplerBuffer grid_texels;    // vulkan_resources.cpp grid_table()
 // Per quad of this dispatch: its index << 4 | forward_sides (vulkan_resources.cpp quad_lists()).
@@ -44,11 +46,8 @@ layout(push_constant) uniform Push {
 const int kLast = kRate - 1;
 
 void store_sample(int index, vec3 position, SurfacePoint p) {
-  const vec3 normal = unit_normal(p.du, p.dv);
-  [[unroll]] for (int k = 0; k < 3; ++k) {
-    imageStore(out_positions, 3 * index + k, vec4(position[k]));
-    imageStore(out_normals, 3 * index + k, vec4(normal[k]));
-  }
+  out_positions[index] = position;
+  out_normals[index] = unit_normal(p.du, p.dv);
 }
 
 // The position of sample (i, j), 0 < i < N - 1, from the patch point: on a border row the side's
