@@ -38,11 +38,12 @@ void neighbourhood(uint c, out vec3 s[9]) {
     [[unroll]] for (int q = 0; q < 3; ++q) s[3 * r + q] = src(c + uint(r) * pc.src_side + uint(q) - pc.src_side - 1u);
 }
 
-// Whether an invocation's four vertices share one fetch window (host: the grid's side n >= 4).
+// Whether each four consecutive vertices share one fetch window (host: the grid's side n >= 4).
 // Vertex d after the first lies d + 2 texels on in the padded image, past a row's end (padded
 // rows are n + 2 long), and with n >= 4 four vertices cross at most one row's end: all four
 // neighbourhoods lie in 3 rows x 8 columns from the first's, 24 fetches where four apart take 36
-// (a texel fetch is a gather per component on lavapipe). Smaller grids fetch per vertex.
+// (a small saving on lavapipe, where a texel fetch is cheap next to a store: ../README.md,
+// "Stores"). Smaller grids fetch per vertex.
 layout(constant_id = 1) const bool kSharedWindow = false;
 
 // The neighbourhoods of vertices 4 g .. 4 g + 3; past the chunk's end, the last vertex's
