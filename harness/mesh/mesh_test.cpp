@@ -29,6 +29,21 @@ std::string obj_error(const std::string& text) {
   return "";
 }
 
+// The message of the InputError that reading `text` as a file named `name` raises (read_mesh, so
+// PLY goes through its check and OpenMesh), or "" when it reads fine.
+std::string file_error(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  std::string message;
+  try {
+    read_mesh(p.string());
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  fs::remove(p);
+  return message;
+}
+
 const char* kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 
 }  // namespace
@@ -311,50 +326,32 @@ TEST(ReadMesh, OffCountsThatOverflowTheirSumAreRefused) {
 
 // tests/fuzz: OpenMesh loops forever on a PLY format line whose version is not a number.
 TEST(ReadMesh, PlyVersionOtherThanOneIsRefusedBeforeOpenMesh) {
-  const fs::path p = fs::temp_directory_path() / "sdb_mesh_test_version.ply";
-  std::ofstream(p) << "ply\nformat binary_little_endian o10\nelement vertex 0\nproperty float x\nproperty float y\n"
-                      "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
-  try {
-    read_mesh(p.string());
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":2: unknown PLY version"), std::string::npos) << e.what();
-  }
-  fs::remove(p);
+  const std::string e = file_error("sdb_mesh_test_version.ply",
+                                   "ply\nformat binary_little_endian o10\nelement vertex 0\nproperty float x\n"
+                                   "property float y\nproperty float z\nelement face 0\n"
+                                   "property list uchar int vertex_indices\nend_header\n");
+  EXPECT_NE(e.find(":2: unknown PLY version"), std::string::npos) << e;
 }
 
 // tests/fuzz: an element without properties takes no bytes, so a binary body could not bound its
 // count and the walk over 9e18 empty instances hung.
 TEST(ReadMesh, PlyElementWithoutPropertiesIsRefused) {
-  const fs::path p = fs::temp_directory_path() / "sdb_mesh_test_empty_element.ply";
-  std::ofstream(p) << "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
-                      "property float z\nelement junk 9000000000000000000\nelement face 0\n"
-                      "property list uchar int vertex_indices\nend_header\n";
-  try {
-    read_mesh(p.string());
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":7: element 'junk' announces 9000000000000000000 instances but no properties"),
-              std::string::npos)
-        << e.what();
-  }
-  fs::remove(p);
+  const std::string e = file_error("sdb_mesh_test_empty_element.ply",
+                                   "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+                                   "property float y\nproperty float z\nelement junk 9000000000000000000\n"
+                                   "element face 0\nproperty list uchar int vertex_indices\nend_header\n");
+  EXPECT_NE(e.find(":7: element 'junk' announces 9000000000000000000 instances but no properties"), std::string::npos)
+      << e;
 }
 
 // tests/fuzz: a form feed splits a word for OpenMesh but not for us, and a NUL is part of one for
 // OpenMesh; it then looped on a count it could not parse.
 TEST(ReadMesh, PlyHeaderControlBytesAreRefused) {
-  const fs::path p = fs::temp_directory_path() / "sdb_mesh_test_control.ply";
-  std::ofstream(p, std::ios::binary) << "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
-                                        "property float z\nelement ed\fge 0\nproperty int a\nelement face 0\n"
-                                        "property list uchar int vertex_indices\nend_header\n";
-  try {
-    read_mesh(p.string());
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":7: byte 12 in the header"), std::string::npos) << e.what();
-  }
-  fs::remove(p);
+  const std::string e = file_error("sdb_mesh_test_control.ply",
+                                   "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                                   "property float z\nelement ed\fge 0\nproperty int a\nelement face 0\n"
+                                   "property list uchar int vertex_indices\nend_header\n");
+  EXPECT_NE(e.find(":7: byte 12 in the header"), std::string::npos) << e;
 }
 
 // R1 for quad/triangle schemes: a pentagon becomes a quad and a triangle, a hexagon two quads, a

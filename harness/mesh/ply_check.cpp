@@ -103,10 +103,7 @@ Header read_header(std::string_view data, const std::string& path) {
     const bool comment = !tok.empty() && (tok[0] == "comment" || tok[0] == "obj_info");
     require_header_text(p, line, comment);
     if (tok.empty() || comment) continue;
-    if (tok[0] == "end_header") {
-      if (!h.elements.empty()) require_properties(h.elements.back(), path);
-      break;
-    }
+    if (tok[0] == "end_header") break;
     if (tok[0] == "format") {
       if (tok.size() != 3) p.fail("malformed format line");
       if (tok[1] == "ascii") h.format = Format::Ascii;
@@ -120,7 +117,6 @@ Header read_header(std::string_view data, const std::string& path) {
       if (tok.size() != 3) p.fail("malformed element line");
       const long n = p.integer(tok[2]);
       if (n < 0) p.fail("negative element count " + text::quoted(tok[2]));
-      if (!h.elements.empty()) require_properties(h.elements.back(), path);
       h.elements.push_back({std::string(tok[1]), n, {}, no});
     } else if (tok[0] == "property") {
       if (h.elements.empty()) p.fail("property before any element");
@@ -130,6 +126,7 @@ Header read_header(std::string_view data, const std::string& path) {
     }
   }
   if (!have_format) throw InputError(path, "header has no format line");
+  for (const Element& e : h.elements) require_properties(e, path);
   h.body = pos, h.body_line = no + 1;
   return h;
 }

@@ -34,11 +34,11 @@ gpu::Groups row_groups(uint64_t width, uint64_t rows) {
   return {static_cast<uint32_t>((width + kLocalSize - 1) / kLocalSize), static_cast<uint32_t>(rows), 1};
 }
 
-constexpr uint64_t kOutputPadding = 8 * sizeof(Point3);
-
 // Vertices per output-pass invocation (output_grid.glsl).
 constexpr uint64_t kOutputGroup = 8;
 constexpr uint64_t kOutputGroupBytes = kOutputGroup * sizeof(Point3);
+// After the outputs: the grid's last group writes up to seven copies of its last vertex there.
+constexpr uint64_t kOutputPadding = kOutputGroupBytes;
 
 // A chunk's outputs as the output passes write them: whole groups of eight vertices (96 bytes),
 // into the padding after the last.
