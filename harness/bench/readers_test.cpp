@@ -3,31 +3,19 @@
 // behaviour or a value the gate cannot judge with.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-
 #include "harness/bench/gate.h"
 #include "harness/bench/results.h"
 #include "harness/core/errors.h"
+#include "harness/core/input_error_of_file.h"
 
 using namespace sdb;
-namespace fs = std::filesystem;
 
 namespace {
 
-// The message of the InputError `read` raises on a file holding `text`, or "" when it reads.
+// What `read` says of a JSON file holding `text` (harness/core/input_error_of_file.h).
 template <class Reader>
 std::string read_error(const std::string& text, Reader read) {
-  const fs::path p = fs::temp_directory_path() / ("sdb_readers_test_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(p) << text;
-  std::string message;
-  try {
-    read(p.string());
-  } catch (const InputError& e) {
-    message = e.what();
-  }
-  fs::remove(p);
-  return message;
+  return input_error_of_file("sdb_readers_test.json", text, read);
 }
 
 std::string results_error(const std::string& text) { return read_error(text, read_results); }

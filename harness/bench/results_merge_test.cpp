@@ -11,6 +11,7 @@
 #include "harness/bench/results.h"
 #include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
+#include "harness/core/input_error_of_file.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;
@@ -170,14 +171,8 @@ TEST(Results, FilesWithoutShardOrPairedReadAsBefore) {
 }
 
 TEST(Results, RefusesAShardOutsideItsCount) {
-  const fs::path p = fs::temp_directory_path() / ("sdb_merge_test_bad_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(p) << R"({"schema": 1, "runs": [], "shard": {"index": 3, "count": 3}})";
-  std::string message;
-  try {
-    read_results(p.string());
-  } catch (const InputError& e) {
-    message = e.what();
-  }
-  fs::remove(p);
+  const std::string message = input_error_of_file("sdb_merge_test_bad.json",
+                                                  R"({"schema": 1, "runs": [], "shard": {"index": 3, "count": 3}})",
+                                                  [](const std::string& path) { read_results(path); });
   EXPECT_NE(message.find("'shard' must have 0 <= index < count"), std::string::npos) << message;
 }

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "harness/core/errors.h"
+#include "harness/core/input_error_of_file.h"
 #include "harness/mesh/facts.h"
 #include "harness/mesh/mesh_io.h"
 #include "harness/mesh/quadrangulate.h"
@@ -29,19 +30,9 @@ std::string obj_error(const std::string& text) {
   return "";
 }
 
-// The message of the InputError that reading `text` as a file named `name` raises (read_mesh, so
-// PLY goes through its check and OpenMesh), or "" when it reads fine.
+// What read_mesh says of a file `name` holding `text` (PLY through its check and OpenMesh).
 std::string file_error(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / name;
-  std::ofstream(p, std::ios::binary) << text;
-  std::string message;
-  try {
-    read_mesh(p.string());
-  } catch (const InputError& e) {
-    message = e.what();
-  }
-  fs::remove(p);
-  return message;
+  return input_error_of_file(name, text, [](const std::string& path) { read_mesh(path); });
 }
 
 const char* kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
