@@ -209,9 +209,18 @@ void Context::create_render_pass() {
         "creating the offscreen render pass");
 }
 
+std::shared_ptr<const Pipeline> Context::shared_pipeline(const std::string& key,
+                                                         const std::function<std::shared_ptr<const Pipeline>()>& make) {
+  std::lock_guard<std::mutex> lock(pipelines_mutex_);
+  auto it = shared_pipelines_.find(key);
+  if (it == shared_pipelines_.end()) it = shared_pipelines_.emplace(key, make()).first;
+  return it->second;
+}
+
 Context::~Context() {
   if (device_) {
     vk_.vkDeviceWaitIdle(device_);
+    shared_pipelines_.clear();
     if (render_pass_) vk_.vkDestroyRenderPass(device_, render_pass_, nullptr);
     if (pipeline_cache_) vk_.vkDestroyPipelineCache(device_, pipeline_cache_, nullptr);
     if (fence_) vk_.vkDestroyFence(device_, fence_, nullptr);

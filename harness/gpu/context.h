@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -18,6 +19,7 @@
 namespace sdb::gpu {
 
 class Commands;
+class Pipeline;
 class Recording;
 struct PhysicalDevice;
 
@@ -76,6 +78,11 @@ class Context {
   uint64_t validation_warnings() const { return log_.warnings.load(); }
   std::vector<std::string> validation_messages() const;
 
+  // Pipelines shared by every user of this context, by key (pipeline.h: shared_compute_pipeline
+  // makes the key and the pipeline); they live as long as the context.
+  std::shared_ptr<const Pipeline> shared_pipeline(const std::string& key,
+                                                  const std::function<std::shared_ptr<const Pipeline>()>& make);
+
   // Records commands into a fresh command buffer, submits it and waits for it to finish.
   void run(const std::function<void(Commands&)>& record);
   // Records once for many submissions (a scheme's execute()).
@@ -111,6 +118,8 @@ class Context {
   VkRenderPass render_pass_ = VK_NULL_HANDLE;
   VkFormat depth_format_ = VK_FORMAT_UNDEFINED;
   std::mutex queue_mutex_;  // guards the queue, the command pool and the fence
+  std::mutex pipelines_mutex_;
+  std::map<std::string, std::shared_ptr<const Pipeline>> shared_pipelines_;  // destroyed before the device
 };
 
 // The process's Context, created on first call with `options` (later calls return the same one

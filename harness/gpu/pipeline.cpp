@@ -1,6 +1,8 @@
 #include "harness/gpu/pipeline.h"
 
+#include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "harness/gpu/errors.h"
@@ -287,6 +289,27 @@ ComputePipeline::ComputePipeline(Context& ctx, const ComputePipelineDesc& desc) 
   info.layout = layout_;
   check(ctx.vk().vkCreateComputePipelines(ctx.device(), ctx.pipeline_cache(), 1, &info, nullptr, &pipeline_),
         "vkCreateComputePipelines", "creating compute pipeline " + std::string(desc.shader.name));
+}
+
+namespace {
+
+// What makes two compute pipelines the same: the embedded shader (its words are static, so their
+// address names them), the bindings, the push constants' size and the specialization.
+std::string pipeline_key(const ComputePipelineDesc& desc) {
+  std::string key = std::string(desc.shader.name) + "@" +
+                    std::to_string(reinterpret_cast<uintptr_t>(desc.shader.words.data())) + ":" +
+                    std::to_string(desc.shader.words.size()) + " b";
+  for (Binding b : desc.bindings) key += std::to_string(static_cast<int>(b));
+  key += " p" + std::to_string(desc.push_constant_bytes);
+  for (const SpecConstant& c : desc.constants) key += " " + std::to_string(c.id) + "=" + std::to_string(c.value);
+  return key;
+}
+
+}  // namespace
+
+std::shared_ptr<const ComputePipeline> shared_compute_pipeline(Context& ctx, const ComputePipelineDesc& desc) {
+  return std::static_pointer_cast<const ComputePipeline>(
+      ctx.shared_pipeline(pipeline_key(desc), [&] { return std::make_shared<const ComputePipeline>(ctx, desc); }));
 }
 
 GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) {

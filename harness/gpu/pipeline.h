@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,6 +112,13 @@ class ComputePipeline : public Pipeline {
   // Throws Unsupported, VulkanError.
   ComputePipeline(Context& ctx, const ComputePipelineDesc& desc);
 };
+
+// The context's compute pipeline for `desc`: made at the first request, shared by every later
+// one with the same shader, bindings, push constant size and specialization. lavapipe compiles a
+// pipeline's shader with LLVM when it first runs (tens of milliseconds), so evaluations that make
+// the same pipelines again (a test's sweep, a benchmark's setups) compile each once. Throws as
+// the constructor does.
+std::shared_ptr<const ComputePipeline> shared_compute_pipeline(Context& ctx, const ComputePipelineDesc& desc);
 
 class GraphicsPipeline : public Pipeline {
  public:

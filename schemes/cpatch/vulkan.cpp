@@ -182,8 +182,8 @@ struct CpatchVulkan::Device {
   }
 
   void make_two_pass(gpu::Context& ctx, const CpatchTopology& t, int rate, const GpuOptions& o) {
-    vertices = std::make_unique<gpu::ComputePipeline>(ctx, vertices_pass_desc());
-    patches = std::make_unique<gpu::ComputePipeline>(ctx, patches_pass_desc());
+    vertices = gpu::shared_compute_pipeline(ctx, vertices_pass_desc());
+    patches = gpu::shared_compute_pipeline(ctx, patches_pass_desc());
     vertices_set = gpu::DescriptorSet(*vertices, vertices_pass_bindings(mesh));
     patches_set = gpu::DescriptorSet(*patches, patches_pass_bindings(mesh));
     if (o.mode == GpuMode::Evaluate) {
@@ -203,8 +203,7 @@ struct CpatchVulkan::Device {
     const uint32_t subgroup = ctx.limits().subgroup_size;
     evaluate_local_size = std::max<uint32_t>(1, kLocalSize / subgroup) * subgroup;
     for (int k = 0; k < 4; ++k)
-      evaluate[k] = std::make_unique<gpu::ComputePipeline>(
-          ctx, evaluate_pass_desc(rate, k & 1, k & 2, evaluate_local_size));
+      evaluate[k] = gpu::shared_compute_pipeline(ctx, evaluate_pass_desc(rate, k & 1, k & 2, evaluate_local_size));
     EvaluateRuns plan = cpatch::evaluate_runs(t, output->plan(), uint64_t(rate) * rate);
     evaluate_runs = std::move(plan.runs);
     quad_lists = gpu::storage_table(ctx, std::move(plan.lists), "c-patch evaluate quad lists");
@@ -228,8 +227,9 @@ struct CpatchVulkan::Device {
   std::optional<DeviceOutput> output;             // evaluate mode
   std::unique_ptr<gpu::RenderTarget> target;      // render mode; 1 x 1 for graphics evaluate mode
   gpu::Buffer camera, heat, indices, tess_error, tess_error_staging, quad_lists;
-  std::unique_ptr<gpu::ComputePipeline> vertices, patches;
-  std::unique_ptr<gpu::ComputePipeline> evaluate[4];  // index: cpatch + 2 border_rows
+  // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
+  std::shared_ptr<const gpu::ComputePipeline> vertices, patches;
+  std::shared_ptr<const gpu::ComputePipeline> evaluate[4];  // index: cpatch + 2 border_rows
   uint32_t evaluate_local_size = kLocalSize;
   std::vector<EvaluateRun> evaluate_runs;
   std::unique_ptr<gpu::GraphicsPipeline> graphics;

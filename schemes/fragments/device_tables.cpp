@@ -105,4 +105,50 @@ DeviceTables pack_tables(const FragmentSurface& s) {
   return out;
 }
 
+namespace {
+
+RingCase ring_case(uint32_t n) {
+  switch (n) {
+    case 0: return kRingNone;
+    case 1: return kRingOne;
+    case 2: return kRingTwo;
+    case 4: return kRingFour;
+    case 6: return kRingSix;
+    case 8: return kRingEight;
+    default: return kRingSorted;
+  }
+}
+
+}  // namespace
+
+uint32_t rule_kind(const VertexRule& r) {
+  return ring_case(r.num_e) | ring_case(r.num_f) << 3 | (r.wc != 0.0f ? 64u : 0u);
+}
+
+uint32_t limit_kind(const ShapeTables& t, uint32_t entry, bool project) {
+  const LimitTable& lim = t.limit;
+  const NormalCase normal = lim.net_size                 ? kNormalNet
+                            : lim.regular[entry] < 0     ? kNormalGeneral
+                            : lim.regular_size == 9      ? kNormalRegular9
+                            : lim.regular_size == 7      ? kNormalRegular7
+                                                         : kNormalAny;
+  if (!project) return kind_of(0, kPositionRule, normal);
+  if (lim.stencil[entry] >= 0) return kind_of(0, kPositionStencil, normal);
+  return kind_of(rule_kind(lim.position[entry]), kPositionRule, normal);
+}
+
+uint32_t append_kind_lists(DeviceTables& d, const std::vector<std::vector<std::vector<uint32_t>>>& lists) {
+  const size_t pairs = d.words.size();
+  for (const auto& by_shape : lists) d.words.resize(d.words.size() + 2 * by_shape.size());
+  size_t pair = pairs;
+  for (const auto& by_shape : lists)
+    for (const std::vector<uint32_t>& entries : by_shape) {
+      d.words[pair++] = static_cast<uint32_t>(d.words.size());
+      d.words[pair++] = static_cast<uint32_t>(entries.size());
+      d.words.insert(d.words.end(), entries.begin(), entries.end());
+    }
+  if (d.words.size() > std::numeric_limits<uint32_t>::max()) throw Unsupported("the pattern tables pass 2^32 words");
+  return static_cast<uint32_t>(pairs);
+}
+
 }  // namespace sdb::fragments

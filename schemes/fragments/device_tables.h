@@ -41,4 +41,27 @@ struct DeviceTables {
 // Throws Unsupported past 2^32 words or output vertices.
 DeviceTables pack_tables(const FragmentSurface& surface);
 
+// Kinds of entries (pass_plan.h): a vertex rule's by the formulas its terms take (fragments.glsl's
+// apply_vertex_rule), a limit entry's also by the paths of its position and normal (limit.comp).
+// A kind is a specialization constant of the pass's pipeline, so that lavapipe, which runs both
+// sides of every branch masked, compiles one path; kRuleAny and kLimitAny decide at run time.
+// A rule's kind: bits 0-2 and 3-5 the ring cases of its e and f terms, bit 6 a wc term. A limit
+// entry's: bits 0-6 its position's rule, bits 7-8 the position's path, bits 9-11 the normal's.
+enum RingCase : uint32_t { kRingNone, kRingOne, kRingTwo, kRingFour, kRingSix, kRingEight, kRingSorted, kRingAny };
+constexpr uint32_t kRuleAny = 127;
+enum PositionCase : uint32_t { kPositionRule, kPositionStencil, kPositionAny };
+enum NormalCase : uint32_t { kNormalNet, kNormalRegular9, kNormalRegular7, kNormalGeneral, kNormalAny };
+constexpr uint32_t kind_of(uint32_t rule, PositionCase position, NormalCase normal) {
+  return rule | uint32_t(position) << 7 | uint32_t(normal) << 9;
+}
+constexpr uint32_t kLimitAny = kind_of(kRuleAny, kPositionAny, kNormalAny);
+uint32_t rule_kind(const VertexRule& r);
+// Entry `entry` of shape `t`'s limit; `project`: the positions are projected to the limit.
+uint32_t limit_kind(const ShapeTables& t, uint32_t entry, bool project);
+
+// Entry lists of a pass's dispatches: lists[k][shape] are the entries of kind k, ascending.
+// Appends, kind-major, a (first word, count) pair per kind and shape, then the lists; returns the
+// word of the first pair (kind k's pair for a shape is at that + 2 (k shapes + shape)).
+uint32_t append_kind_lists(DeviceTables& d, const std::vector<std::vector<std::vector<uint32_t>>>& lists);
+
 }  // namespace sdb::fragments

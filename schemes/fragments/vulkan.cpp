@@ -6,6 +6,7 @@
 
 #include "harness/gpu/gpu.h"
 #include "schemes/fragments/device_tables.h"
+#include "schemes/fragments/pass_plan.h"
 #include "schemes/fragments/surface.h"
 #include "sdb_scheme_fragments_shaders.h"
 
@@ -17,7 +18,8 @@ using gpu::BufferUsage;
 
 // Invocations per work group, one fragment each (the shaders' local_size_x_id = 0).
 constexpr uint32_t kLocalSize = 64;
-// Scratch of a wave, both halves (a level and the next): past this, fragments run in more waves.
+// Scratch of a wave, both halves (a level and the next) and the net points (a third): past this,
+// fragments run in more waves.
 // Small enough for lavapipe's 2 GiB heap beside a large output, large enough that a real GPU
 // runs one wave.
 constexpr uint64_t kMaxScratchBytes = uint64_t(512) << 20;
@@ -25,97 +27,9 @@ constexpr uint32_t kCatmark = 1, kProject = 2;
 
 struct Push {
   uint32_t level = 0, levels = 0, first_batch = 0, src_base = 0, dst_base = 0, header_words = 0,
-           wave_first_vertex = 0, out_shift = 0, chunk = 0, pad[3] = {0, 0, 0};
+           wave_first_vertex = 0, out_shift = 0, chunk = 0, kind_pairs = 0, pad[2] = {0, 0};
   float origin[4] = {0, 0, 0, 0};
 };
-
-// llvmpipe ends every loop of an invocation after 65,535 iterations in all (its
-// LP_MAX_TGSI_LOOP_ITERATIONS, shared by every loop of a shader), silently: an invocation that
-// would loop longer leaves its output unwritten. So each invocation takes a chunk of a pass's
-// entries, small enough that a bound on its loop iterations stays below that; a pass whose single
-// entries exceed it (a ring of valence ~100) is refused on llvmpipe, never run short.
-constexpr uint64_t kLoopBudget = 60000;
-constexpr uint32_t kMaxChunk = 64;
-
-// A pass over every fragment: level 0 (gather), a level's face points or its edge and vertex
-// points (Catmull-Clark's read the face points, so they come after), or the limit.
-enum class Part : uint32_t { Gather = 0, Faces = 1, EdgesVertices = 2, Limit = 3 };
-struct PassSpec {
-  Part part;
-  uint32_t level = 0;
-  uint32_t chunk = kMaxChunk;       // entries per invocation
-  std::vector<uint32_t> entries;    // per shape
-};
-
-// Loop iterations (shaders/fragments.glsl) of a ring sum and of a rule, bounded from above.
-uint64_t ring_cost(uint32_t n) {
-  if (n == 1 || n == 2 || n == 4 || n == 6 || n == 8) return 0;
-  return 3 * (uint64_t(n) * (2 * n + 2) + 1);
-}
-uint64_t vertex_rule_cost(const VertexRule& r) { return 1 + ring_cost(r.num_e) + ring_cost(r.num_f); }
-
-// Cost of each entry of a pass, for one shape.
-std::vector<uint64_t> entry_costs(const ShapeTables& t, Part part, uint32_t level) {
-  std::vector<uint64_t> c;
-  if (part == Part::Gather) return std::vector<uint64_t>(t.num_slots0, 1);
-  if (part == Part::Faces) return std::vector<uint64_t>(t.levels[level - 1].faces.size(), 1);
-  if (part == Part::EdgesVertices) {
-    const LevelTable& l = t.levels[level - 1];
-    c.assign(l.edges.size(), 1);
-    for (const VertexRule& r : l.vertices) c.push_back(vertex_rule_cost(r));
-    return c;
-  }
-  const LimitTable& lim = t.limit;
-  for (uint32_t i = 0; i < t.block_vertices(); ++i) {
-    const uint32_t p = i, n = i;
-    uint64_t cost = 1 + (lim.stencil[p] < 0 ? vertex_rule_cost(lim.position[p])
-                                            : lim.stencil_begin[lim.stencil[p] + 1] - lim.stencil_begin[lim.stencil[p]]);
-    if (lim.net_size) cost += lim.net_size;
-    else if (lim.regular[n] < 0) cost += lim.tangent_begin[n + 1] - lim.tangent_begin[n];
-    c.push_back(cost);
-  }
-  return c;
-}
-
-uint64_t worst_chunk(const std::vector<uint64_t>& costs, uint32_t chunk) {
-  uint64_t worst = 0;
-  for (size_t i = 0; i < costs.size(); i += chunk) {
-    uint64_t sum = 0;
-    for (size_t k = i; k < std::min(costs.size(), i + chunk); ++k) sum += costs[k];
-    worst = std::max(worst, sum);
-  }
-  return worst;
-}
-
-// The passes in order, each with the largest chunk (a power of two up to kMaxChunk) that keeps
-// every invocation within kLoopBudget; where even one entry does not fit, llvmpipe is refused.
-std::vector<PassSpec> plan_passes(const FragmentSurface& s, bool loop_limited, const std::string& device) {
-  std::vector<PassSpec> passes;
-  auto add = [&](Part part, uint32_t level) {
-    PassSpec p{part, level, kMaxChunk, {}};
-    std::vector<std::vector<uint64_t>> costs;
-    for (const ShapeTables& t : s.tables) {
-      costs.push_back(entry_costs(t, part, level));
-      p.entries.push_back(static_cast<uint32_t>(costs.back().size()));
-    }
-    auto fits = [&](uint32_t chunk) {
-      return std::all_of(costs.begin(), costs.end(), [&](const auto& c) { return worst_chunk(c, chunk) <= kLoopBudget; });
-    };
-    while (p.chunk > 1 && !fits(p.chunk)) p.chunk /= 2;
-    if (loop_limited && !fits(p.chunk))
-      throw gpu::Unsupported(device + " stops every shader invocation after 65,535 loop iterations; a fragment's " +
-                             (part == Part::Limit ? std::string("limit") : "level " + std::to_string(level)) +
-                             " entry here needs more (a vertex of high valence)");
-    passes.push_back(std::move(p));
-  };
-  add(Part::Gather, 0);
-  for (uint32_t d = 1; d <= static_cast<uint32_t>(s.inner_depth); ++d) {
-    if (s.rule == SubdivisionRule::CatmullClark) add(Part::Faces, d);
-    add(Part::EdgesVertices, d);
-  }
-  add(Part::Limit, 0);
-  return passes;
-}
 
 // Consecutive batches, with their contiguous output.
 struct Wave {
@@ -125,9 +39,12 @@ struct Wave {
   uint32_t shift = 0;                        // floats from bind_offset to the wave's first vertex
 };
 
+// A scratch slot: one point, (x, y, z, 0), read by one texel fetch and stored as two 64-bit words.
+constexpr uint64_t kSlotBytes = 16;
+
 struct WavePlan {
   std::vector<Wave> waves;
-  std::vector<uint32_t> scratch_offset;  // per batch: its first float in its wave's scratch
+  std::vector<uint32_t> scratch_offset;  // per batch: its first slot in its wave's scratch
   uint64_t scratch_bytes = 0;            // of the largest wave, for the scratch buffers
 };
 
@@ -141,7 +58,7 @@ uint64_t batch_vertices(const FragmentSurface& s, const FragmentSurface::Batch& 
 // A batch's scratch: its shape's slots, for each of its fragments.
 uint64_t batch_scratch_bytes(const FragmentSurface& s, const FragmentSurface::Batch& b) {
   const ShapeTables& t = s.tables[s.partition.fragments[s.order[b.begin]].shape];
-  return uint64_t(t.max_slots) * 3 * b.count * sizeof(float);
+  return uint64_t(t.max_slots) * b.count * kSlotBytes;
 }
 
 void place_output(Wave& w, uint64_t alignment) {
@@ -158,8 +75,9 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
   const uint64_t alignment = std::max<uint64_t>(limits.min_texel_buffer_offset_alignment, 4);
   const uint64_t range = max_wave_bytes ? std::min(max_wave_bytes, limits.max_storage_buffer_range)
                                         : limits.max_storage_buffer_range;
-  // The scratch binding holds two halves (a level and the next).
-  const uint64_t scratch_cap = std::min({range, kMaxScratchBytes, limits.max_memory_allocation_size}) / 2 / 16 * 16;
+  // The scratch binding holds two halves (a level and the next); the net points a third, apart.
+  const uint64_t scratch_cap =
+      std::min({range / 2, kMaxScratchBytes / 3, limits.max_memory_allocation_size / 2}) / kSlotBytes * kSlotBytes;
   WavePlan plan;
   Wave w;
   uint64_t scratch = 0;
@@ -176,28 +94,29 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
       w = Wave{i, 0, w.first_vertex + w.num_vertices, 0};
       scratch = 0;
     }
-    plan.scratch_offset.push_back(static_cast<uint32_t>(scratch / sizeof(float)));
+    plan.scratch_offset.push_back(static_cast<uint32_t>(scratch / kSlotBytes));
     ++w.num_batches, w.num_vertices += n, scratch += need;
   }
   if (w.num_batches) plan.waves.push_back(w);
-  plan.scratch_bytes = std::max({plan.scratch_bytes, scratch, uint64_t(16)});
+  plan.scratch_bytes = std::max({plan.scratch_bytes, scratch, kSlotBytes});
   for (Wave& wave : plan.waves) place_output(wave, alignment);
   return plan;
 }
 
 // fragments.glsl's bindings: tables, batches, fragment list, control points, scratch (read),
-// positions, normals, scratch (written). Reads go through texel views and writes through r32f
-// image views (lavapipe's fast paths); the batches, one uvec4 per invocation, stay a storage buffer.
+// positions, normals, scratch (written), net points (read, written). Reads go through texel views (lavapipe's fast path), the
+// scratch's writes as 64-bit words to a storage buffer, the output's through r32f image views; the
+// batches, one uvec4 per invocation, are a storage buffer.
 // The rule's flags and the pass's part are specialization constants: lavapipe runs both sides of
 // every branch, masked, unless its condition is a constant.
-gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part) {
+gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part, uint32_t key) {
   using gpu::Binding;
   return {shaders::get(shader),
           {Binding::UniformTexelBuffer, Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
            Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
-           Binding::StorageTexelBuffer},
+           Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::StorageBuffer},
           sizeof(Push),
-          {{0, kLocalSize}, {1, flags}, {2, static_cast<uint32_t>(part)}}};
+          {{0, kLocalSize}, {1, flags}, {2, static_cast<uint32_t>(part)}, {3, key}}};
 }
 
 class VulkanFragmentEvaluation final : public Evaluation {
@@ -208,14 +127,14 @@ class VulkanFragmentEvaluation final : public Evaluation {
         control_(mesh.positions),
         surface_(mesh, rule, depth, project ? inner_depth_for(mesh, depth) : depth),
         batches_(surface_.batches_of(kLocalSize)) {
-    const DeviceTables tables = pack_tables(surface_);
-    passes_ = plan_passes(surface_, ctx_->info().driver_name == "llvmpipe", ctx_->info().name);
+    DeviceTables tables = pack_tables(surface_);
+    passes_ = plan_passes(surface_, tables, project, ctx_->info().driver_name == "llvmpipe", ctx_->info().name);
     plan_ = plan_waves(surface_, batches_, ctx_->limits(), options.max_wave_bytes, ctx_->info().name);
     const uint64_t output = std::max<uint64_t>(surface_.num_output_vertices * sizeof(Point3), 16);
     const uint64_t scratch = plan_.scratch_bytes;
     gpu::check_memory(*ctx_,
                       {tables.words.size() * 4 + tables.fragments.size() * 4 + batches_.size() * 16 +
-                           control_.size() * sizeof(Point3) + 2 * scratch + 2 * output,
+                           control_.size() * sizeof(Point3) + 3 * scratch + 2 * output,
                        2 * output + control_.size() * sizeof(Point3)},
                       mesh.name + " at depth " + std::to_string(depth));
     if (output > std::min(ctx_->limits().max_memory_allocation_size, ctx_->limits().max_buffer_size))
@@ -284,9 +203,10 @@ class VulkanFragmentEvaluation final : public Evaluation {
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
     control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::UniformTexel, "control points");
-    gpu::check_texel_binding(c, 2 * scratch / sizeof(float), "fragments' scratch");
-    scratch_ = gpu::Buffer::device(c, 2 * scratch, BufferUsage::UniformTexel | BufferUsage::StorageTexel,
+    gpu::check_texel_binding(c, 2 * scratch / kSlotBytes, "fragments' scratch");
+    scratch_ = gpu::Buffer::device(c, 2 * scratch, BufferUsage::UniformTexel | BufferUsage::Storage,
                                    "scratch (two levels)");
+    net_ = gpu::Buffer::device(c, scratch, BufferUsage::UniformTexel | BufferUsage::Storage, "net points");
     const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
     positions_ = gpu::Buffer::device(c, output, output_usage, "positions");
     normals_ = gpu::Buffer::device(c, output, output_usage, "normals");
@@ -313,21 +233,21 @@ class VulkanFragmentEvaluation final : public Evaluation {
     frame_timer_->end(cmd);
   }
 
-  // `flags` (kCatmark | kProject) specialize every pipeline.
+  // `flags` (kCatmark | kProject) specialize every pipeline, the pass's part and kind each.
   void make_pipelines(uint32_t flags) {
-    gather_.emplace(*ctx_, pass("gather.comp", flags, Part::Gather));
-    level_.emplace(*ctx_, pass("level.comp", flags, Part::Faces));
-    level_edges_.emplace(*ctx_, pass("level.comp", flags, Part::EdgesVertices));
-    limit_.emplace(*ctx_, pass("limit.comp", flags, Part::Limit));
+    for (const PassSpec& p : passes_) {
+      const char* shader = p.part == Part::Gather ? "gather.comp" : p.part == Part::Limit ? "limit.comp" : "level.comp";
+      pipelines_.try_emplace({p.part, p.key}, gpu::shared_compute_pipeline(*ctx_, pass(shader, flags, p.part, p.key)));
+    }
   }
 
   gpu::DescriptorSet set_for(const gpu::ComputePipeline& p, const Wave& w) const {
     return gpu::DescriptorSet(p, {tables_.texels(VK_FORMAT_R32_UINT), batches_buffer_.range(),
                                   fragments_.texels(VK_FORMAT_R32_UINT), control_buffer_.texels(VK_FORMAT_R32_SFLOAT),
-                                  scratch_.texels(VK_FORMAT_R32_SFLOAT),
+                                  scratch_.texels(VK_FORMAT_R32G32B32A32_SFLOAT),
                                   positions_.texels(VK_FORMAT_R32_SFLOAT, w.bind_offset, w.bind_bytes),
                                   normals_.texels(VK_FORMAT_R32_SFLOAT, w.bind_offset, w.bind_bytes),
-                                  scratch_.texels(VK_FORMAT_R32_SFLOAT)});
+                                  scratch_.range(), net_.texels(VK_FORMAT_R32G32B32A32_SFLOAT), net_.range()});
   }
 
   // Invocations take chunks of the pass's entries: x the chunk, y the batch (its work group's scratch).
@@ -341,7 +261,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
     Push push = push_;
     push.level = pass.level;
     push.chunk = pass.chunk;
-    const uint32_t half = static_cast<uint32_t>(plan_.scratch_bytes / sizeof(float));
+    push.kind_pairs = pass.kind_pairs;
+    const uint32_t half = static_cast<uint32_t>(plan_.scratch_bytes / kSlotBytes);
     const uint32_t made = pass.part == Part::Limit ? push_.levels + 1 : pass.level;  // the level this pass writes
     push.src_base = ((made + 1) % 2) * half;
     push.dst_base = (made % 2) * half;
@@ -354,23 +275,15 @@ class VulkanFragmentEvaluation final : public Evaluation {
     cmd.dispatch((most + pass.chunk - 1) / pass.chunk, w.num_batches);
   }
 
+  // Consecutive passes of one label (a level's face, edge and vertex points; the limit's kinds)
+  // under one timestamp pair.
   void record_wave(gpu::Commands& cmd, size_t i) {
     const Wave& w = plan_.waves[i];
-    const gpu::DescriptorSet* s = &sets_[3 * i];
     for (size_t k = 0; k < passes_.size();) {
-      const PassSpec& pass = passes_[k];
-      if (pass.part == Part::Gather || pass.part == Part::Limit) {
-        frame_timer_->begin(cmd, gpu::PassKind::Kernel, pass.part == Part::Gather ? "gather" : "limit");
-        dispatch(cmd, pass.part == Part::Gather ? *gather_ : *limit_, pass.part == Part::Gather ? s[0] : s[2], w, pass);
-        frame_timer_->end(cmd);
-        ++k;
-        continue;
-      }
-      // A level: its face points, then its edge and vertex points, under one timestamp pair.
-      const uint32_t level = pass.level;
-      frame_timer_->begin(cmd, gpu::PassKind::Kernel, "level " + std::to_string(level));
-      for (; k < passes_.size() && passes_[k].level == level && passes_[k].part != Part::Limit; ++k)
-        dispatch(cmd, passes_[k].part == Part::Faces ? *level_ : *level_edges_, s[1], w, passes_[k]);
+      const std::string label = pass_label(passes_[k]);
+      frame_timer_->begin(cmd, gpu::PassKind::Kernel, label);
+      for (; k < passes_.size() && pass_label(passes_[k]) == label; ++k)
+        dispatch(cmd, *pipelines_.at({passes_[k].part, passes_[k].key}), sets_[i], w, passes_[k]);
       frame_timer_->end(cmd);
     }
   }
@@ -378,11 +291,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
   void record_frame() {
     const uint32_t levels = push_.levels;
     frame_timer_.emplace(*ctx_, 2 + static_cast<uint32_t>(plan_.waves.size()) * (levels + 2));
-    for (const Wave& w : plan_.waves) {
-      sets_.push_back(set_for(*gather_, w));
-      sets_.push_back(set_for(*level_, w));
-      sets_.push_back(set_for(*limit_, w));
-    }
+    // Every pipeline has the same bindings: one set per wave serves them all.
+    for (const Wave& w : plan_.waves) sets_.push_back(set_for(*pipelines_.begin()->second, w));
     frame_ = ctx_->record([&](gpu::Commands& cmd) {
       // The previous frame and readback read what this frame overwrites.
       cmd.barrier(gpu::Stage::All, gpu::Stage::All);
@@ -403,10 +313,11 @@ class VulkanFragmentEvaluation final : public Evaluation {
   std::vector<PassSpec> passes_;
   WavePlan plan_;
   Push push_;
-  gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_;
+  gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_, net_;
   gpu::Buffer positions_, normals_;
   std::optional<gpu::OutputReadback> readback_;
-  std::optional<gpu::ComputePipeline> gather_, level_, level_edges_, limit_;  // level_: face points
+  // Per part and kind; the context's (shared_compute_pipeline: lavapipe compiles each once).
+  std::map<std::pair<Part, uint32_t>, std::shared_ptr<const gpu::ComputePipeline>> pipelines_;
   std::vector<gpu::DescriptorSet> sets_;
   std::optional<gpu::GpuTimer> frame_timer_;
   std::optional<gpu::Recording> frame_;
@@ -422,7 +333,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
 std::optional<std::string> vulkan_unavailable() {
   static const gpu::DeviceInfo device = gpu::probe();
   if (!device.available) return "no Vulkan device: " + device.reason;
-  return std::nullopt;  // one storage buffer and seven texel views per pass: within Vulkan's minimum limits
+  if (!device.features.shader_int64) return device.name + " lacks shaderInt64; the fragments' passes store 64-bit words";
+  return std::nullopt;  // three storage buffers and seven texel views per pass: within Vulkan's minimum limits
 }
 
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,

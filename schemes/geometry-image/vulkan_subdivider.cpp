@@ -98,7 +98,8 @@ gpu::BufferRange image_view(const gpu::Buffer& image) { return image.texels(VK_F
 
 // The pipelines a plan uses; the others stay empty.
 struct VulkanSubdivider::Pipelines {
-  std::optional<gpu::ComputePipeline> pad, split, average, split_average, limit, normal, limit_normal, cut_normal;
+  // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
+  std::shared_ptr<const gpu::ComputePipeline> pad, split, average, split_average, limit, normal, limit_normal, cut_normal;
 };
 
 std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx, int base_size, int levels,
@@ -201,16 +202,16 @@ void VulkanSubdivider::make_pipelines() {
   auto image_pass = [&](const std::string& name, std::vector<Binding> bindings) {
     return pass((name + (texel_destinations_ ? "_texels.comp" : ".comp")).c_str(), std::move(bindings));
   };
-  p.pad.emplace(ctx_, image_pass("pad", {kTable, kTable, write}));
-  p.cut_normal.emplace(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
+  p.pad = gpu::shared_compute_pipeline(ctx_, image_pass("pad", {kTable, kTable, write}));
+  p.cut_normal = gpu::shared_compute_pipeline(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
   if (plan_ == PassPlan::Fused) {
-    p.split_average.emplace(ctx_, image_pass("split_average", {kRead, write}));
-    p.limit_normal.emplace(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n));
+    p.split_average = gpu::shared_compute_pipeline(ctx_, image_pass("split_average", {kRead, write}));
+    p.limit_normal = gpu::shared_compute_pipeline(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n));
   } else {
-    p.split.emplace(ctx_, image_pass("split", {kRead, write}));
-    p.average.emplace(ctx_, image_pass("average", {kRead, write}));
-    p.limit.emplace(ctx_, output_pass("limit.comp", {kRead, kTable}, n));
-    p.normal.emplace(ctx_, output_pass("normal.comp", {kRead, kTable}, n));
+    p.split = gpu::shared_compute_pipeline(ctx_, image_pass("split", {kRead, write}));
+    p.average = gpu::shared_compute_pipeline(ctx_, image_pass("average", {kRead, write}));
+    p.limit = gpu::shared_compute_pipeline(ctx_, output_pass("limit.comp", {kRead, kTable}, n));
+    p.normal = gpu::shared_compute_pipeline(ctx_, output_pass("normal.comp", {kRead, kTable}, n));
   }
 }
 

@@ -14,7 +14,7 @@ struct VulkanLife::Impl {
   std::shared_ptr<gpu::Context> ctx;  // outlives the objects below
   uint32_t nodes;
   gpu::Buffer words, state[2], staging_in, staging_out;
-  std::optional<gpu::ComputePipeline> pipeline;
+  std::shared_ptr<const gpu::ComputePipeline> pipeline;
   gpu::DescriptorSet sets[2];
   std::optional<gpu::Recording> generation[2], upload, download;
   int current = 0;  // the buffer holding the state
@@ -31,7 +31,7 @@ struct VulkanLife::Impl {
     staging_in = gpu::Buffer::upload(c, bytes, "life states (staging)");
     staging_out = gpu::Buffer::readback(c, bytes, "life states (readback)");
     using gpu::Binding;
-    pipeline.emplace(c, gpu::ComputePipelineDesc{shaders::get("life.comp"),
+    pipeline = gpu::shared_compute_pipeline(c, gpu::ComputePipelineDesc{shaders::get("life.comp"),
                                                  {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer},
                                                  sizeof(Push), {}});
     const Push push{nodes, uint32_t(first.size())};

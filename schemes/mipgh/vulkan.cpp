@@ -294,13 +294,13 @@ class VulkanMipghEvaluation final : public Evaluation {
   void make_pipelines() {
     for (bool quad : {false, true}) {
       if (!(quad ? has_quads_ : has_triangles_)) continue;
-      for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[quad][k].emplace(*ctx_, desc("facets.comp", quad, k));
-      for (uint32_t k = 0; k < 3; ++k) edges_[quad][k].emplace(*ctx_, desc("edges.comp", quad, k));
+      for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, k));
+      for (uint32_t k = 0; k < 3; ++k) edges_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, k));
     }
     const char* masks = ctx_->info().features.shader_float64 ? "masks_double.comp" : "masks.comp";
-    masks_step_.emplace(*ctx_, desc(masks, 0, 0));
-    masks_limit_.emplace(*ctx_, desc(masks, 1, 0));
-    output_.emplace(*ctx_, desc("output.comp", m_.project(), 0));
+    masks_step_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 0, 0));
+    masks_limit_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0));
+    output_ = gpu::shared_compute_pipeline(*ctx_, desc("output.comp", m_.project(), 0));
     // Set k reads level buffer k and writes the other; set 2 + k reads level buffer k and writes
     // the output itself (the limit, where no grid points are picked from a deeper level).
     for (int k = 0; k < 4; ++k) {
@@ -431,7 +431,8 @@ class VulkanMipghEvaluation final : public Evaluation {
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
   gpu::Buffer positions_, out_normals_;
   std::optional<gpu::OutputReadback> readback_;
-  std::optional<gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][3], masks_step_, masks_limit_, output_;
+  // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
+  std::shared_ptr<const gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][3], masks_step_, masks_limit_, output_;
   gpu::DescriptorSet sets_[4];
   std::optional<gpu::GpuTimer> frame_timer_;
   std::optional<gpu::Recording> frame_;

@@ -96,6 +96,29 @@ TEST_F(ComputeTest, RecordingSubmitsAgainAndSpecializationConstantsApply) {
   for (uint32_t i = 0; i < count; ++i) ASSERT_EQ(out[i], 8.0f * float(i)) << "element " << i;
 }
 
+// The same description gives the same pipeline (compiled once); another specialization another,
+// which computes its own factor.
+TEST_F(ComputeTest, SharedPipelinesAreOnePerDescription) {
+  auto desc = [](float factor) {
+    uint32_t bits;
+    std::memcpy(&bits, &factor, sizeof bits);
+    return ComputePipelineDesc{gpu_test_shaders::get("scale.comp"), {Binding::StorageBuffer}, 4, {{0, bits}}};
+  };
+  const auto twice = shared_compute_pipeline(ctx(), desc(2.0f));
+  EXPECT_EQ(twice, shared_compute_pipeline(ctx(), desc(2.0f)));
+  const auto thrice = shared_compute_pipeline(ctx(), desc(3.0f));
+  ASSERT_NE(twice, thrice);
+  const std::vector<float> values = {1.0f, 2.0f};
+  Buffer data = device_buffer_with(ctx(), values, BufferUsage::Storage, "data");
+  DescriptorSet set(*thrice, {data.range()});
+  ctx().run([&](Commands& cmd) {
+    cmd.bind(*thrice, set);
+    cmd.push(uint32_t(2));
+    cmd.dispatch(groups_for(2, 64, ctx().limits()));
+  });
+  EXPECT_EQ(download_as<float>(ctx(), data, 2), (std::vector<float>{3.0f, 6.0f}));
+}
+
 TEST_F(ComputeTest, WrongBindingsAreRefusedBeforeVulkanSeesThem) {
   ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("scale.comp"), {Binding::StorageBuffer}, 4});
   Buffer uniform_only = Buffer::device(ctx(), 256, BufferUsage::Uniform, "uniform only");

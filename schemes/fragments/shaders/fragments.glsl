@@ -6,50 +6,60 @@
 // A work group is a chunk of a pass's entries (x) for one batch (y): up to gl_WorkGroupSize.x
 // fragments of one shape, one per invocation. The tables are the same for the whole group
 // (uniform loads); each invocation's slots sit in scratch with the lanes innermost, as the CPU
-// kernel's Lanes<W>, one region per batch of the wave.
+// kernel's Lanes<W>, one region per batch of the wave. A slot is one 16-byte element (x, y, z, 0):
+// one texel fetch reads it and two 64-bit words store it (sdb/words.glsl).
 #extension GL_GOOGLE_include_directive : require
+#include "sdb/words.glsl"
 
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0) uniform usamplerBuffer tables;  // device_tables.h, r32ui texels
-// Per batch: shape, first fragment, count, first float of its scratch in the wave's.
+// Per batch: shape, first fragment, count, first slot of its scratch in the wave's.
 layout(std430, binding = 1) readonly buffer Batches { uvec4 batch[]; };
 layout(binding = 2) uniform usamplerBuffer fragment_words;  // control list, first vertex
 layout(binding = 3) uniform samplerBuffer control_floats;  // x y z per vertex
 // Two halves: level d - 1's slots (from src_base) and level d's (from dst_base), this wave's.
-layout(binding = 4) uniform samplerBuffer scratch_in;                        // the scratch buffer, read
-layout(binding = 7, r32f) uniform restrict writeonly imageBuffer scratch_out;  // and written (other slots)
+layout(binding = 4) uniform samplerBuffer scratch_in;  // the scratch buffer, read (rgba32f)
+layout(std430, binding = 7) restrict writeonly buffer ScratchOut { u64vec2 scratch_out[]; };  // and written (other slots)
 layout(binding = 5, r32f) uniform restrict writeonly imageBuffer out_position;
 layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_normal;
+// The fragment's control points relative to its first (kernel.cpp's net tangents weigh these),
+// laid out as a scratch half: the gather pass writes them, the limit's net normals read them.
+layout(binding = 8) uniform samplerBuffer net_in;  // rgba32f
+layout(std430, binding = 9) restrict writeonly buffer NetOut { u64vec2 net_out[]; };
 
-// Every buffer is read through a texel view and written through an r32f image view: on lavapipe a
-// storage-buffer access is a loop over the lanes with a branch each, a texel fetch one gather
-// (harness/gpu/README.md, "Memory access on lavapipe").
+// Every buffer is read through a texel view: on lavapipe a storage-buffer load is a loop over the
+// lanes with a branch each, a texel fetch one gather (harness/gpu/README.md, "Memory access on
+// lavapipe"). The scratch is written as 64-bit words, the output through r32f image views.
 uint table_word(uint i) { return texelFetch(tables, int(i)).x; }
 uint fragment_word(uint i) { return texelFetch(fragment_words, int(i)).x; }
 float control_float(uint i) { return texelFetch(control_floats, int(i)).x; }
-float scratch_float(uint i) { return texelFetch(scratch_in, int(i)).x; }
+vec4 scratch_slot(uint i) { return texelFetch(scratch_in, int(i)); }
 
 layout(push_constant) uniform Push {
   uint level;          // the level a level pass makes, 1 .. levels
   uint levels;
   uint first_batch;    // the wave's
-  uint src_base;       // floats into scratch: the half this pass reads
+  uint src_base;       // slots (16 bytes) into scratch: the half this pass reads
   uint dst_base;       // and the half it writes
   uint header_words;
   uint wave_first_vertex;
   uint out_shift;      // floats from the output bindings' start to the wave's first vertex
   uint chunk;          // entries of the pass per invocation (vulkan.cpp: llvmpipe's loop limit)
-  uint pad0, pad1, pad2;  // (the rule's flags and the pass's part are specialization constants)
+  uint kind_pairs;     // vertex points, limit: the word of this dispatch's kind's (list, count) pair for shape 0
+  uint pad1, pad2;     // (the rule's flags, the pass's part and the limit's kind are specialization constants)
   vec4 origin;         // the control box's centre: slots are relative to it
 } pc;
 
 const uint kCatmark = 1u, kProject = 2u;
-// The pipeline's rule flags (kCatmark | kProject) and part (kGather ...): constants, so that a
-// branch on them costs one side only (lavapipe runs both sides of a run-time branch).
+// The pipeline's rule flags (kCatmark | kProject), part (kGather ...; pass_plan.h) and the kind
+// of its entries (vertex points: a rule's kind; the limit: an entry's; device_tables.h):
+// constants, so that a branch on them costs one side only (lavapipe runs both sides of a run-time
+// branch).
 layout(constant_id = 1) const uint kFlags = 0u;
 layout(constant_id = 2) const uint kPart = 0u;
-const uint kGather = 0u, kFaces = 1u, kEdgesVertices = 2u, kLimit = 3u;
+layout(constant_id = 3) const uint kKind = 0xfffu;
+const uint kGather = 0u, kFaces = 1u, kEdges = 2u, kLimit = 3u, kVertices = 4u;
 const uint kHeaderPerLevel = 8u;
 // Limit header fields (device_tables.h).
 const uint kNumPositions = 0u, kPositions = 1u, kLimitRing = 2u, kStencil = 3u, kStencilBegin = 4u, kStencilSlot = 5u,
@@ -79,24 +89,23 @@ uvec2 chunk_of(uint count) {
   return uvec2(min(begin, count), min(begin + pc.chunk, count));
 }
 uint limit_header() { return header() + kHeaderPerLevel * pc.levels; }
+
+// Vertex points and limit: the dispatch's entries of the batch's shape, its kind's list (pass_plan.h).
+uint kind_list() { return table_word(pc.kind_pairs + 2u * g_shape); }
+uint kind_count() { return table_word(pc.kind_pairs + 2u * g_shape + 1u); }
 float number(uint at) { return uintBitsToFloat(table_word(at)); }
 
-// The batch's slots: x, y, z planes of its `count` lanes each.
-uint scratch_index(uint slot) { return g_scratch + (slot * 3u) * g_count + g_lane; }
+// The batch's slots: each a row of its `count` lanes.
+uint scratch_index(uint slot) { return g_scratch + slot * g_count + g_lane; }
 
-vec3 load(bool from_dst, uint slot) {
-  const uint i = (from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot), w = g_count;
-  return vec3(scratch_float(i), scratch_float(i + w), scratch_float(i + 2u * w));
-}
+vec3 load(bool from_dst, uint slot) { return scratch_slot((from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot)).xyz; }
 float load_axis(bool from_dst, uint slot, uint axis) {
-  return scratch_float((from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot) + axis * g_count);
+  return scratch_slot((from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot))[axis];
 }
-void store(uint slot, vec3 p) {
-  const uint i = pc.dst_base + scratch_index(slot), w = g_count;
-  imageStore(scratch_out, int(i), vec4(p.x));
-  imageStore(scratch_out, int(i + w), vec4(p.y));
-  imageStore(scratch_out, int(i + 2u * w), vec4(p.z));
-}
+void store(uint slot, vec3 p) { scratch_out[pc.dst_base + scratch_index(slot)] = as_words(vec4(p, 0.0)); }
+vec3 load_net(uint slot) { return texelFetch(net_in, int(scratch_index(slot))).xyz; }
+void store_net(uint slot, vec3 p) { net_out[scratch_index(slot)] = as_words(vec4(p, 0.0)); }
+vec3 control_point(uint v) { return vec3(control_float(3u * v), control_float(3u * v + 1u), control_float(3u * v + 2u)); }
 
 // -0 as +0, by its bits (what kernel.cpp's "+ 0.0f" does, and no compiler can fold away): min and
 // max cannot order two zeros.
@@ -133,21 +142,32 @@ precise float sorted_sum(bool from_dst, uint ref, uint n, uint axis) {
   return s;
 }
 
+// Ring cases (device_tables.h): a rule's ring of n terms is summed by the case's formula. A pass
+// specialized on its entries' cases passes constants, and only that formula is compiled;
+// kRingAny picks it from n at run time.
+const uint kRingNone = 0u, kRingOne = 1u, kRingTwo = 2u, kRingFour = 3u, kRingSix = 4u, kRingEight = 5u,
+           kRingSorted = 6u, kRingAny = 7u, kRuleAny = 127u;
+uint ring_case_of(uint n) {
+  return n == 0u ? kRingNone : n == 1u ? kRingOne : n == 2u ? kRingTwo : n == 4u ? kRingFour
+       : n == 6u ? kRingSix : n == 8u ? kRingEight : kRingSorted;
+}
+
 // kernel.cpp's ring_sum: pairs for valence 4 and 8, pairs and a symmetric three for 6, sorted otherwise.
-precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
+precise vec3 ring_sum(bool from_dst, uint ref, uint n, uint ring_case) {
+  const uint c = ring_case == kRingAny ? ring_case_of(n) : ring_case;
   precise vec3 r;
-  if (n == 1u) {
+  if (c == kRingOne) {
     r = load(from_dst, table_word(ref));
-  } else if (n == 2u) {
+  } else if (c == kRingTwo) {
     r = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 1u));
-  } else if (n == 4u) {
+  } else if (c == kRingFour) {
     r = (load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 2u))) + (load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 3u)));
-  } else if (n == 6u) {
+  } else if (c == kRingSix) {
     precise vec3 a = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 3u));
     precise vec3 b = load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 4u));
     precise vec3 c = load(from_dst, table_word(ref + 2u)) + load(from_dst, table_word(ref + 5u));
     r = vec3(sum3_symmetric(a.x, b.x, c.x), sum3_symmetric(a.y, b.y, c.y), sum3_symmetric(a.z, b.z, c.z));
-  } else if (n == 8u) {
+  } else if (c == kRingEight) {
     precise vec3 q0 = load(from_dst, table_word(ref)) + load(from_dst, table_word(ref + 4u));
     precise vec3 q1 = load(from_dst, table_word(ref + 1u)) + load(from_dst, table_word(ref + 5u));
     precise vec3 q2 = load(from_dst, table_word(ref + 2u)) + load(from_dst, table_word(ref + 6u));
@@ -161,14 +181,19 @@ precise vec3 ring_sum(bool from_dst, uint ref, uint n) {
 
 // kernel.cpp's apply(): wv c + wc (p0 + p1) + we sum(e) + wf sum(f). The centre, pair and ring are
 // read from src; the f terms from dst when faces_in_dst (Catmull-Clark's new face points).
-precise vec3 apply_vertex_rule(uint at, uint ring, bool faces_in_dst) {
+// `rule_case`: the e and f terms' ring cases and whether wc is used (device_tables.h), or
+// kRuleAny to take them from the rule.
+precise vec3 apply_vertex_rule(uint at, uint ring, bool faces_in_dst, uint rule_case) {
   const uint counts = table_word(at + 4u);
   const uint num_e = counts & 0xffffu, num_f = counts >> 16;
   const float wv = number(at + 5u), wc = number(at + 6u), we = number(at + 7u), wf = number(at + 8u);
+  const bool any = rule_case == kRuleAny;
+  const uint e_case = any ? ring_case_of(num_e) : rule_case & 7u, f_case = any ? ring_case_of(num_f) : (rule_case >> 3) & 7u;
+  const bool wc_term = any ? wc != 0.0 : (rule_case & 64u) != 0u;
   const uint ref = ring + table_word(at + 3u);
   precise vec3 s = load(false, table_word(at)) * wv;
-  if (wc != 0.0) s = s + (load(false, table_word(at + 1u)) + load(false, table_word(at + 2u))) * wc;
-  if (num_e != 0u) s = s + ring_sum(false, ref, num_e) * we;
-  if (num_f != 0u) s = s + ring_sum(faces_in_dst, ref + num_e, num_f) * wf;
+  if (wc_term) s = s + (load(false, table_word(at + 1u)) + load(false, table_word(at + 2u))) * wc;
+  if (e_case != kRingNone) s = s + ring_sum(false, ref, num_e, e_case) * we;
+  if (f_case != kRingNone) s = s + ring_sum(faces_in_dst, ref + num_e, num_f, f_case) * wf;
   return s;
 }

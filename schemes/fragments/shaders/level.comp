@@ -1,7 +1,7 @@
 #version 450
 // One refinement level through the shape's pattern table, in slot order (tables.h): its face
-// points (part kFaces), then its edge and vertex points (kEdgesVertices), which for
-// Catmull-Clark read the face points just made.
+// points (part kFaces), then its edge points (kEdges) and its vertex points (kVertices, a dispatch
+// per kind of rule), which for Catmull-Clark read the face points just made.
 #include "fragments.glsl"
 
 void main() {
@@ -19,24 +19,29 @@ void main() {
     }
     return;
   }
-  // The chunk's edges, then its vertices: two loops, not a branch per entry (lavapipe would run
-  // both rules for every entry).
-  const uvec2 range = chunk_of(num_edges + num_vertices);
-  for (uint j = range.x; j < min(range.y, num_edges); ++j) {
-    const uint at = edges + 6u * j;
-    precise vec3 v = load(false, table_word(at)) + load(false, table_word(at + 1u));
-    const float wf = number(at + 5u);
-    precise vec3 p;
-    if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
-      p = v * number(at + 4u);
-    } else {
-      precise vec3 f = load(catmark, table_word(at + 2u)) + load(catmark, table_word(at + 3u));
-      p = v * number(at + 4u) + f * wf;
+  if (kPart == kEdges) {
+    const uvec2 range = chunk_of(num_edges);
+    for (uint j = range.x; j < range.y; ++j) {
+      const uint at = edges + 6u * j;
+      precise vec3 v = load(false, table_word(at)) + load(false, table_word(at + 1u));
+      const float wf = number(at + 5u);
+      precise vec3 p;
+      if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
+        p = v * number(at + 4u);
+      } else {
+        precise vec3 f = load(catmark, table_word(at + 2u)) + load(catmark, table_word(at + 3u));
+        p = v * number(at + 4u) + f * wf;
+      }
+      store(num_faces + j, p);
     }
-    store(num_faces + j, p);
+    return;
   }
-  for (uint j = max(range.x, num_edges); j < range.y; ++j) {
-    precise vec3 p = apply_vertex_rule(vertices + 9u * (j - num_edges), ring, catmark);
-    store(num_faces + j, p);
+  // kVertices: the vertex rules of this dispatch's kind (kKind: their terms' formulas).
+  const uint list = kind_list();
+  const uvec2 range = chunk_of(kind_count());
+  for (uint k = range.x; k < range.y; ++k) {
+    const uint j = table_word(list + k);
+    precise vec3 p = apply_vertex_rule(vertices + 9u * j, ring, catmark, kKind & 127u);
+    store(num_faces + num_edges + j, p);
   }
 }

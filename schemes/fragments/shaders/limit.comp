@@ -1,7 +1,13 @@
 #version 450
 // Limit projection of the last level and the output: for every vertex of the fragment's blocks,
-// its limit position (symmetric, kernel.cpp's) and unit normal.
+// its limit position (symmetric, kernel.cpp's) and unit normal. A dispatch takes the entries of
+// one kind (device_tables.h, limit_kind), the kind a specialization constant: lavapipe compiles
+// the kind's paths alone instead of running every path masked.
 #include "fragments.glsl"
+
+const uint kRuleCase = kKind & 127u, kPositionCase = (kKind >> 7) & 3u, kNormalCase = (kKind >> 9) & 7u;
+const uint kPositionRule = 0u, kPositionStencil = 1u, kPositionAny = 2u;
+const uint kNormalNet = 0u, kNormalRegular9 = 1u, kNormalRegular7 = 2u, kNormalGeneral = 3u, kNormalAny = 4u;
 
 // Long tangent masks (a pole's ring) in compensated sums: the CPU sums them in double
 // (kernel.cpp), float alone would lose the normal's precision at valence 360.
@@ -14,9 +20,9 @@ precise vec3 limit_position(uint lh, uint entry) {
     p = load(false, table_word(at));
     return p;
   }
-  const int stencil = int(table_word(table_word(lh + kStencil) + entry));
-  if (stencil < 0) {
-    p = apply_vertex_rule(at, table_word(lh + kLimitRing), false);
+  const int stencil = kPositionCase == kPositionRule ? -1 : int(table_word(table_word(lh + kStencil) + entry));
+  if (kPositionCase != kPositionStencil && stencil < 0) {
+    p = apply_vertex_rule(at, table_word(lh + kLimitRing), false, kRuleCase);
     return p;
   }
   p = vec3(0.0);  // in the stencil's order, which every fragment shares
@@ -70,25 +76,24 @@ precise vec3 general_normal(uint lh, uint entry) {
   return unit_normal(a + ca, b + cb);
 }
 
-vec3 control_point(uint v) { return vec3(control_float(3u * v), control_float(3u * v + 1u), control_float(3u * v + 2u)); }
-
-// kernel.cpp's net_normal: the tangents as weights on the control points relative to the first.
+// kernel.cpp's net_normal: the tangents as weights on the control points relative to the first
+// (the gather pass's net points).
 precise vec3 net_normal(uint lh, uint entry) {
-  const uint n = table_word(lh + kNetSize), w = table_word(lh + kNetTangents) + 2u * n * entry, list = fragment_word(2u * g_fragment);
-  const vec3 first = control_point(table_word(list));
+  const uint n = table_word(lh + kNetSize), w = table_word(lh + kNetTangents) + 2u * n * entry;
   precise vec3 a = vec3(0.0), b = vec3(0.0);
   for (uint j = 1u; j < n; ++j) {
-    precise vec3 p = control_point(table_word(list + j)) - first;
+    const vec3 p = load_net(j);
     a = a + p * number(w + j), b = b + p * number(w + n + j);
   }
   return unit_normal(a, b);
 }
 
 precise vec3 limit_normal(uint lh, uint entry) {
-  if (table_word(lh + kNetSize) != 0u) return net_normal(lh, entry);
+  if (kNormalCase == kNormalNet || (kNormalCase == kNormalAny && table_word(lh + kNetSize) != 0u)) return net_normal(lh, entry);
+  if (kNormalCase == kNormalGeneral) return general_normal(lh, entry);
   const int regular = int(table_word(table_word(lh + kRegular) + entry));
-  if (regular >= 0) {
-    const uint size = table_word(lh + kRegularSize);
+  if (kNormalCase != kNormalAny || regular >= 0) {
+    const uint size = kNormalCase == kNormalRegular9 ? 9u : kNormalCase == kNormalRegular7 ? 7u : table_word(lh + kRegularSize);
     return regular_normal(table_word(lh + kRegularSlots) + uint(regular) * size, size);
   }
   return general_normal(lh, entry);
@@ -98,8 +103,10 @@ void main() {
   if (!begin_invocation()) return;
   const uint lh = limit_header();
   const uint first = 3u * (fragment_word(2u * g_fragment + 1u) - pc.wave_first_vertex) + pc.out_shift;
-  const uvec2 range = chunk_of(table_word(lh + kBlockVertices));
-  for (uint i = range.x; i < range.y; ++i) {
+  const uint list = kind_list();
+  const uvec2 range = chunk_of(kind_count());
+  for (uint j = range.x; j < range.y; ++j) {
+    const uint i = table_word(list + j);
     precise vec3 p = limit_position(lh, i) + pc.origin.xyz;
     const vec3 nrm = limit_normal(lh, i);
     const uint o = first + 3u * i;

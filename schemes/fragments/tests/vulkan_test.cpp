@@ -92,7 +92,7 @@ TEST_F(FragmentsVulkan, TimesUploadEveryLevelTheLimitAndReadback) {
 TEST_F(FragmentsVulkan, ManyWavesGiveTheOutputOfOne) {
   const ControlMesh accepted = accept_mesh(load_mesh("icosphere"), find_scheme("fragments-cc")->info());
   const Output one = run(accepted, SubdivisionRule::CatmullClark, 3, Backend::Vulkan);
-  const Output many = run(accepted, SubdivisionRule::CatmullClark, 3, Backend::Vulkan, {uint64_t(1) << 20});
+  const Output many = run(accepted, SubdivisionRule::CatmullClark, 3, Backend::Vulkan, {uint64_t(5) << 18});
   EXPECT_EQ(one.stats.waves, 1);
   EXPECT_GT(many.stats.waves, 2);
   EXPECT_TRUE(one.t.positions == many.t.positions);

@@ -10,7 +10,6 @@
 // the sums are written in the CPU's order: opposite stencil samples paired first, pair sums added
 // in a fixed order, so that samples the cut identifies come out bit-identical (masks.h).
 #extension GL_GOOGLE_include_directive : require
-#extension GL_ARB_gpu_shader_int64 : require
 
 // One invocation per destination sample: a row of work groups per destination row, x along it
 // (gl_GlobalInvocationID = (column, row); columns past the row's end return). Work groups of
@@ -35,11 +34,4 @@ uint parity_grouped_column() {
   return gl_WorkGroupID.x * gl_WorkGroupSize.x + 2u * (lane - odd * half_size) + odd;
 }
 
-// A 16-byte element (four floats) as two 64-bit words, for a storage buffer of u64vec2: lavapipe
-// stores to memory lane by lane and component by component, and two 64-bit components cost about
-// a third of an rgba32f imageStore (../README.md, "Vulkan passes"). The bits go through unchanged
-// (packUint2x32: the first float in the low half, which is first in memory).
-u64vec2 as_words(vec4 v) {
-  const uvec4 b = floatBitsToUint(v);
-  return u64vec2(packUint2x32(b.xy), packUint2x32(b.zw));
-}
+#include "sdb/words.glsl"  // as_words
