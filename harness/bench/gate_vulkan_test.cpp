@@ -1,0 +1,70 @@
+// How the gate judges a Vulkan row (gate.h): by its kernel timestamps, over its peer on the peer's
+// backend in the same round; nothing timed.
+#include <gtest/gtest.h>
+
+#include "harness/bench/gate.h"
+#include "harness/bench/measure.h"
+
+using namespace sdb;
+
+namespace {
+
+RunRow row(const std::string& scheme, Backend backend, std::vector<double> samples,
+           std::optional<Backend> peer_backend = std::nullopt) {
+  RunRow r;
+  r.scheme = r.spec = scheme;
+  r.backend = backend;
+  r.mesh = "cube";
+  r.level = 9;
+  r.tessellation = 8;
+  r.peer = peer_backend ? "osd-bfr" : "";
+  r.peer_backend = peer_backend;
+  r.time_ms = TimeStats{1, 1, 1, int(samples.size()), samples};
+  return r;
+}
+
+// Nine rounds: the write probes and osd-bfr (the anchor, normalised by them) on cpu and cpu-mt,
+// and a Vulkan row whose wall and kernel times are given.
+ResultsFile run(const std::vector<double>& vulkan_wall, const std::vector<double>& vulkan_kernel) {
+  ResultsFile f;
+  f.rounds = 9;
+  f.runs.push_back(row(kCalibrationScheme, Backend::Cpu, std::vector<double>(9, 1.0)));
+  f.runs.push_back(row(kCalibrationScheme, Backend::CpuMt, std::vector<double>(9, 1.0)));
+  f.runs.push_back(row("osd-bfr", Backend::Cpu, std::vector<double>(9, 1.0)));
+  f.runs.push_back(row("osd-bfr", Backend::CpuMt, std::vector<double>(9, 0.5)));
+  RunRow v = row("cpatch-2pass", Backend::Vulkan, vulkan_wall, Backend::CpuMt);
+  v.gpu_time_ms = TimeStats{1, 1, 1, int(vulkan_kernel.size()), vulkan_kernel};
+  f.runs.push_back(v);
+  return f;
+}
+
+const GateEntry& vulkan_entry(const GateReport& r) {
+  for (const GateEntry& e : r.entries)
+    if (e.name.find("/vulkan/") != std::string::npos) return e;
+  throw std::runtime_error("no vulkan entry");
+}
+
+std::vector<double> around(double t) {
+  return {t, t * 1.01, t * 0.99, t * 1.02, t * 0.98, t * 1.03, t * 0.97, t * 1.01, t * 0.99};
+}
+
+}  // namespace
+
+TEST(GateVulkanRows, KernelTwiceAsSlowIsARegressionAgainstTheCpuMtPeer) {
+  GateConfig config;
+  config.thresholds = {{"/vulkan/", 0.40}};
+  const GateReport r = run_gate(run(around(5.0), around(2.0)), run(around(5.0), around(4.0)), config);
+  const GateEntry& e = vulkan_entry(r);
+  EXPECT_EQ(e.normaliser, "osd-bfr, paired");
+  EXPECT_NEAR(e.change, 1.0, 0.05);
+  EXPECT_DOUBLE_EQ(e.threshold, 0.40);
+  EXPECT_TRUE(e.regression);
+  EXPECT_TRUE(r.failed());
+}
+
+TEST(GateVulkanRows, WallTimeAloneDoesNotMoveTheVerdict) {
+  GateConfig config;
+  const GateReport r = run_gate(run(around(5.0), around(2.0)), run(around(10.0), around(2.0)), config);
+  EXPECT_FALSE(vulkan_entry(r).regression);
+  EXPECT_FALSE(r.failed());
+}
