@@ -34,8 +34,10 @@ constexpr uint32_t kFacetClasses = 5, kFacetLimit = 4;
 // edges.comp's parts.
 constexpr uint32_t kEdgePoints = 0, kVertexPoints = 1, kEdgeLimit = 2;
 
-// One dispatch: the pipeline, its push constants, and its descriptor set (0, 1: reads level buffer
-// 0 or 1 and writes the other; 2, 3: reads 0 or 1 and writes the output).
+// One dispatch: the pipeline, its push constants, and its descriptor set (reads level buffer 0 or
+// 1 and writes the other, or, where the pipeline writes the output, the output).
+// A level's node: (x, y, z, 0), one rgba32f texel (shaders/mipgh.glsl).
+using Node = std::array<float, 4>;
 struct Dispatch {
   const gpu::ComputePipeline* pipeline;
   Push push;
@@ -96,10 +98,10 @@ class VulkanMipghEvaluation final : public Evaluation {
       adaptive_ = compile_adaptive(m_.atlas, m_.lod, m_.render, m_.home, out_);
       nodes = uint32_t(out_.coords.size());
     }
-    level_bytes_ = std::max<uint64_t>(uint64_t(inner_nodes) * 12, 16);
+    level_bytes_ = std::max<uint64_t>(uint64_t(inner_nodes) * sizeof(Node), 16);
     output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
     // What one texel view takes, checked before the tables are built (the D-LoD's are the largest)
-    gpu::check_texel_binding(*ctx_, level_bytes_ / 4, "a level's nodes");
+    gpu::check_texel_binding(*ctx_, level_bytes_ / sizeof(Node), "a level's nodes");
     uint64_t lod_words_total = 0;
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += level_lod_words(sigma);
     gpu::check_texel_binding(*ctx_, lod_words_total, "the D-LoD's index arrays");
@@ -124,7 +126,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     // Level 0: the control points relative to the box's centre (as the CPU's run() starts).
     const float* o = m_.origin;
     for (size_t v = 0; v < control_.size(); ++v)
-      level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2]};
+      level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2], 0.0f};
     control_staging_.write(level0_);
     ctx_->submit(*frame_);
     readback_->invalidate();
@@ -267,7 +269,7 @@ class VulkanMipghEvaluation final : public Evaluation {
   void make_buffers() {
     gpu::Context& c = *ctx_;
     level0_.resize(control_.size());
-    const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(V3), 16);
+    const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Node), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
     const BufferUsage level_usage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
     level_[0] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (even levels)");
@@ -281,14 +283,15 @@ class VulkanMipghEvaluation final : public Evaluation {
     out_normals_ = gpu::Buffer::device(c, output_bytes_, output_usage, "normals");
   }
 
-  gpu::ComputePipelineDesc desc(const char* shader, uint32_t constant1, uint32_t constant2) const {
+  // `to_output`: the pipeline writes the limit into the output (mipgh.glsl, kToOutput).
+  gpu::ComputePipelineDesc desc(const char* shader, uint32_t constant1, uint32_t constant2, bool to_output = false) const {
     using gpu::Binding;
     return {shaders::get(shader),
             {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
              Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
              Binding::StorageTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer},
             sizeof(Push),
-            {{0, kLocalSize}, {1, constant1}, {2, constant2}}};
+            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}}};
   }
 
   void make_pipelines() {
@@ -296,24 +299,22 @@ class VulkanMipghEvaluation final : public Evaluation {
       if (!(quad ? has_quads_ : has_triangles_)) continue;
       for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, k));
       for (uint32_t k = 0; k < 3; ++k) edges_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, k));
+      facets_out_[quad] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, kFacetLimit, true));
+      edges_out_[quad] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, kEdgeLimit, true));
     }
     const char* masks = ctx_->info().features.shader_float64 ? "masks_double.comp" : "masks.comp";
     masks_step_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 0, 0));
     masks_limit_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0));
+    masks_out_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0, true));
     output_ = gpu::shared_compute_pipeline(*ctx_, desc("output.comp", m_.project(), 0));
-    // Set k reads level buffer k and writes the other; set 2 + k reads level buffer k and writes
-    // the output itself (the limit, where no grid points are picked from a deeper level).
-    for (int k = 0; k < 4; ++k) {
-      const gpu::Buffer& read = level_[k % 2];
-      const gpu::Buffer& written = k < 2 ? level_[1 - k] : positions_;
-      const gpu::Buffer& normals = k < 2 ? normals_ : out_normals_;
+    // Set k reads level buffer k and writes the other (or, a kToOutput pipeline, the output).
+    constexpr VkFormat node = VK_FORMAT_R32G32B32A32_SFLOAT;
+    for (int k = 0; k < 2; ++k)
       sets_[k] = gpu::DescriptorSet(
-          *output_, {read.texels(VK_FORMAT_R32_SFLOAT), written.texels(VK_FORMAT_R32_SFLOAT),
-                     normals.texels(VK_FORMAT_R32_SFLOAT), lod_.texels(VK_FORMAT_R32_UINT),
-                     words_.texels(VK_FORMAT_R32_UINT), weights_.texels(VK_FORMAT_R32_SFLOAT),
-                     positions_.texels(VK_FORMAT_R32_SFLOAT), out_normals_.texels(VK_FORMAT_R32_SFLOAT),
-                     normals_.texels(VK_FORMAT_R32_SFLOAT)});
-    }
+          *output_, {level_[k].texels(node), level_[1 - k].texels(node), normals_.texels(node),
+                     lod_.texels(VK_FORMAT_R32_UINT), words_.texels(VK_FORMAT_R32_UINT),
+                     weights_.texels(VK_FORMAT_R32_SFLOAT), positions_.texels(VK_FORMAT_R32_SFLOAT),
+                     out_normals_.texels(VK_FORMAT_R32_SFLOAT), normals_.texels(node)});
   }
 
   // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma, written
@@ -322,7 +323,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     const LevelLayout& src = m_.lod.layout(sigma);
     const LevelPasses& l = limit ? limits_[sigma] : steps_[sigma];
     const bool to_output = limit && m_.pick.empty() && !m_.lod.adaptive();
-    const uint32_t reads = sigma % 2 + (to_output ? 2 : 0);
+    const uint32_t reads = sigma % 2;
     Push base;
     if (to_output)
       for (int k = 0; k < 3; ++k) base.origin[k] = m_.origin[k];
@@ -340,7 +341,7 @@ class VulkanMipghEvaluation final : public Evaluation {
         p.dst_base = dst.facet_base;
         p.interior = checked_u32(interior_nodes(dst.s, quad), "an interior");
         p.facet_list = l.facet_list[quad];
-        facets.dispatches.push_back({&*facets_[quad][limit ? kFacetLimit : k], p, reads});
+        facets.dispatches.push_back({to_output ? &*facets_out_[quad] : &*facets_[quad][limit ? kFacetLimit : k], p, reads});
       }
       const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
       for (int k = 0; k < (limit ? 1 : 2) && l.num_fast_edges[quad] > 0; ++k) {
@@ -348,13 +349,13 @@ class VulkanMipghEvaluation final : public Evaluation {
         p.table = l.fast_edges[quad];
         p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
         p.count = checked_u32(size_t(l.num_fast_edges[quad]) * p.per_item, "a D-edge pass");
-        edges.dispatches.push_back({&*edges_[quad][parts[k]], p, reads});
+        edges.dispatches.push_back({to_output && parts[k] == kEdgeLimit ? &*edges_out_[quad] : &*edges_[quad][parts[k]], p, reads});
       }
     }
     const MaskRange& r = l.masks;
     Push p = base;
     p.count = r.entries, p.table = r.target, p.begins = r.begins, p.sources = r.sources, p.weight_base = r.weights;
-    masks.dispatches.push_back({limit ? &*masks_limit_ : &*masks_step_, p, reads});
+    masks.dispatches.push_back({to_output ? &*masks_out_ : limit ? &*masks_limit_ : &*masks_step_, p, reads});
     passes_.push_back(std::move(facets)), passes_.push_back(std::move(edges)), passes_.push_back(std::move(masks));
   }
 
@@ -396,7 +397,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       cmd.barrier(gpu::Stage::All, gpu::Stage::All);  // the previous frame and readback read what this one writes
       frame_timer_->reset(cmd);
       frame_timer_->begin(cmd, gpu::PassKind::Upload, "upload");
-      cmd.upload(control_staging_, level_[0], control_.size() * sizeof(V3));
+      cmd.upload(control_staging_, level_[0], control_.size() * sizeof(Node));
       frame_timer_->end(cmd);
       for (const Pass& pass : passes_) {
         // A step's three passes write disjoint nodes of the next level: one barrier per level
@@ -427,13 +428,14 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::vector<OutputNodes> outputs_;  // adaptive, per level
   uint32_t pick_ = 0;
   std::vector<Pass> passes_;
-  std::vector<V3> level0_;
+  std::vector<Node> level0_;
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
   gpu::Buffer positions_, out_normals_;
   std::optional<gpu::OutputReadback> readback_;
   // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
   std::shared_ptr<const gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][3], masks_step_, masks_limit_, output_;
-  gpu::DescriptorSet sets_[4];
+  std::shared_ptr<const gpu::ComputePipeline> facets_out_[2], edges_out_[2], masks_out_;  // the limit into the output
+  gpu::DescriptorSet sets_[2];
   std::optional<gpu::GpuTimer> frame_timer_;
   std::optional<gpu::Recording> frame_;
   Tessellation out_;

@@ -1,22 +1,26 @@
 // What the MiPGH passes share (vulkan.h): the bindings, the push constants and the node fetches.
-// A level's nodes are xyz floats read through a texel view and written through an r32f image view
-// (lavapipe's fast paths, harness/gpu/README.md); the D-LoD's index arrays and every table are
-// r32ui texels. The arithmetic is the CPU's (tile.cpp, shader.h), operation for operation and
+// A level's node is 16 bytes, (x, y, z, 0): one rgba32f texel fetch reads it and one rgba32f
+// imageStore writes it (lavapipe loads and stores lane by lane, per component and per access:
+// three r32f fetches and stores cost more; harness/gpu/README.md). The output is packed xyz floats,
+// written through r32f image views; the D-LoD's index arrays and every table are r32ui texels. The arithmetic is the CPU's (tile.cpp, shader.h), operation for operation and
 // `precise` (no fused multiply-adds, no reassociation), so the stencils' nodes equal the CPU's.
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/dispatch.glsl"
 
 layout(local_size_x_id = 0) in;
 
-layout(binding = 0) uniform samplerBuffer src_floats;                       // level sigma
-layout(binding = 1, r32f) uniform restrict writeonly imageBuffer dst_floats;  // level sigma + 1, or the limit
-layout(binding = 2, r32f) uniform restrict writeonly imageBuffer normal_floats;  // the limit's normals
+layout(binding = 0) uniform samplerBuffer src_nodes;                           // level sigma
+layout(binding = 1, rgba32f) uniform restrict writeonly imageBuffer dst_nodes;     // level sigma + 1, or the limit
+layout(binding = 2, rgba32f) uniform restrict writeonly imageBuffer normal_nodes;  // the limit's normals
 layout(binding = 3) uniform usamplerBuffer lod;       // every level's D-facet index arrays
 layout(binding = 4) uniform usamplerBuffer words;     // the tables (vulkan.cpp, Tables)
 layout(binding = 5) uniform samplerBuffer weights;    // the mask tables' weights
 layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_position;
 layout(binding = 7, r32f) uniform restrict writeonly imageBuffer out_normal;
-layout(binding = 8) uniform samplerBuffer normals_in;  // the limit's normals, read by the output pass
+layout(binding = 8) uniform samplerBuffer normals_in;  // the limit's normals (rgba32f), read by the output pass
+// The pipeline writes the limit straight into the output (bindings 6 and 7, packed xyz), not
+// into a level's buffers: where the limit is the whole output.
+layout(constant_id = 3) const bool kToOutput = false;
 
 layout(push_constant) uniform Push {
   uint count;        // invocations that do work
@@ -39,24 +43,29 @@ layout(push_constant) uniform Push {
 } pc;
 
 uint word(uint i) { return texelFetch(words, int(i)).x; }
-vec3 node(uint i) {
-  const int k = int(3u * i);
-  return vec3(texelFetch(src_floats, k).x, texelFetch(src_floats, k + 1).x, texelFetch(src_floats, k + 2).x);
+vec3 node(uint i) { return texelFetch(src_nodes, int(i)).xyz; }
+// Packed xyz floats: the output (r32f views; GLSL passes no image to a function, hence a macro).
+#define STORE_XYZ(image, i, v)                 \
+  {                                            \
+    const int o_ = int(3u * (i));              \
+    imageStore(image, o_, vec4((v).x));        \
+    imageStore(image, o_ + 1, vec4((v).y));    \
+    imageStore(image, o_ + 2, vec4((v).z));    \
+  }
+void store_output(uint i, vec3 p, vec3 n) {
+  STORE_XYZ(out_position, i, p);
+  STORE_XYZ(out_normal, i, n);
 }
 // Steps push a zero origin; a limit written straight into the output the box's centre (as the
 // cpu adds it: after the node is computed).
 void store(uint i, vec3 node) {
   precise vec3 p = node + pc.origin.xyz;
-  const int k = int(3u * i);
-  imageStore(dst_floats, k, vec4(p.x));
-  imageStore(dst_floats, k + 1, vec4(p.y));
-  imageStore(dst_floats, k + 2, vec4(p.z));
+  if (kToOutput) STORE_XYZ(out_position, i, p)
+  else imageStore(dst_nodes, int(i), vec4(p, 0.0));
 }
-void store_normal(uint i, vec3 p) {
-  const int k = int(3u * i);
-  imageStore(normal_floats, k, vec4(p.x));
-  imageStore(normal_floats, k + 1, vec4(p.y));
-  imageStore(normal_floats, k + 2, vec4(p.z));
+void store_normal(uint i, vec3 n) {
+  if (kToOutput) STORE_XYZ(out_normal, i, n)
+  else imageStore(normal_nodes, int(i), vec4(n, 0.0));
 }
 // tile.cpp's unit_normals: a zero normal stays zero, without a branch.
 vec3 unit(vec3 t1, vec3 t2) {

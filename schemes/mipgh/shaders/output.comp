@@ -12,15 +12,6 @@ void main() {
   const uint k = pc.pick == 0xffffffffu ? i : word(pc.pick + i);
   precise vec3 p = node(k) + pc.origin.xyz;
   vec3 nrm = vec3(0.0);
-  if (kLimit) {
-    const int at = int(3u * k);
-    nrm = vec3(texelFetch(normals_in, at).x, texelFetch(normals_in, at + 1).x, texelFetch(normals_in, at + 2).x);
-  }
-  const int o = int(3u * (pc.scatter != 0u ? word(pc.scatter + i) : i));
-  imageStore(out_position, o, vec4(p.x));
-  imageStore(out_position, o + 1, vec4(p.y));
-  imageStore(out_position, o + 2, vec4(p.z));
-  imageStore(out_normal, o, vec4(nrm.x));
-  imageStore(out_normal, o + 1, vec4(nrm.y));
-  imageStore(out_normal, o + 2, vec4(nrm.z));
+  if (kLimit) nrm = texelFetch(normals_in, int(k)).xyz;
+  store_output(pc.scatter != 0u ? word(pc.scatter + i) : i, p, nrm);
 }
