@@ -51,14 +51,35 @@ const RunRow* find_unit(const RunRow& row, const ResultsFile& file) {
   return nullptr;
 }
 
+// The same scheme, mesh and level on `backend`, where `config` names a backend for the row.
+std::optional<Backend> own_normaliser(const RunRow& row, const GateConfig& config) {
+  for (const auto& [pattern, backend] : config.normalisers)
+    if (std::regex_search(row.name(), std::regex(pattern))) return backend;
+  return std::nullopt;
+}
+
+const RunRow* find_same_run(const RunRow& row, Backend backend, const ResultsFile& file) {
+  for (const RunRow& r : file.runs)
+    if (r.spec == row.spec && r.mesh == row.mesh && r.level == row.level && r.backend == backend &&
+        r.status == RunStatus::Ok && !timing(r).samples.empty())
+      return &r;
+  return nullptr;
+}
+
 // Each repetition's time in units of the same run's peer time on the same mesh and tessellation;
 // rows without a peer (the anchor, osd-bfr) in units of the calibration probe run beside them
 // (bench --rounds), or failing that of the machine's bandwidth probe. When the run went in
 // rounds, sample r is divided by the unit's sample r, measured moments apart, which cancels a
 // busy machine's drift.
-std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file) {
+std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file, const GateConfig& config) {
   const TimeStats& t = timing(row);
   const bool paired = file.rounds > 0;
+  if (const auto backend = own_normaliser(row, config)) {
+    const RunRow* unit = find_same_run(row, *backend, file);
+    if (!unit) return std::nullopt;
+    const std::string by = row.spec + "/" + std::string(to_string(*backend));
+    return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
+  }
   if (const RunRow* unit = find_unit(row, file)) {
     const std::string by = unit->scheme == kCalibrationScheme ? "write probe" : unit->scheme;
     return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
@@ -122,6 +143,17 @@ GateConfig read_gate_config(const std::string& path) {
       c.thresholds.emplace_back(pattern, t.at("threshold").get<double>());
       require_judgeable(c.alpha, c.thresholds.back().second, path);
     }
+    for (const auto& n : j.value("normalisers", nlohmann::json::array())) {
+      const std::string pattern = n.at("match").get<std::string>(), name = n.at("backend").get<std::string>();
+      try {
+        (void)std::regex(pattern);
+      } catch (const std::regex_error& e) {
+        throw InputError(path, "normaliser pattern '" + pattern + "' is not a regular expression: " + e.what());
+      }
+      const auto backend = parse_backend(name);
+      if (!backend) throw InputError(path, "normaliser backend '" + name + "' is not a backend");
+      c.normalisers.emplace_back(pattern, *backend);
+    }
     for (const auto& w : j.value("workload", nlohmann::json::array())) {
       try {
         c.workload.push_back(parse_run_name(w.get<std::string>()));
@@ -154,10 +186,14 @@ GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, con
                                 std::to_string(config.min_repetitions));
       continue;
     }
-    const auto a = normalise(old, baseline), b = normalise(cur, current);
+    const auto a = normalise(old, baseline, config), b = normalise(cur, current, config);
     if (!a || !b || a->by != b->by) {
-      report.problems.push_back(e.name + ": no common normaliser (its peer " + (cur.peer.empty() ? "(none)" : cur.peer) +
-                                ", the write probe or the bandwidth probe) in both runs");
+      const auto own = own_normaliser(cur, config);
+      report.problems.push_back(e.name + ": no common normaliser (" +
+                                (own ? "its own row on " + std::string(to_string(*own))
+                                     : "its peer " + (cur.peer.empty() ? std::string("(none)") : cur.peer) +
+                                           ", the write probe or the bandwidth probe") +
+                                ") in both runs");
       continue;
     }
     // A zero or missing time makes 0/0: NaN, which the rank test cannot order (it hung on it).

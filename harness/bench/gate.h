@@ -1,8 +1,10 @@
 // The performance gate: compares a current results.json with a baseline on figures that a slower
 // or busier machine does not move: each repetition's time over its peer's (the row's `peer`, from
 // the scheme's SchemeInfo) on the same mesh and tessellation in the same round; rows without a
-// peer over the calibration probe's. A benchmark regresses when the change is beyond its
-// threshold AND a two-sided Mann-Whitney U test says it is significant.
+// peer over the calibration probe's; rows a `normalisers` entry names over the same scheme, mesh
+// and level on another backend (a Vulkan row over its own cpu-mt row: lavapipe runs on the same
+// cores). A benchmark regresses when the change is beyond its threshold AND a two-sided
+// Mann-Whitney U test says it is significant.
 #pragma once
 
 #include <string>
@@ -18,6 +20,9 @@ struct GateConfig {
   int min_repetitions = 9;
   double default_threshold = 0.25;  // relative slowdown of the normalised figure
   std::vector<std::pair<std::string, double>> thresholds;  // (name regex, threshold), first match wins
+  // (name regex, backend), first match wins: the row over its own scheme, mesh and level on that
+  // backend in the same round, instead of over its peer.
+  std::vector<std::pair<std::string, Backend>> normalisers;
   std::vector<RunSpec> workload;  // what scripts/gate benchmarks (`bench --workload FILE`)
 };
 

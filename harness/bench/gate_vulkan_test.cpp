@@ -1,5 +1,5 @@
 // How the gate judges a Vulkan row (gate.h): by its kernel timestamps, over its peer on the peer's
-// backend in the same round; nothing timed.
+// backend in the same round, or (ci/gate.json's normalisers) over its own cpu-mt row; nothing timed.
 #include <gtest/gtest.h>
 
 #include "harness/bench/gate.h"
@@ -24,14 +24,16 @@ RunRow row(const std::string& scheme, Backend backend, std::vector<double> sampl
 }
 
 // Nine rounds: the write probes and osd-bfr (the anchor, normalised by them) on cpu and cpu-mt,
-// and a Vulkan row whose wall and kernel times are given.
-ResultsFile run(const std::vector<double>& vulkan_wall, const std::vector<double>& vulkan_kernel) {
+// cpatch-2pass on cpu-mt (`cpu_mt`), and a Vulkan row whose wall and kernel times are given.
+ResultsFile run(const std::vector<double>& vulkan_wall, const std::vector<double>& vulkan_kernel,
+                const std::vector<double>& cpu_mt = std::vector<double>(9, 1.0)) {
   ResultsFile f;
   f.rounds = 9;
   f.runs.push_back(row(kCalibrationScheme, Backend::Cpu, std::vector<double>(9, 1.0)));
   f.runs.push_back(row(kCalibrationScheme, Backend::CpuMt, std::vector<double>(9, 1.0)));
   f.runs.push_back(row("osd-bfr", Backend::Cpu, std::vector<double>(9, 1.0)));
   f.runs.push_back(row("osd-bfr", Backend::CpuMt, std::vector<double>(9, 0.5)));
+  f.runs.push_back(row("cpatch-2pass", Backend::CpuMt, cpu_mt, Backend::CpuMt));
   RunRow v = row("cpatch-2pass", Backend::Vulkan, vulkan_wall, Backend::CpuMt);
   v.gpu_time_ms = TimeStats{1, 1, 1, int(vulkan_kernel.size()), vulkan_kernel};
   f.runs.push_back(v);
@@ -67,4 +69,24 @@ TEST(GateVulkanRows, WallTimeAloneDoesNotMoveTheVerdict) {
   const GateReport r = run_gate(run(around(5.0), around(2.0)), run(around(10.0), around(2.0)), config);
   EXPECT_FALSE(vulkan_entry(r).regression);
   EXPECT_FALSE(r.failed());
+}
+
+TEST(GateVulkanRows, ANormaliserNamesTheRowsOwnCpuMtRun) {
+  GateConfig config;
+  config.thresholds = {{"/vulkan/", 0.40}};
+  config.normalisers = {{"/vulkan/", Backend::CpuMt}};
+  // The machine got busier for both of the scheme's rows (kernel and cpu-mt twice as slow): no change.
+  const GateReport same = run_gate(run(around(5.0), around(2.0), around(1.0)), run(around(5.0), around(4.0), around(2.0)), config);
+  EXPECT_EQ(vulkan_entry(same).normaliser, "cpatch-2pass/cpu-mt, paired");
+  EXPECT_NEAR(vulkan_entry(same).change, 0.0, 0.05);
+  EXPECT_FALSE(vulkan_entry(same).regression);
+  // Only the kernel slowed down: a regression.
+  const GateReport slow = run_gate(run(around(5.0), around(2.0), around(1.0)), run(around(5.0), around(4.0), around(1.0)), config);
+  EXPECT_TRUE(vulkan_entry(slow).regression);
+  // Without its cpu-mt row the Vulkan row cannot be judged, and says so.
+  ResultsFile missing = run(around(5.0), around(2.0));
+  missing.runs.erase(missing.runs.begin() + 4);
+  const GateReport none = run_gate(run(around(5.0), around(2.0)), missing, config);
+  ASSERT_EQ(none.problems.size(), 1u);
+  EXPECT_NE(none.problems[0].find("its own row on cpu-mt"), std::string::npos) << none.problems[0];
 }

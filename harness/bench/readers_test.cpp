@@ -55,4 +55,9 @@ TEST(GateConfigReader, RefusesValuesTheGateCannotJudgeWith) {
   EXPECT_NE(gate_error(R"({"thresholds": [{"match": "x", "threshold": -1}]})").find("threshold must be"), std::string::npos);
   EXPECT_NE(gate_error(R"({"min_repetitions": 0})").find("min_repetitions must be"), std::string::npos);
   EXPECT_NE(gate_error(R"({"min_repetitions": 1e300})").find("min_repetitions must be"), std::string::npos);
+  EXPECT_EQ(gate_error(R"({"normalisers": [{"match": "/vulkan/", "backend": "cpu-mt"}]})"), "");
+  EXPECT_NE(gate_error(R"({"normalisers": [{"match": "/vulkan/", "backend": "gpu"}]})").find("'gpu' is not a backend"),
+            std::string::npos);
+  EXPECT_NE(gate_error(R"({"normalisers": [{"match": "(", "backend": "cpu"}]})").find("not a regular expression"),
+            std::string::npos);
 }
