@@ -11,6 +11,12 @@ namespace {
 uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 }  // namespace
 
+uint32_t work_group_size(const DeviceInfo& device, uint32_t gpu_size) {
+  const uint32_t subgroup = std::max<uint32_t>(1, device.limits.subgroup_size);
+  if (device.type == DeviceType::Cpu) return subgroup;
+  return std::max<uint32_t>(1, (gpu_size + subgroup - 1) / subgroup) * subgroup;
+}
+
 Groups groups_for(uint64_t invocations, uint32_t local_size, const DeviceLimits& limits) {
   if (local_size == 0) throw std::invalid_argument("groups_for: local_size 0");
   const uint64_t groups = ceil_div(invocations, local_size);
@@ -32,8 +38,9 @@ ChunkPlan plan_chunks(const DeviceLimits& limits, const ChunkRequest& request) {
   // Chunk sizes are multiples of `step` elements, so every chunk starts on a granule and on an
   // offset the device can bind.
   // Storage and texel views of a chunk both start at its offset.
-  const uint64_t alignment = std::lcm(std::max<uint64_t>(1, limits.min_storage_buffer_offset_alignment),
-                                      std::max<uint64_t>(1, limits.min_texel_buffer_offset_alignment));
+  const uint64_t alignment = std::lcm(std::lcm(std::max<uint64_t>(1, limits.min_storage_buffer_offset_alignment),
+                                               std::max<uint64_t>(1, limits.min_texel_buffer_offset_alignment)),
+                                      std::max<uint64_t>(1, request.byte_alignment));
   const uint64_t align_elements = alignment / std::gcd(alignment, eb);
   const uint64_t step = std::lcm(request.granule, align_elements);
   const uint64_t max_buffer = std::min(limits.max_memory_allocation_size, limits.max_buffer_size);

@@ -23,6 +23,7 @@ struct ChunkRequest {
   uint64_t granule = 1;  // chunk boundaries fall on multiples of this many elements (a face's N*N vertices)
   uint32_t local_size = 64;  // invocations per work group, one element each: for Chunk::groups
   uint64_t max_chunk_bytes = 0;  // a smaller cap than the device's binding range; 0: none
+  uint32_t byte_alignment = 1;   // chunk offsets are multiples of this too (8: 64-bit words stored)
 };
 
 struct Chunk {
@@ -46,5 +47,14 @@ ChunkPlan plan_chunks(const DeviceLimits& limits, const ChunkRequest& request);
 // limit, then y, then z. Over-covers by less than one row of groups; shaders bound-check.
 // Throws std::invalid_argument when the device cannot dispatch that many.
 Groups groups_for(uint64_t invocations, uint32_t local_size, const DeviceLimits& limits);
+
+// Invocations per work group for a kernel of long invocations (a row of samples, a fragment's
+// entries) shaped for `gpu_size` on a GPU: on a CPU device (lavapipe) one subgroup, because it
+// runs a work group's subgroups one after another and a subgroup whose invocations are all past
+// the work (a dispatch's or a batch's end) still runs the whole shader, masked (README.md,
+// "Memory access on lavapipe"); elsewhere `gpu_size` rounded up to whole subgroups. A kernel of
+// short invocations keeps its size: lavapipe's cost per work group outweighs (mipgh's one node
+// an invocation: 44% more instructions at 8 than at 64).
+uint32_t work_group_size(const DeviceInfo& device, uint32_t gpu_size);
 
 }  // namespace sdb::gpu

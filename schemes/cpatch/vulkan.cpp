@@ -122,6 +122,8 @@ std::optional<std::string> vulkan_unsupported(GpuVariant variant, GpuMode mode, 
            device + " allows " + std::to_string(l.max_per_stage_storage_buffers);
   if (variant == GpuVariant::TwoPass && mode == GpuMode::Evaluate && !f.scalar_block_layout)
     return name + " (evaluate-only) stores vec3 arrays with a 12-byte stride; " + device + " lacks scalarBlockLayout";
+  if (variant == GpuVariant::TwoPass && mode == GpuMode::Evaluate && !f.shader_int64)
+    return name + " (evaluate-only) stores pairs of samples as 64-bit words; " + device + " lacks shaderInt64";
   const bool stores = variant != GpuVariant::TwoPass && mode == GpuMode::Evaluate;
   if (stores && !f.vertex_pipeline_stores_and_atomics)
     return name + " (evaluate-only) stores from the " +
@@ -200,8 +202,7 @@ struct CpatchVulkan::Device {
 
   // Four pipelines (patch kind x interior or border rows) sharing one descriptor set per chunk.
   void make_evaluate_pass(gpu::Context& ctx, const CpatchTopology& t, int rate) {
-    const uint32_t subgroup = ctx.limits().subgroup_size;
-    evaluate_local_size = std::max<uint32_t>(1, kLocalSize / subgroup) * subgroup;
+    evaluate_local_size = gpu::work_group_size(ctx.info(), kLocalSize);
     for (int k = 0; k < 4; ++k)
       evaluate[k] = gpu::shared_compute_pipeline(ctx, evaluate_pass_desc(rate, k & 1, k & 2, evaluate_local_size));
     EvaluateRuns plan = cpatch::evaluate_runs(t, output->plan(), uint64_t(rate) * rate);

@@ -38,6 +38,9 @@ struct EvaluateRuns {
   std::vector<uint32_t> lists;
   std::vector<EvaluateRun> runs;  // none empty
 };
+// Per chunk, per kind (bicubic, c-patch) and, for bicubic quads where N^2 is odd, per parity of
+// the quads' first output index in the chunk (evaluate.comp stores bicubic rows in pairs from an
+// even index: one parity per dispatch keeps the pairs the same in every lane).
 EvaluateRuns evaluate_runs(const CpatchTopology& t, const gpu::ChunkPlan& plan, uint64_t samples_per_quad);
 
 class DeviceMesh {
