@@ -18,7 +18,8 @@ using gpu::BufferUsage;
 
 // Invocations per work group on a GPU, one fragment each (the shaders' local_size_x_id = 0); a
 // batch holds up to that many fragments of one shape. A CPU device takes one subgroup
-// (gpu::work_group_size): most batches of an irregular mesh hold one or two fragments.
+// (gpu::work_group_size): a batch ends with its shape's fragments, and an irregular mesh has many
+// shapes, so many batches are partly filled.
 constexpr uint32_t kLocalSize = 64;
 // Scratch of a wave, both halves (a level and the next) and the net points (a third): past this,
 // fragments run in more waves.
