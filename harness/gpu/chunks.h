@@ -52,9 +52,9 @@ Groups groups_for(uint64_t invocations, uint32_t local_size, const DeviceLimits&
 // entries) shaped for `gpu_size` on a GPU: on a CPU device (lavapipe) one subgroup, because it
 // runs a work group's subgroups one after another and a subgroup whose invocations are all past
 // the work (a dispatch's or a batch's end) still runs the whole shader, masked (README.md,
-// "Memory access on lavapipe"); elsewhere `gpu_size` rounded up to whole subgroups. A kernel of
-// short invocations keeps its size: lavapipe's cost per work group outweighs (mipgh's one node
-// an invocation: 44% more instructions at 8 than at 64).
+// "Memory access on lavapipe"); elsewhere `gpu_size` rounded up to whole subgroups. Measure before
+// taking it: mipgh's one node an invocation ran 44% more instructions at 8 than at 64, and
+// fragments' limit pass fewer instructions but more time.
 uint32_t work_group_size(const DeviceInfo& device, uint32_t gpu_size);
 
 }  // namespace sdb::gpu

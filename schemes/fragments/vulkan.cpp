@@ -16,10 +16,10 @@ namespace {
 namespace shaders = sdb_scheme_fragments_shaders;
 using gpu::BufferUsage;
 
-// Invocations per work group on a GPU, one fragment each (the shaders' local_size_x_id = 0); a
-// batch holds up to that many fragments of one shape. A CPU device takes one subgroup
-// (gpu::work_group_size): a batch ends with its shape's fragments, and an irregular mesh has many
-// shapes, so many batches are partly filled.
+// Invocations per work group, one fragment each (the shaders' local_size_x_id = 0); a batch holds
+// up to that many fragments of one shape. Also on lavapipe: one subgroup a work group
+// (gpu::work_group_size) ran fewer instructions (frog stand-in at depth 4: 892 -> 814 M) but took
+// longer (the limit 42-47 -> 61-73 ms, paired runs), with either order of batches and chunks.
 constexpr uint32_t kLocalSize = 64;
 // Scratch of a wave, both halves (a level and the next) and the net points (a third): past this,
 // fragments run in more waves.
@@ -112,14 +112,14 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
 // batches, one uvec4 per invocation, are a storage buffer.
 // The rule's flags and the pass's part are specialization constants: lavapipe runs both sides of
 // every branch, masked, unless its condition is a constant.
-gpu::ComputePipelineDesc pass(const char* shader, uint32_t local_size, uint32_t flags, Part part, uint32_t key) {
+gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part, uint32_t key) {
   using gpu::Binding;
   return {shaders::get(shader),
           {Binding::UniformTexelBuffer, Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
            Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
            Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::StorageBuffer},
           sizeof(Push),
-          {{0, local_size}, {1, flags}, {2, static_cast<uint32_t>(part)}, {3, key}}};
+          {{0, kLocalSize}, {1, flags}, {2, static_cast<uint32_t>(part)}, {3, key}}};
 }
 
 class VulkanFragmentEvaluation final : public Evaluation {
@@ -129,8 +129,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
       : ctx_(std::move(ctx)),
         control_(mesh.positions),
         surface_(mesh, rule, depth, project ? inner_depth_for(mesh, depth) : depth),
-        local_size_(gpu::work_group_size(ctx_->info(), kLocalSize)),
-        batches_(surface_.batches_of(local_size_)) {
+        batches_(surface_.batches_of(kLocalSize)) {
     DeviceTables tables = pack_tables(surface_);
     passes_ = plan_passes(surface_, tables, project, ctx_->info().driver_name == "llvmpipe", ctx_->info().name);
     plan_ = plan_waves(surface_, batches_, ctx_->limits(), options.max_wave_bytes, ctx_->info().name);
@@ -242,7 +241,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
     for (const PassSpec& p : passes_) {
       const char* shader = p.part == Part::Gather ? "gather.comp" : p.part == Part::Limit ? "limit.comp" : "level.comp";
       pipelines_.try_emplace({p.part, p.key},
-                             gpu::shared_compute_pipeline(*ctx_, pass(shader, local_size_, flags, p.part, p.key)));
+                             gpu::shared_compute_pipeline(*ctx_, pass(shader, flags, p.part, p.key)));
     }
   }
 
@@ -314,7 +313,6 @@ class VulkanFragmentEvaluation final : public Evaluation {
   std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
   std::vector<Point3> control_;
   FragmentSurface surface_;
-  uint32_t local_size_;  // invocations per work group: fragments per batch, at most
   std::vector<FragmentSurface::Batch> batches_;
   std::vector<PassSpec> passes_;
   WavePlan plan_;

@@ -1,6 +1,6 @@
 // vulkan: the same pattern tables (device_tables.h) applied by table-driven compute passes
 // (shaders/; pass_plan.h: which, over which entries). A work group is a batch of up to 64
-// fragments (one subgroup on a CPU device) of one shape, one per invocation, their slots in scratch buffers with the lanes innermost (the
+// fragments of one shape, one per invocation, their slots in scratch buffers with the lanes innermost (the
 // CPU kernel's layout). Passes: upload, gather (level 0), level 1 .. d, limit (writes the output);
 // each timed by timestamps. Fragments run in waves that bound the scratch memory and keep each
 // wave's output within one storage binding (128 MiB on lavapipe); a wave's output is contiguous
