@@ -118,6 +118,17 @@ int repetitions(const nlohmann::json& j, int fallback, const std::string& path) 
   return v.get<int>();
 }
 
+// An entry's "match": a regular expression, or InputError naming the entry's kind.
+std::string checked_pattern(const nlohmann::json& entry, const std::string& kind, const std::string& path) {
+  const std::string pattern = entry.at("match").get<std::string>();
+  try {
+    (void)std::regex(pattern);
+  } catch (const std::regex_error& e) {
+    throw InputError(path, kind + " pattern '" + pattern + "' is not a regular expression: " + e.what());
+  }
+  return pattern;
+}
+
 }  // namespace
 
 GateConfig read_gate_config(const std::string& path) {
@@ -134,22 +145,12 @@ GateConfig read_gate_config(const std::string& path) {
     c.default_threshold = j.value("default_threshold", c.default_threshold);
     require_judgeable(c.alpha, c.default_threshold, path);
     for (const auto& t : j.value("thresholds", nlohmann::json::array())) {
-      const std::string pattern = t.at("match").get<std::string>();
-      try {
-        (void)std::regex(pattern);
-      } catch (const std::regex_error& e) {
-        throw InputError(path, "threshold pattern '" + pattern + "' is not a regular expression: " + e.what());
-      }
+      const std::string pattern = checked_pattern(t, "threshold", path);
       c.thresholds.emplace_back(pattern, t.at("threshold").get<double>());
       require_judgeable(c.alpha, c.thresholds.back().second, path);
     }
     for (const auto& n : j.value("normalisers", nlohmann::json::array())) {
-      const std::string pattern = n.at("match").get<std::string>(), name = n.at("backend").get<std::string>();
-      try {
-        (void)std::regex(pattern);
-      } catch (const std::regex_error& e) {
-        throw InputError(path, "normaliser pattern '" + pattern + "' is not a regular expression: " + e.what());
-      }
+      const std::string pattern = checked_pattern(n, "normaliser", path), name = n.at("backend").get<std::string>();
       const auto backend = parse_backend(name);
       if (!backend) throw InputError(path, "normaliser backend '" + name + "' is not a backend");
       c.normalisers.emplace_back(pattern, *backend);
