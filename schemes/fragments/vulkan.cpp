@@ -107,11 +107,12 @@ WavePlan plan_waves(const FragmentSurface& s, const std::vector<FragmentSurface:
 }
 
 // fragments.glsl's bindings: tables, batches, fragment list, control points, scratch (read),
-// positions, normals, scratch (written), net points (read, written). Reads go through texel views (lavapipe's fast path), the
-// scratch's writes as 64-bit words to a storage buffer, the output's through r32f image views; the
-// batches, one uvec4 per invocation, are a storage buffer.
-// The rule's flags and the pass's part are specialization constants: lavapipe runs both sides of
-// every branch, masked, unless its condition is a constant.
+// positions, normals, scratch (written), net points (read, written). Reads go through texel views
+// (lavapipe's fast path), the scratch's and net points' writes as 64-bit words to storage
+// buffers, the output's through r32f image views; the batches, one uvec4 per invocation, are a
+// storage buffer.
+// The rule's flags, the pass's part and its kind are specialization constants: lavapipe runs both
+// sides of every branch, masked, unless its condition is a constant.
 gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part, uint32_t key) {
   using gpu::Binding;
   return {shaders::get(shader),

@@ -31,9 +31,10 @@ struct VulkanLife::Impl {
     staging_in = gpu::Buffer::upload(c, bytes, "life states (staging)");
     staging_out = gpu::Buffer::readback(c, bytes, "life states (readback)");
     using gpu::Binding;
-    pipeline = gpu::shared_compute_pipeline(c, gpu::ComputePipelineDesc{shaders::get("life.comp"),
-                                                 {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer},
-                                                 sizeof(Push), {}});
+    pipeline = gpu::shared_compute_pipeline(
+        c, gpu::ComputePipelineDesc{shaders::get("life.comp"),
+                                    {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer},
+                                    sizeof(Push), {}});
     const Push push{nodes, uint32_t(first.size())};
     for (int k = 0; k < 2; ++k) {
       sets[k] = gpu::DescriptorSet(*pipeline, {state[k].texels(VK_FORMAT_R32_SFLOAT), state[1 - k].texels(VK_FORMAT_R32_SFLOAT),

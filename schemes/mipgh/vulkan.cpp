@@ -162,6 +162,9 @@ class VulkanMipghEvaluation final : public Evaluation {
   };
 
   bool mixed() const { return has_quads_ && has_triangles_; }
+  // The limit's passes write the output themselves (kToOutput pipelines): the limit is the whole
+  // output, no grid point picked from a deeper level, nothing adaptive.
+  bool limit_to_output() const { return m_.project() && m_.pick.empty() && !m_.lod.adaptive(); }
   uint32_t lod_words(int sigma, bool quad) const {
     const size_t n = m_.lod.layout(sigma).n;
     return checked_u32(quad ? n * n : n * (n + 1) / 2, "a D-facet's index array");
@@ -297,15 +300,17 @@ class VulkanMipghEvaluation final : public Evaluation {
   void make_pipelines() {
     for (bool quad : {false, true}) {
       if (!(quad ? has_quads_ : has_triangles_)) continue;
-      for (uint32_t k = 0; k < kFacetClasses; ++k) facets_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, k));
+      for (uint32_t k = 0; k < kFacetClasses; ++k)
+        facets_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, k));
       for (uint32_t k = 0; k < 3; ++k) edges_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, k));
+      if (!limit_to_output()) continue;
       facets_out_[quad] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, kFacetLimit, true));
       edges_out_[quad] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, kEdgeLimit, true));
     }
     const char* masks = ctx_->info().features.shader_float64 ? "masks_double.comp" : "masks.comp";
     masks_step_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 0, 0));
     masks_limit_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0));
-    masks_out_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0, true));
+    if (limit_to_output()) masks_out_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0, true));
     output_ = gpu::shared_compute_pipeline(*ctx_, desc("output.comp", m_.project(), 0));
     // Set k reads level buffer k and writes the other (or, a kToOutput pipeline, the output).
     constexpr VkFormat node = VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -322,7 +327,7 @@ class VulkanMipghEvaluation final : public Evaluation {
   void add_level(int sigma, bool limit) {
     const LevelLayout& src = m_.lod.layout(sigma);
     const LevelPasses& l = limit ? limits_[sigma] : steps_[sigma];
-    const bool to_output = limit && m_.pick.empty() && !m_.lod.adaptive();
+    const bool to_output = limit && limit_to_output();
     const uint32_t reads = sigma % 2;
     Push base;
     if (to_output)
@@ -382,7 +387,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     }
     for (int sigma = 0; sigma < inner; ++sigma) add_level(sigma, false);
     if (m_.project()) add_level(inner, true);
-    if (m_.project() && m_.pick.empty()) return;  // the limit wrote the output
+    if (limit_to_output()) return;  // the limit wrote the output
     // The output reads the limit (written over the other buffer) or the last level.
     Push p;
     p.count = m_.lod.layout(m_.depth()).num_nodes;

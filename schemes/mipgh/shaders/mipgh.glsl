@@ -2,8 +2,9 @@
 // A level's node is 16 bytes, (x, y, z, 0): one rgba32f texel fetch reads it and one rgba32f
 // imageStore writes it (lavapipe loads and stores lane by lane, per component and per access:
 // three r32f fetches and stores cost more; harness/gpu/README.md). The output is packed xyz floats,
-// written through r32f image views; the D-LoD's index arrays and every table are r32ui texels. The arithmetic is the CPU's (tile.cpp, shader.h), operation for operation and
-// `precise` (no fused multiply-adds, no reassociation), so the stencils' nodes equal the CPU's.
+// written through r32f image views; the D-LoD's index arrays and every table are r32ui texels.
+// The arithmetic is the CPU's (tile.cpp, shader.h), operation for operation and `precise` (no
+// fused multiply-adds, no reassociation), so the stencils' nodes equal the CPU's.
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/dispatch.glsl"
 
