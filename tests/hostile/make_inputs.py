@@ -187,6 +187,10 @@ def files():
     f["emptyobj.json"] = "{}"
     f["nulls.json"] = results([dict(row, time_ms=None, triangles=None)])
     f["gate_badregex.json"] = json.dumps({"thresholds": [{"match": "([", "threshold": 0.1}]})
+    # normalisers: a backend nobody has, a pattern that is not one, a backend that is not a string.
+    f["gate_norm_backend.json"] = json.dumps({"normalisers": [{"match": "/vulkan/", "backend": "gpu"}]})
+    f["gate_norm_regex.json"] = json.dumps({"normalisers": [{"match": "([", "backend": "cpu-mt"}]})
+    f["gate_norm_type.json"] = json.dumps({"normalisers": [{"match": "/vulkan/", "backend": 7}]})
     f["gate_badtype.json"] = json.dumps({"alpha": "small"})
     f["gate_shell.json"] = json.dumps({"workload": ["osd-uniform/cpu/cube' ; touch SHELL_RAN ; echo '/2"]})
     f["gate_badname.json"] = json.dumps({"workload": ["not-a-run-name"]})
