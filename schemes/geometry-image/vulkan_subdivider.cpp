@@ -18,9 +18,7 @@ using gpu::BufferUsage;
 
 // Invocations per work group (the shaders' local_size_x_id = 0).
 constexpr uint32_t kLocalSize = 64;
-static_assert(kLocalSize >= 4 && kLocalSize % 2 == 0,
-              "the cut-vertex pass runs its four invocations in one work group; "
-              "L gives half of each group the even columns, half the odd ones");
+static_assert(kLocalSize >= 4, "the cut-vertex pass runs its four invocations in one work group");
 // The most storage buffers one pass binds: pad's gather table, control points and destination.
 constexpr uint32_t kMaxBindings = 3;
 
@@ -251,9 +249,13 @@ void VulkanSubdivider::make_descriptor_sets() {
 void VulkanSubdivider::record_image_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline,
                                          const gpu::DescriptorSet& set, int src_side, int dst_side,
                                          ImageWork work) const {
-  // One invocation per destination sample, or (L+A) per 2 x 2 destination block: per source
-  // sample but the last row and column.
-  const uint64_t side = work == ImageWork::PerSample ? uint64_t(dst_side) : uint64_t(src_side - 1);
+  uint64_t side = 0;  // of the square of invocations
+  switch (work) {
+    case ImageWork::PerSample: side = uint64_t(dst_side); break;
+    case ImageWork::PerSourceSample: side = uint64_t(src_side); break;
+    case ImageWork::PerBlock: side = (uint64_t(dst_side) + 1) / 2; break;
+    case ImageWork::PerSourceBlock: side = uint64_t(src_side - 1); break;
+  }
   cmd.bind(pipeline, set);
   cmd.push(Push{uint32_t(src_side), uint32_t(dst_side), 0, uint32_t(dst_side)});
   cmd.dispatch(row_groups(side, side));
@@ -285,17 +287,17 @@ void VulkanSubdivider::record_levels(gpu::Commands& cmd) {
     cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
     if (plan_ == PassPlan::Fused) {
       frame_timer_.begin(cmd, gpu::PassKind::Kernel, "L+A " + level);
-      record_image_pass(cmd, *p.split_average, fused_sets_[k], src, dst, ImageWork::PerBlock);
+      record_image_pass(cmd, *p.split_average, fused_sets_[k], src, dst, ImageWork::PerSourceBlock);
       frame_timer_.end(cmd);
       continue;
     }
     const int split = 2 * src - 1;
     frame_timer_.begin(cmd, gpu::PassKind::Kernel, "L " + level);
-    record_image_pass(cmd, *p.split, split_sets_[k], src, split);
+    record_image_pass(cmd, *p.split, split_sets_[k], src, split, ImageWork::PerSourceSample);
     frame_timer_.end(cmd);
     cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
     frame_timer_.begin(cmd, gpu::PassKind::Kernel, "A " + level);
-    record_image_pass(cmd, *p.average, average_sets_[k], split, dst);
+    record_image_pass(cmd, *p.average, average_sets_[k], split, dst, ImageWork::PerBlock);
     frame_timer_.end(cmd);
   }
 }
@@ -333,7 +335,7 @@ void VulkanSubdivider::record_frame() {
     cmd.upload(control_staging_, control_);
     frame_timer_.end(cmd);
     frame_timer_.begin(cmd, gpu::PassKind::Kernel, "pad");
-    record_image_pass(cmd, *pipelines_->pad, pad_set_, 0, images_[0].side);
+    record_image_pass(cmd, *pipelines_->pad, pad_set_, 0, images_[0].side, ImageWork::PerSample);
     frame_timer_.end(cmd);
     record_levels(cmd);
     record_outputs(cmd);

@@ -88,10 +88,12 @@ class VulkanSubdivider {
   void record_readback();
   void record_levels(gpu::Commands& cmd);
   void record_outputs(gpu::Commands& cmd);
-  // Image passes run per destination sample, or (L+A) per 2 x 2 block of destination samples.
-  enum class ImageWork { PerSample, PerBlock };
+  // What one invocation of an image pass covers: a destination sample (pad), a source sample and
+  // the 2 x 2 destination block it splits into (L), a 2 x 2 block of destination samples (A), or
+  // the 2 x 2 block a source sample but the last row and column owns (L+A).
+  enum class ImageWork { PerSample, PerSourceSample, PerBlock, PerSourceBlock };
   void record_image_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline, const gpu::DescriptorSet& set,
-                         int src_side, int dst_side, ImageWork work = ImageWork::PerSample) const;
+                         int src_side, int dst_side, ImageWork work) const;
   // Output passes run over every vertex of each chunk, or (the cut-vertex normals) over four.
   enum class OutputWork { EveryVertex, CutVertices };
   void record_output_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline,

@@ -11,9 +11,10 @@
 // in a fixed order, so that samples the cut identifies come out bit-identical (masks.h).
 #extension GL_GOOGLE_include_directive : require
 
-// One invocation per destination sample: a row of work groups per destination row, x along it
-// (gl_GlobalInvocationID = (column, row); columns past the row's end return). Work groups of
-// local_size_x invocations, set by the host (vulkan_subdivider.cpp, kLocalSize).
+// Image passes: one invocation per sample or 2 x 2 block (each pass says which), a row of work
+// groups per row of them, x along it (gl_GlobalInvocationID = (column, row); columns past the
+// row's end return). Work groups of local_size_x invocations, set by the host
+// (vulkan_subdivider.cpp, kLocalSize).
 layout(local_size_x_id = 0) in;
 
 layout(push_constant) uniform Push {
@@ -22,16 +23,5 @@ layout(push_constant) uniform Push {
   uint first_row;  // output passes: the chunk's first row of the n x n output
   uint rows;       // output passes: the chunk's rows
 } pc;
-
-// The column of this invocation in a pass whose formula depends on the column's parity (L):
-// the first half of each work group takes the even columns of the group's span, the second half
-// the odd ones, so that a SIMD group (a warp, lavapipe's 8 lanes) takes one branch, not both.
-// Row parity is uniform already (a row of work groups per row). local_size_x must be even.
-uint parity_grouped_column() {
-  uint half_size = gl_WorkGroupSize.x / 2u;
-  uint lane = gl_LocalInvocationID.x;
-  uint odd = lane >= half_size ? 1u : 0u;
-  return gl_WorkGroupID.x * gl_WorkGroupSize.x + 2u * (lane - odd * half_size) + odd;
-}
 
 #include "sdb/words.glsl"  // as_words
