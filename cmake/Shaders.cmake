@@ -19,6 +19,14 @@
 # own helpers (harness/gpu/shaders/include, e.g. "sdb/dispatch.glsl") are always on the path.
 #
 # SPIR-V targets Vulkan 1.1 (SPIR-V 1.3), which every Vulkan 1.1 device runs: lavapipe and NVIDIA.
+#
+# No -O: spirv-opt (SPIRV-Tools 2022.4, Debian's) unrolls a loop and keeps the NoContraction
+# decoration (GLSL `precise`) on the first copy of its body only; it turned the other copies'
+# multiply-adds into Fma instructions, and lavapipe reordered their sums. The shaders'
+# bit-identity with the CPU rests on those decorations (geometry-image's limit positions: three of
+# every four vertices came out 1-2 ulp off the CPU's). The drivers unroll, inline and optimise
+# unoptimised SPIR-V themselves, and Mesa keeps `exact` on every copy. Guarded by
+# ComputeTest.PreciseFunctionsKeepNoContractionInEveryCopy (harness/gpu/tests).
 
 find_program(SDB_GLSLC NAMES glslc HINTS ${Vulkan_GLSLC_EXECUTABLE} REQUIRED)
 set(SDB_SHADER_TARGET_ENV "vulkan1.1" CACHE STRING "glslc --target-env for embedded shaders")
@@ -65,7 +73,7 @@ function(sdb_add_shaders)
     set(inc ${out_dir}/${name}.inc)
     add_custom_command(
       OUTPUT ${inc}
-      COMMAND ${SDB_GLSLC} --target-env=${SDB_SHADER_TARGET_ENV} -O -Werror -mfmt=c
+      COMMAND ${SDB_GLSLC} --target-env=${SDB_SHADER_TARGET_ENV} -Werror -mfmt=c
               ${include_flags} -MD -MF ${inc}.d -MT ${inc} -o ${inc} ${abs}
       DEPENDS ${abs}
       DEPFILE ${inc}.d

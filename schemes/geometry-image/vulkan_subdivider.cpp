@@ -81,11 +81,11 @@ gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings)
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
 }
 
-// An output pass (output_grid.glsl): each four of its vertices share one fetch window where the
-// n x n grid has n >= 4 (four consecutive vertices then cross at most one row's end).
+// An output pass (output_grid.glsl): its eight vertices share one fetch window where the
+// n x n grid has n >= 8 (eight consecutive vertices then cross at most one row's end).
 gpu::ComputePipelineDesc output_pass(const char* shader, std::vector<Binding> bindings, uint64_t n) {
   gpu::ComputePipelineDesc desc = pass(shader, std::move(bindings));
-  desc.constants.push_back({1, n >= 4 ? 1u : 0u});
+  desc.constants.push_back({1, n >= 8 ? 1u : 0u});
   return desc;
 }
 

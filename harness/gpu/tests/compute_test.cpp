@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -74,6 +75,54 @@ TEST_F(ComputeTest, Mask3x3MatchesCpuBitForBit) {
     if (std::memcmp(&cpu[i], &gpu[i], sizeof(float)) != 0 && differing++ == 0) first = i;
   EXPECT_EQ(differing, 0u) << "first difference at pixel " << first << ": cpu " << cpu[first] << ", gpu "
                            << gpu[first];
+}
+
+// `precise` functions called in an unrolled loop keep NoContraction in every copy: the embedded
+// shaders are built so (cmake/Shaders.cmake), and the schemes' bit-identity with the CPU rests on
+// it. The multiply-adds' inputs cancel, so a fused multiply-add differs from the rounded multiply
+// then add in most of them; the limit masks' inputs are random.
+TEST_F(ComputeTest, PreciseFunctionsKeepNoContractionInEveryCopy) {
+  constexpr size_t kInputs = 12, kCopies = 4;
+  const uint32_t invocations = 4096;
+  const size_t results = kCopies * invocations;
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<float> dist(0.5f, 2.0f);
+  std::vector<float> src(kInputs * results);
+  for (size_t j = 0; j < results; ++j) {
+    float* in = &src[kInputs * j];
+    for (size_t q = 0; q < kInputs; ++q) in[q] = dist(rng);
+    in[2] = -in[0] * in[1] * (1.0f + 1e-6f * dist(rng));
+  }
+  ComputePipeline pipeline(ctx(), {gpu_test_shaders::get("precise_calls.comp"),
+                                   {Binding::StorageBuffer, Binding::StorageBuffer}, sizeof(uint32_t)});
+  Buffer in = device_buffer_with(ctx(), src, BufferUsage::Storage, "inputs");
+  Buffer out = Buffer::device(ctx(), 2 * results * sizeof(float), BufferUsage::Storage, "results");
+  DescriptorSet set(pipeline, {in.range(), out.range()});
+  ctx().run([&](Commands& cmd) {
+    cmd.bind(pipeline, set);
+    cmd.push(invocations);
+    cmd.dispatch((invocations + 63) / 64);
+  });
+  const std::vector<float> gpu = download_as<float>(ctx(), out, 2 * results);
+  size_t differing[2][kCopies] = {}, fused_differs = 0;
+  for (size_t j = 0; j < results; ++j) {
+    const float* v = &src[kInputs * j];
+    // This file is built with -ffp-contract=off: each operation rounds, as NoContraction asks.
+    const float product = v[0] * v[1];
+    const float multiply_add = product + v[2];
+    fused_differs += std::fma(v[0], v[1], v[2]) != multiply_add;
+    const float edges = (v[4] + v[5]) + (v[6] + v[7]), corners = (v[8] + v[9]) + (v[10] + v[11]);
+    const float limit = ((16.0f * v[3] + 4.0f * edges) + corners) * (1.0f / 36.0f);
+    for (int q = 0; q < 2; ++q) {
+      const float cpu = q == 0 ? multiply_add : limit;
+      differing[q][j % kCopies] += std::memcmp(&cpu, &gpu[2 * j + q], sizeof(float)) != 0;
+    }
+  }
+  EXPECT_GT(fused_differs, results / 2) << "the inputs do not tell a fused multiply-add apart";
+  for (size_t k = 0; k < kCopies; ++k) {
+    EXPECT_EQ(differing[0][k], 0u) << "multiply-add, copy " << k;
+    EXPECT_EQ(differing[1][k], 0u) << "limit mask, copy " << k;
+  }
 }
 
 TEST_F(ComputeTest, RecordingSubmitsAgainAndSpecializationConstantsApply) {

@@ -11,12 +11,10 @@ void main() {
   const uint t = SDB_LINEAR_INVOCATION();
   if (8u * t >= chunk_vertices()) return;
   vec3 p[8];
-  [[unroll]] for (int g = 0; g < 2; ++g) {
-    vec3 s[4][9];
-    four_neighbourhoods(2u * t + uint(g), s);
-    [[unroll]] for (int k = 0; k < 4; ++k) {
-      p[4 * g + k] = limit_of(s[k]);
-    }
+  vec3 s[8][9];
+  eight_neighbourhoods(t, s);
+  [[unroll]] for (int k = 0; k < 8; ++k) {
+    p[k] = limit_of(s[k]);
   }
   STORE_EIGHT(positions, t, p);
 }

@@ -1,6 +1,6 @@
 // Output passes (E, T, fused E+T): invocation t computes vertices 8 t .. 8 t + 7 of its chunk
-// (row-major over the chunk's rows of the n x n grid), as two groups of four, and stores their 24
-// floats as three 32-byte elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks
+// (row-major over the chunk's rows of the n x n grid) and stores their 24 floats as three 32-byte
+// elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks
 // hold whole groups of eight rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the
 // last chunk's last invocation may run past the grid's end, and writes up to seven copies of the
 // last vertex into the padding after the outputs.
@@ -38,34 +38,35 @@ void neighbourhood(uint c, out vec3 s[9]) {
     [[unroll]] for (int q = 0; q < 3; ++q) s[3 * r + q] = src(c + uint(r) * pc.src_side + uint(q) - pc.src_side - 1u);
 }
 
-// Whether each four consecutive vertices share one fetch window (host: the grid's side n >= 4).
+// Whether an invocation's eight vertices share one fetch window (host: the grid's side n >= 8).
 // Vertex d after the first lies d + 2 texels on in the padded image, past a row's end (padded
-// rows are n + 2 long), and with n >= 4 four vertices cross at most one row's end: all four
-// neighbourhoods lie in 3 rows x 8 columns from the first's, 24 fetches where four apart take 36
-// (a small saving on lavapipe, where a texel fetch is cheap next to a store: ../README.md,
-// "Stores"). Smaller grids fetch per vertex.
+// rows are n + 2 long), and with n >= 8 eight vertices cross at most one row's end: all eight
+// neighbourhoods lie in 3 rows x 12 columns from the first's, 36 fetches where eight apart take 72
+// and two windows of four 48. A texel fetch is a gather on lavapipe, few instructions but many
+// cycles: the E and T passes take as long as splitting passes of twice their instructions.
+// Smaller grids fetch per vertex.
 layout(constant_id = 1) const bool kSharedWindow = false;
 
-// The neighbourhoods of vertices 4 g .. 4 g + 3; past the chunk's end, the last vertex's
-// (vertex_source's clamp).
-void four_neighbourhoods(uint g, out vec3 s[4][9]) {
+// The neighbourhoods of vertices 8 t .. 8 t + 7 (8 t within the chunk); past the chunk's end, the
+// last vertex's (vertex_source's clamp).
+void eight_neighbourhoods(uint t, out vec3 s[8][9]) {
   if (!kSharedWindow) {
-    [[unroll]] for (int k = 0; k < 4; ++k) neighbourhood(vertex_source(4u * g + uint(k)), s[k]);
+    [[unroll]] for (int k = 0; k < 8; ++k) neighbourhood(vertex_source(8u * t + uint(k)), s[k]);
     return;
   }
   const uint count = chunk_vertices();
-  const uint v0 = min(4u * g, count - 1u), x0 = v0 % pc.dst_side;
+  const uint v0 = 8u * t, x0 = v0 % pc.dst_side;
   const uint first = padded_index(x0, pc.first_row + v0 / pc.dst_side) - pc.src_side - 1u;
   const uint last = pc.src_side * pc.src_side - 1u;  // the window of the grid's last group runs past it
-  vec3 w[24];  // w[8 r + q] at first + r S + q
+  vec3 w[36];  // w[12 r + q] at first + r S + q
   [[unroll]] for (int r = 0; r < 3; ++r)
-    [[unroll]] for (int q = 0; q < 8; ++q) w[8 * r + q] = src(min(first + uint(r) * pc.src_side + uint(q), last));
-  [[unroll]] for (int k = 0; k < 4; ++k) {
+    [[unroll]] for (int q = 0; q < 12; ++q) w[12 * r + q] = src(min(first + uint(r) * pc.src_side + uint(q), last));
+  [[unroll]] for (int k = 0; k < 8; ++k) {
     const bool crossed = x0 + uint(k) >= pc.dst_side;
     [[unroll]] for (int r = 0; r < 3; ++r)
-      [[unroll]] for (int q = 0; q < 3; ++q) s[k][3 * r + q] = crossed ? w[8 * r + k + 2 + q] : w[8 * r + k + q];
+      [[unroll]] for (int q = 0; q < 3; ++q) s[k][3 * r + q] = crossed ? w[12 * r + k + 2 + q] : w[12 * r + k + q];
   }
-  [[unroll]] for (int k = 1; k < 4; ++k)
+  [[unroll]] for (int k = 1; k < 8; ++k)
     if (v0 + uint(k) >= count) s[k] = s[k - 1];
 }
 
