@@ -1,5 +1,6 @@
 #include "schemes/mipgh/vulkan.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -28,11 +29,11 @@ struct Push {
   float origin[4] = {0, 0, 0, 0};
 };
 
-// facets.comp's classes: the step's four (vertex points, the two edge points, facet or diagonal
-// points) and the limit.
-constexpr uint32_t kFacetClasses = 5, kFacetLimit = 4;
-// edges.comp's parts.
-constexpr uint32_t kEdgePoints = 0, kVertexPoints = 1, kEdgeLimit = 2;
+// facets.comp's classes: a step's blocks and the limit's (facet_blocks).
+constexpr uint32_t kFacetClasses = 2, kFacetStep = 0, kFacetLimit = 1;
+// edges.comp's parts: a step's (edge point t and vertex point t + 1 per invocation) and the
+// limit's (nodes t, t + 1).
+constexpr uint32_t kEdgeParts = 2, kEdgeStep = 0, kEdgeLimit = 1;
 
 // One dispatch: the pipeline, its push constants, and its descriptor set (reads level buffer 0 or
 // 1 and writes the other, or, where the pipeline writes the output, the output).
@@ -65,19 +66,38 @@ class Tables {
   }
 };
 
-// Per class, each target of a D-facet's interior at level sigma + 1 (limit: at sigma) as its source
-// square (a << 16 | b) and its offset in the interior, in the order the CPU stores them.
-std::vector<std::vector<uint32_t>> facet_classes(int n, bool quad, bool limit) {
-  std::vector<std::vector<uint32_t>> classes(limit ? 1 : 4);
-  const int width = limit ? n - 2 : 2 * n - 3;
-  uint32_t out = 0;
-  for (int r = 1; r <= width; ++r)
-    for (int c = 1; c <= (quad ? width : width - r); ++c, ++out) {
-      auto& to = classes[limit ? 0 : ((r & 1) << 1) | (c & 1)];
-      const uint32_t square = limit ? uint32_t(r) << 16 | uint32_t(c) : uint32_t(r >> 1) << 16 | uint32_t(c >> 1);
-      to.insert(to.end(), {square, out});
+// facets.comp's tables: blocks of up to four targets in a D-facet's interior, each block as its
+// node (a << 16 | b) and the four targets' offsets in the interior (the CPU's order, kNoTarget
+// where a target is not in it). Every interior target is in exactly one block.
+constexpr uint32_t kNoTarget = 0xffffffffu;
+constexpr size_t kBlockWords = 5;
+
+// Offset of node (r, c), 1-based, in an interior `width` nodes wide (triangles: row r is
+// width - r long), or kNoTarget outside it.
+uint32_t interior_offset(int width, bool quad, int r, int c) {
+  const int row_width = quad ? width : width - r;
+  if (r < 1 || r > width || c < 1 || c > row_width) return kNoTarget;
+  const size_t before = quad ? size_t(r - 1) * width : size_t(r - 1) * width - size_t(r - 1) * r / 2;
+  return uint32_t(before + size_t(c - 1));
+}
+
+// `limit` = false: a step's, per node (a, b) at level sigma, its targets (2a, 2b), (2a, 2b + 1),
+// (2a + 1, 2b), (2a + 1, 2b + 1) of the interior at sigma + 1 (the nodes it owns: (r >> 1, c >> 1)).
+// `limit` = true: the projection's, per node (a, b), a and b odd, the interior nodes (a, b),
+// (a, b + 1), (a + 1, b), (a + 1, b + 1) at sigma.
+std::vector<uint32_t> facet_blocks(int n, bool quad, bool limit) {
+  const int width = limit ? n - 2 : 2 * n - 3, scale = limit ? 1 : 2, first = limit ? 1 : 0, step = limit ? 2 : 1;
+  std::vector<uint32_t> table;
+  for (int a = first; a < n; a += step)
+    for (int b = first; b < n; b += step) {
+      const int r = scale * a, c = scale * b;
+      const uint32_t targets[4] = {interior_offset(width, quad, r, c), interior_offset(width, quad, r, c + 1),
+                                   interior_offset(width, quad, r + 1, c), interior_offset(width, quad, r + 1, c + 1)};
+      if (std::all_of(targets, targets + 4, [](uint32_t t) { return t == kNoTarget; })) continue;
+      table.push_back(uint32_t(a) << 16 | uint32_t(b));
+      table.insert(table.end(), targets, targets + 4);
     }
-  return classes;
+  return table;
 }
 
 uint32_t checked_u32(size_t x, const char* what) {
@@ -151,7 +171,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     uint32_t entries = 0, target = 0, begins = 0, sources = 0, weights = 0;
   };
   struct LevelPasses {
-    std::vector<std::pair<uint32_t, uint32_t>> classes[2];  // per kind, per class: (table, targets per D-facet)
+    std::pair<uint32_t, uint32_t> facet_table[2];  // per kind: (facet_blocks' table, blocks per D-facet)
     uint32_t facet_lod = 0;                               // listed(): each held D-facet's D-LoD offset
     uint32_t facet_list[2] = {0, 0}, facets[2] = {0, 0};  // per kind: (D-LoD offset, first target) per D-facet listed; how many
     uint32_t fast_edges[2] = {0, 0}, num_fast_edges[2] = {0, 0};
@@ -218,9 +238,11 @@ class VulkanMipghEvaluation final : public Evaluation {
       edges = limit ? homes.edges : m_.lod.edges_held(sigma + 1);
     }
     for (bool quad : {false, true})
-      if (quad ? has_quads_ : has_triangles_)
-        for (const auto& c : facet_classes(m_.lod.layout(sigma).n, quad, limit))
-          l.classes[quad].push_back({tables_.add(c), uint32_t(c.size() / 2)});
+      if (quad ? has_quads_ : has_triangles_) {
+        const int n = m_.lod.layout(sigma).n;
+        const std::vector<uint32_t> t = facet_blocks(n, quad, limit);
+        l.facet_table[quad] = {tables_.add(t), uint32_t(t.size() / kBlockWords)};
+      }
     add_facet_lists(sigma, limit, facets, l);
     add_fast_edges(sigma, limit, edges, l);
     l.masks = add_masks(build_mask_table(m_.processor, *m_.shader, m_.lod, sigma, limit, homes));
@@ -302,7 +324,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       if (!(quad ? has_quads_ : has_triangles_)) continue;
       for (uint32_t k = 0; k < kFacetClasses; ++k)
         facets_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, k));
-      for (uint32_t k = 0; k < 3; ++k) edges_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, k));
+      for (uint32_t k = 0; k < kEdgeParts; ++k) edges_[quad][k] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, k));
       if (!limit_to_output()) continue;
       facets_out_[quad] = gpu::shared_compute_pipeline(*ctx_, desc("facets.comp", quad, kFacetLimit, true));
       edges_out_[quad] = gpu::shared_compute_pipeline(*ctx_, desc("edges.comp", quad, kEdgeLimit, true));
@@ -339,22 +361,23 @@ class VulkanMipghEvaluation final : public Evaluation {
     for (bool quad : {false, true}) {
       const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
       base.facet_nodes = lod_words(sigma, quad);
-      for (size_t k = 0; k < l.classes[quad].size(); ++k) {
+      if (l.facet_table[quad].second > 0) {
         Push p = base;
-        p.table = l.classes[quad][k].first, p.per_item = l.classes[quad][k].second;
+        p.table = l.facet_table[quad].first, p.per_item = l.facet_table[quad].second;
         p.count = checked_u32(size_t(l.facets[quad]) * p.per_item, "a D-facet pass");
         p.dst_base = dst.facet_base;
         p.interior = checked_u32(interior_nodes(dst.s, quad), "an interior");
         p.facet_list = l.facet_list[quad];
-        facets.dispatches.push_back({to_output ? &*facets_out_[quad] : &*facets_[quad][limit ? kFacetLimit : k], p, reads});
+        facets.dispatches.push_back({to_output ? &*facets_out_[quad] : &*facets_[quad][limit ? kFacetLimit : kFacetStep], p, reads});
       }
-      const uint32_t parts[2] = {limit ? kEdgeLimit : kEdgePoints, kVertexPoints};
-      for (int k = 0; k < (limit ? 1 : 2) && l.num_fast_edges[quad] > 0; ++k) {
+      if (l.num_fast_edges[quad] > 0) {
         Push p = base;
         p.table = l.fast_edges[quad];
-        p.per_item = parts[k] == kEdgePoints ? src.n - 1 : src.n - 2;
+        // Pairs along the edge: edge points 0 .. n - 2 (each with the vertex point after it), or
+        // the limit's inner nodes 1 .. n - 2 two by two.
+        p.per_item = limit ? (src.n - 1) / 2 : src.n - 1;
         p.count = checked_u32(size_t(l.num_fast_edges[quad]) * p.per_item, "a D-edge pass");
-        edges.dispatches.push_back({to_output && parts[k] == kEdgeLimit ? &*edges_out_[quad] : &*edges_[quad][parts[k]], p, reads});
+        edges.dispatches.push_back({to_output ? &*edges_out_[quad] : &*edges_[quad][limit ? kEdgeLimit : kEdgeStep], p, reads});
       }
     }
     const MaskRange& r = l.masks;
@@ -438,7 +461,7 @@ class VulkanMipghEvaluation final : public Evaluation {
   gpu::Buffer positions_, out_normals_;
   std::optional<gpu::OutputReadback> readback_;
   // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
-  std::shared_ptr<const gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][3], masks_step_, masks_limit_, output_;
+  std::shared_ptr<const gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][kEdgeParts], masks_step_, masks_limit_, output_;
   std::shared_ptr<const gpu::ComputePipeline> facets_out_[2], edges_out_[2], masks_out_;  // the limit into the output
   gpu::DescriptorSet sets_[2];
   std::optional<gpu::GpuTimer> frame_timer_;

@@ -1,22 +1,76 @@
 #version 450
-// The D-edge visit of a step (its edge points or its vertex points; a pipeline each) or the limit
-// projection of its nodes, for the fast D-edges (untagged, two D-facets of one kind): one
-// invocation per target node, reading the strip's nodes it needs (processor.cpp's Strip: a on the
-// edge, b one in from the major side, c one in from the minor side) through the side rows. The
-// table holds per fast D-edge: its first node at the target level, the major D-facet and its side
-// kind, the minor's.
+// The D-edge visit of a step or the limit projection of its nodes, for the fast D-edges (untagged,
+// two D-facets of one kind), reading the strip's nodes through the side rows (processor.cpp's
+// Strip: a on the edge, b one in from the major side, c one in from the minor side). The table
+// holds per fast D-edge: its first node at the target level, the major D-facet and its side kind,
+// the minor's.
+//
+// One invocation per pair of targets along the edge, whose stencils share the strip's nodes:
+// - a step: edge point t and vertex point t + 1 (t = 0 .. n - 2; the last edge point has none),
+//   from the strip's nodes t .. t + 2: 9 node gathers where the two apart took 15;
+// - the limit: nodes t and t + 1 (t = 1, 3, ..; the last may be alone), from t - 1 .. t + 2: 12
+//   where two apart took 18.
+// Each target's sum is the CPU's, in its order.
+#extension GL_EXT_control_flow_attributes : require
 #include "mipgh.glsl"
 
 layout(constant_id = 1) const bool kQuad = true;
 layout(constant_id = 2) const uint kPart = 0u;
-const uint kEdgePoints = 0u, kVertexPoints = 1u, kLimit = 2u;
+const uint kStep = 0u, kLimit = 1u;
 
 uint g_major, g_minor, g_on, g_in, g_across, g_last;
 // side_rows(sigma, size, side, depth) as processor.cpp lays them out: (kind * 2 + depth) * n.
 uint row(uint kind, uint depth) { return pc.rows + (kind * 2u + depth) * pc.n; }
-vec3 A(uint t) { return node(texelFetch(lod, int(g_major + word(g_on + t))).x); }
-vec3 B(uint t) { return node(texelFetch(lod, int(g_major + word(g_in + t))).x); }
-vec3 C(uint t) { return node(texelFetch(lod, int(g_minor + word(g_across + g_last - t))).x); }
+// The strip's nodes t, clamped into the strip: past its end only targets that do not exist read.
+vec3 A(int t) { return node(texelFetch(lod, int(g_major + word(g_on + uint(clamp(t, 0, int(pc.n) - 1))))).x); }
+vec3 B(int t) { return node(texelFetch(lod, int(g_major + word(g_in + uint(clamp(t, 0, int(g_last)))))).x); }
+vec3 C(int t) { return node(texelFetch(lod, int(g_minor + word(g_across + g_last - uint(clamp(t, 0, int(g_last)))))).x); }
+
+// The strip's nodes t0 - 1 .. t0 + 2, fetched once: a_(d) is A(t0 + d), d in -1..2, and so on
+// (d is a constant wherever it is used: no array is indexed at run time).
+vec3 g_a[4], g_b[4], g_c[4];
+vec3 a_(int d) { return g_a[d + 1]; }
+vec3 b_(int d) { return g_b[d + 1]; }
+vec3 c_(int d) { return g_c[d + 1]; }
+
+// The targets at node t0 + t (t a constant).
+vec3 edge_point(int t) {
+  precise vec3 p;
+  if (kQuad) p = 0.375 * (a_(t) + a_(t + 1)) + 0.0625 * ((b_(t) + b_(t + 1)) + (c_(t) + c_(t + 1)));
+  else p = 0.375 * (a_(t) + a_(t + 1)) + 0.125 * (b_(t) + c_(t));
+  return p;
+}
+
+vec3 vertex_point(int t) {
+  precise vec3 p;
+  if (kQuad) {
+    p = 0.5625 * a_(t) + 0.09375 * ((a_(t + 1) + a_(t - 1)) + (b_(t) + c_(t))) +
+        0.015625 * ((b_(t + 1) + c_(t - 1)) + (b_(t - 1) + c_(t + 1)));
+  } else {
+    p = 0.625 * a_(t) + 0.0625 * (((a_(t + 1) + a_(t - 1)) + (b_(t) + c_(t - 1))) + (b_(t - 1) + c_(t)));
+  }
+  return p;
+}
+
+// The limit at node t, the ring counter-clockwise seen from the major D-facet (processor.cpp,
+// project_edge), into `target`.
+void limit_node(int t, uint target) {
+  precise vec3 p, t1, t2;
+  if (kQuad) {
+    const vec3 c = a_(t), e0 = a_(t + 1), e1 = b_(t), e2 = a_(t - 1), e3 = c_(t);
+    const vec3 d0 = b_(t + 1), d1 = b_(t - 1), d2 = c_(t - 1), d3 = c_(t + 1);
+    p = (1.0 / 36.0) * (16.0 * c + 4.0 * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
+    t1 = 4.0 * (e0 - e2) + ((d0 + d3) - (d1 + d2));
+    t2 = 4.0 * (e1 - e3) + ((d0 + d1) - (d2 + d3));
+  } else {
+    const vec3 c = a_(t), e0 = a_(t + 1), e1 = b_(t), e2 = b_(t - 1), e3 = a_(t - 1), e4 = c_(t - 1), e5 = c_(t);
+    p = 0.5 * c + (1.0 / 12.0) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
+    t1 = (e0 - e3) + 0.5 * ((e1 - e2) - (e4 - e5));
+    t2 = (e1 + e2) - (e4 + e5);
+  }
+  store(target, p);
+  store_normal(target, unit(t1, t2));
+}
 
 void main() {
   const uint i = SDB_LINEAR_INVOCATION();
@@ -29,39 +83,20 @@ void main() {
   g_on = row(word(at + 2u), 0u), g_in = row(word(at + 2u), 1u), g_across = row(word(at + 4u), 1u);
   g_last = kQuad ? pc.n - 1u : pc.n - 2u;
   const uint edge = word(at);  // the D-edge's first node at the target level
-  precise vec3 p;
-  if (kPart == kEdgePoints) {
-    const uint t = k;
-    if (kQuad) p = 0.375 * (A(t) + A(t + 1u)) + 0.0625 * ((B(t) + B(t + 1u)) + (C(t) + C(t + 1u)));
-    else p = 0.375 * (A(t) + A(t + 1u)) + 0.125 * (B(t) + C(t));
-    store(edge + 2u * t, p);
+  // A step's pair: edge point t, vertex point t + 1 (reads t .. t + 2); the limit's: t, t + 1
+  // (reads t - 1 .. t + 2).
+  const int t0 = kPart == kStep ? int(k) : 1 + 2 * int(k);
+  const int lowest = kPart == kStep ? 0 : -1;
+  [[unroll]] for (int d = lowest; d <= 2; ++d) {
+    g_a[d + 1] = A(t0 + d), g_b[d + 1] = B(t0 + d), g_c[d + 1] = C(t0 + d);
+  }
+  const bool second = t0 + 1 <= int(pc.n) - 2;  // vertex points and limit nodes: 1 .. n - 2
+  if (kPart == kStep) {
+    const vec3 e = edge_point(0), v = vertex_point(1);
+    store(edge + 2u * uint(t0), e);
+    if (second) store(edge + 2u * uint(t0) + 1u, v);
     return;
   }
-  const uint t = k + 1u;
-  if (kPart == kVertexPoints) {
-    if (kQuad) {
-      p = 0.5625 * A(t) + 0.09375 * ((A(t + 1u) + A(t - 1u)) + (B(t) + C(t))) +
-          0.015625 * ((B(t + 1u) + C(t - 1u)) + (B(t - 1u) + C(t + 1u)));
-    } else {
-      p = 0.625 * A(t) + 0.0625 * (((A(t + 1u) + A(t - 1u)) + (B(t) + C(t - 1u))) + (B(t - 1u) + C(t)));
-    }
-    store(edge + 2u * t - 1u, p);
-    return;
-  }
-  // the limit, the ring counter-clockwise seen from the major D-facet (processor.cpp, project_edge)
-  precise vec3 t1, t2;
-  if (kQuad) {
-    const vec3 c = A(t), e0 = A(t + 1u), e1 = B(t), e2 = A(t - 1u), e3 = C(t);
-    const vec3 d0 = B(t + 1u), d1 = B(t - 1u), d2 = C(t - 1u), d3 = C(t + 1u);
-    p = (1.0 / 36.0) * (16.0 * c + 4.0 * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
-    t1 = 4.0 * (e0 - e2) + ((d0 + d3) - (d1 + d2));
-    t2 = 4.0 * (e1 - e3) + ((d0 + d1) - (d2 + d3));
-  } else {
-    const vec3 c = A(t), e0 = A(t + 1u), e1 = B(t), e2 = B(t - 1u), e3 = A(t - 1u), e4 = C(t - 1u), e5 = C(t);
-    p = 0.5 * c + (1.0 / 12.0) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
-    t1 = (e0 - e3) + 0.5 * ((e1 - e2) - (e4 - e5));
-    t2 = (e1 + e2) - (e4 + e5);
-  }
-  store(edge + t - 1u, p);
-  store_normal(edge + t - 1u, unit(t1, t2));
+  limit_node(0, edge + uint(t0) - 1u);
+  if (second) limit_node(1, edge + uint(t0));
 }

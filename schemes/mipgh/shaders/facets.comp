@@ -1,19 +1,92 @@
 #version 450
-// The D-facet visit of a step (one class of target nodes: vertex points, the two kinds of edge
-// points, facet or diagonal points; a pipeline per class), or the limit projection of the D-facets'
-// interiors. One invocation per target node; all D-facets of the pass are of one kind. The table
-// holds, per target of a D-facet, its source square (a << 16 | b) and its offset in the interior.
+// The D-facet visit of a step, or the limit projection of the D-facets' interiors; all D-facets of
+// one pass are of one kind. One invocation per block of up to four targets of a D-facet's interior
+// (vulkan.cpp, facet_blocks), whose stencils lie in one window of nodes, fetched once (a D-LoD
+// index and a node each):
+// - a step: node (a, b) at level sigma and the targets it owns at sigma + 1, the vertex point
+//   (2a, 2b), the edge points (2a, 2b + 1) and (2a + 1, 2b), the facet or diagonal point
+//   (2a + 1, 2b + 1): the 3 x 3 nodes around (a, b), where an invocation per target fetched 4 to 9
+//   nodes for one;
+// - the limit: nodes (a, b) .. (a + 1, b + 1): the 4 x 4 nodes around them, where an invocation
+//   per node fetched 9 (quads) or 7 (triangles).
+// And one dispatch per kind, not one per class of target. The table holds per block (a << 16 | b)
+// and its four targets' offsets in the interior (kNone where a target is outside it).
+//
+// Each target's sum is the CPU's (tile.cpp), in its order.
+#extension GL_EXT_control_flow_attributes : require
 #include "mipgh.glsl"
 
 layout(constant_id = 1) const bool kQuad = true;
-layout(constant_id = 2) const uint kClass = 0u;  // 0..3, or 4: the limit
-const uint kLimit = 4u;
+layout(constant_id = 2) const uint kClass = 0u;  // 0: a step, 1: the limit
+const uint kLimit = 1u;
+const uint kNone = 0xffffffffu;
 
 uint g_base;
+// Node (i, j) of the D-facet at level sigma; (i, j) clamped into the D-facet's array, for the
+// window's nodes past its edge that only targets outside the interior would read.
 vec3 P(int i, int j) {
+  const int last = int(pc.n) - 1;
+  i = clamp(i, 0, last);
+  j = clamp(j, 0, kQuad ? last : last - i);
   const uint n = pc.n;
   const uint at = kQuad ? uint(i) * n + uint(j) : uint(i) * n - uint(i * (i - 1) / 2) + uint(j);
   return node(texelFetch(lod, int(g_base + at)).x);
+}
+
+// The window around the block's node (a, b): W(da, db) is node (a + da, b + db), da, db in -1..1
+// (a step) or -1..2 (the limit).
+vec3 g_window[4][4];
+vec3 W(int da, int db) { return g_window[da + 1][db + 1]; }
+
+// A step's four targets of block (a, b) in the order of its table: vertex point, edge point
+// towards b + 1, edge point towards a + 1, facet (quads) or diagonal (triangles) point.
+vec3 step_target(uint c) {
+  precise vec3 p;
+  if (kQuad) {
+    if (c == 0u) {
+      p = 0.5625 * W(0, 0) + 0.09375 * ((W(0, 1) + W(0, -1)) + (W(1, 0) + W(-1, 0))) +
+          0.015625 * ((W(1, 1) + W(-1, -1)) + (W(1, -1) + W(-1, 1)));
+    } else if (c == 1u) {
+      p = 0.375 * (W(0, 0) + W(0, 1)) + 0.0625 * ((W(-1, 0) + W(-1, 1)) + (W(1, 0) + W(1, 1)));
+    } else if (c == 2u) {
+      p = 0.375 * (W(0, 0) + W(1, 0)) + 0.0625 * ((W(0, -1) + W(1, -1)) + (W(0, 1) + W(1, 1)));
+    } else {
+      p = 0.25 * ((W(0, 0) + W(1, 1)) + (W(0, 1) + W(1, 0)));
+    }
+  } else {
+    if (c == 0u) {
+      p = 0.625 * W(0, 0) +
+          0.0625 * (((W(0, 1) + W(0, -1)) + (W(1, 0) + W(-1, 0))) + (W(1, -1) + W(-1, 1)));
+    } else if (c == 1u) {
+      p = 0.375 * (W(0, 0) + W(0, 1)) + 0.125 * (W(1, 0) + W(-1, 1));
+    } else if (c == 2u) {
+      p = 0.375 * (W(0, 0) + W(1, 0)) + 0.125 * (W(0, 1) + W(1, -1));
+    } else {
+      p = 0.375 * (W(0, 1) + W(1, 0)) + 0.125 * (W(0, 0) + W(1, 1));
+    }
+  }
+  return p;
+}
+
+// The limit at node (a + da, b + db) of the block, da, db in 0..1, into `target`.
+void limit_target(int da, int db, uint target) {
+  precise vec3 p;
+  if (kQuad) {
+    const vec3 c = W(da, db), e0 = W(da, db + 1), e1 = W(da + 1, db), e2 = W(da, db - 1), e3 = W(da - 1, db);
+    const vec3 d0 = W(da + 1, db + 1), d1 = W(da + 1, db - 1), d2 = W(da - 1, db - 1), d3 = W(da - 1, db + 1);
+    p = (1.0 / 36.0) * (16.0 * c + 4.0 * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
+    precise vec3 t1 = 4.0 * (e0 - e2) + ((d0 + d3) - (d1 + d2));
+    precise vec3 t2 = 4.0 * (e1 - e3) + ((d0 + d1) - (d2 + d3));
+    store_normal(target, unit(t1, t2));
+  } else {
+    const vec3 c = W(da, db), e0 = W(da, db + 1), e1 = W(da + 1, db), e2 = W(da + 1, db - 1), e3 = W(da, db - 1);
+    const vec3 e4 = W(da - 1, db), e5 = W(da - 1, db + 1);
+    p = 0.5 * c + (1.0 / 12.0) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
+    precise vec3 t1 = (e0 - e3) + 0.5 * ((e1 - e2) - (e4 - e5));
+    precise vec3 t2 = (e1 + e2) - (e4 + e5);
+    store_normal(target, unit(t1, t2));
+  }
+  store(target, p);
 }
 
 void main() {
@@ -22,46 +95,19 @@ void main() {
   const uint f = i / pc.per_item, k = i - f * pc.per_item;
   const bool listed = pc.facet_list != 0u;  // D-facets of both kinds: where each one's array and interior are
   const uint first = listed ? word(pc.facet_list + 2u * f + 1u) : pc.dst_base + f * pc.interior;
-  const uint ab = word(pc.table + 2u * k), target = first + word(pc.table + 2u * k + 1u);
-  const int a = int(ab >> 16u), b = int(ab & 0xffffu);
   g_base = pc.lod_base + (listed ? word(pc.facet_list + 2u * f) : f * pc.facet_nodes);
-  precise vec3 p;
-  if (kQuad) {
-    if (kClass == 0u) {
-      p = 0.5625 * P(a, b) + 0.09375 * ((P(a, b + 1) + P(a, b - 1)) + (P(a + 1, b) + P(a - 1, b))) +
-          0.015625 * ((P(a + 1, b + 1) + P(a - 1, b - 1)) + (P(a + 1, b - 1) + P(a - 1, b + 1)));
-    } else if (kClass == 1u) {
-      p = 0.375 * (P(a, b) + P(a, b + 1)) + 0.0625 * ((P(a - 1, b) + P(a - 1, b + 1)) + (P(a + 1, b) + P(a + 1, b + 1)));
-    } else if (kClass == 2u) {
-      p = 0.375 * (P(a, b) + P(a + 1, b)) + 0.0625 * ((P(a, b - 1) + P(a + 1, b - 1)) + (P(a, b + 1) + P(a + 1, b + 1)));
-    } else if (kClass == 3u) {
-      p = 0.25 * ((P(a, b) + P(a + 1, b + 1)) + (P(a, b + 1) + P(a + 1, b)));
+  const uint ab = word(pc.table + 5u * k);
+  const int a = int(ab >> 16u), b = int(ab & 0xffffu);
+  const int reach = kClass == kLimit ? 2 : 1;
+  [[unroll]] for (int da = -1; da <= reach; ++da)
+    [[unroll]] for (int db = -1; db <= reach; ++db) g_window[da + 1][db + 1] = P(a + da, b + db);
+  [[unroll]] for (uint c = 0u; c < 4u; ++c) {
+    const uint offset = word(pc.table + 5u * k + 1u + c);
+    if (kClass == kLimit) {
+      if (offset != kNone) limit_target(int(c >> 1u), int(c & 1u), first + offset);
     } else {
-      const vec3 c = P(a, b), e0 = P(a, b + 1), e1 = P(a + 1, b), e2 = P(a, b - 1), e3 = P(a - 1, b);
-      const vec3 d0 = P(a + 1, b + 1), d1 = P(a + 1, b - 1), d2 = P(a - 1, b - 1), d3 = P(a - 1, b + 1);
-      p = (1.0 / 36.0) * (16.0 * c + 4.0 * ((e0 + e2) + (e1 + e3)) + ((d0 + d2) + (d1 + d3)));
-      precise vec3 t1 = 4.0 * (e0 - e2) + ((d0 + d3) - (d1 + d2));
-      precise vec3 t2 = 4.0 * (e1 - e3) + ((d0 + d1) - (d2 + d3));
-      store_normal(target, unit(t1, t2));
-    }
-  } else {
-    if (kClass == 0u) {
-      p = 0.625 * P(a, b) +
-          0.0625 * (((P(a, b + 1) + P(a, b - 1)) + (P(a + 1, b) + P(a - 1, b))) + (P(a + 1, b - 1) + P(a - 1, b + 1)));
-    } else if (kClass == 1u) {
-      p = 0.375 * (P(a, b) + P(a, b + 1)) + 0.125 * (P(a + 1, b) + P(a - 1, b + 1));
-    } else if (kClass == 2u) {
-      p = 0.375 * (P(a, b) + P(a + 1, b)) + 0.125 * (P(a, b + 1) + P(a + 1, b - 1));
-    } else if (kClass == 3u) {
-      p = 0.375 * (P(a, b + 1) + P(a + 1, b)) + 0.125 * (P(a, b) + P(a + 1, b + 1));
-    } else {
-      const vec3 c = P(a, b), e0 = P(a, b + 1), e1 = P(a + 1, b), e2 = P(a + 1, b - 1), e3 = P(a, b - 1);
-      const vec3 e4 = P(a - 1, b), e5 = P(a - 1, b + 1);
-      p = 0.5 * c + (1.0 / 12.0) * (((e0 + e3) + (e1 + e4)) + (e2 + e5));
-      precise vec3 t1 = (e0 - e3) + 0.5 * ((e1 - e2) - (e4 - e5));
-      precise vec3 t2 = (e1 + e2) - (e4 + e5);
-      store_normal(target, unit(t1, t2));
+      const vec3 p = step_target(c);
+      if (offset != kNone) store(first + offset, p);
     }
   }
-  store(target, p);
 }
