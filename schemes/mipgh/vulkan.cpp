@@ -357,7 +357,10 @@ class VulkanMipghEvaluation final : public Evaluation {
     base.lod_base = lod_base_[sigma], base.n = src.n, base.rows = rows_[sigma], base.facet_lod = l.facet_lod;
     const std::string name = !limit ? "step " + std::to_string(sigma + 1)
                              : m_.lod.adaptive() ? "limit " + std::to_string(sigma) : "limit";
-    Pass facets{name + " facets", {}}, edges{name + " edges", {}}, masks{name + " masks", {}};
+    // The D-facet, D-edge and mask visits write disjoint nodes from the same source level: one
+    // timed pass, no barrier between their dispatches (a barrier and two timestamps cost a flush
+    // each on lavapipe, 0.04 ms or more; a GPU may overlap the visits).
+    Pass pass{name, {}};
     for (bool quad : {false, true}) {
       const LevelLayout& dst = m_.lod.layout(limit ? sigma : sigma + 1);
       base.facet_nodes = lod_words(sigma, quad);
@@ -368,7 +371,7 @@ class VulkanMipghEvaluation final : public Evaluation {
         p.dst_base = dst.facet_base;
         p.interior = checked_u32(interior_nodes(dst.s, quad), "an interior");
         p.facet_list = l.facet_list[quad];
-        facets.dispatches.push_back({to_output ? &*facets_out_[quad] : &*facets_[quad][limit ? kFacetLimit : kFacetStep], p, reads});
+        pass.dispatches.push_back({to_output ? &*facets_out_[quad] : &*facets_[quad][limit ? kFacetLimit : kFacetStep], p, reads});
       }
       if (l.num_fast_edges[quad] > 0) {
         Push p = base;
@@ -377,14 +380,14 @@ class VulkanMipghEvaluation final : public Evaluation {
         // the limit's inner nodes 1 .. n - 2 two by two.
         p.per_item = limit ? (src.n - 1) / 2 : src.n - 1;
         p.count = checked_u32(size_t(l.num_fast_edges[quad]) * p.per_item, "a D-edge pass");
-        edges.dispatches.push_back({to_output ? &*edges_out_[quad] : &*edges_[quad][limit ? kEdgeLimit : kEdgeStep], p, reads});
+        pass.dispatches.push_back({to_output ? &*edges_out_[quad] : &*edges_[quad][limit ? kEdgeLimit : kEdgeStep], p, reads});
       }
     }
     const MaskRange& r = l.masks;
     Push p = base;
     p.count = r.entries, p.table = r.target, p.begins = r.begins, p.sources = r.sources, p.weight_base = r.weights;
-    masks.dispatches.push_back({to_output ? &*masks_out_ : limit ? &*masks_limit_ : &*masks_step_, p, reads});
-    passes_.push_back(std::move(facets)), passes_.push_back(std::move(edges)), passes_.push_back(std::move(masks));
+    pass.dispatches.push_back({to_output ? &*masks_out_ : limit ? &*masks_limit_ : &*masks_step_, p, reads});
+    passes_.push_back(std::move(pass));
   }
 
   // Adaptive: level sigma's drawn nodes into the output, from its projection (written over the
@@ -428,8 +431,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       cmd.upload(control_staging_, level_[0], control_.size() * sizeof(Node));
       frame_timer_->end(cmd);
       for (const Pass& pass : passes_) {
-        // A step's three passes write disjoint nodes of the next level: one barrier per level
-        // would do, but the timestamps per pass want each finished before the next.
+        // Each pass reads what the one before wrote.
         cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
         frame_timer_->begin(cmd, gpu::PassKind::Kernel, pass.label);
         for (const Dispatch& d : pass.dispatches) {
