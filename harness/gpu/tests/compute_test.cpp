@@ -223,7 +223,7 @@ TEST_F(ComputeTest, TexelBindingsWithoutAFormatOrUsageAreRefused) {
 
 TEST(EmbeddedShaders, LookupByFileName) {
   EXPECT_THROW(gpu_test_shaders::get("missing.comp"), std::out_of_range);
-  EXPECT_EQ(gpu_test_shaders::all().size(), 9u);
+  EXPECT_EQ(gpu_test_shaders::all().size(), 10u);  // the test shaders listed in CMakeLists.txt
   EXPECT_EQ(gpu_test_shaders::get("mask3x3.comp").words[0], 0x07230203u);  // SPIR-V magic
 }
 
