@@ -1,9 +1,9 @@
 // Output passes (E, T, fused E+T): invocation t computes vertices 8 t .. 8 t + 7 of its chunk
 // (row-major over the chunk's rows of the n x n grid) and stores their 24 floats as three 32-byte
-// elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks
-// hold whole groups of eight rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the
-// last chunk's last invocation may run past the grid's end, and writes up to seven copies of the
-// last vertex into the padding after the outputs.
+// elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks hold whole groups of eight
+// rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the last chunk's last invocation
+// may run past the grid's end, and writes up to seven copies of the last vertex into the padding
+// after the outputs.
 #extension GL_EXT_control_flow_attributes : require
 #include "sdb/dispatch.glsl"
 
