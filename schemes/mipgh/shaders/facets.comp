@@ -10,7 +10,7 @@
 // - the limit: nodes (a, b) .. (a + 1, b + 1): the 4 x 4 nodes around them, where an invocation
 //   per node fetched 9 (quads) or 7 (triangles).
 // And one dispatch per kind, not one per class of target. The table holds per block (a << 16 | b)
-// and its four targets' offsets in the interior (kNone where a target is outside it).
+// and its four targets' offsets in the interior (kNoTarget where a target is outside it).
 //
 // Each target's sum is the CPU's (tile.cpp), in its order.
 #extension GL_EXT_control_flow_attributes : require
@@ -19,7 +19,7 @@
 layout(constant_id = 1) const bool kQuad = true;
 layout(constant_id = 2) const uint kClass = 0u;  // 0: a step, 1: the limit
 const uint kLimit = 1u;
-const uint kNone = 0xffffffffu;
+const uint kNoTarget = 0xffffffffu;  // vulkan.cpp's kNoTarget
 
 uint g_base;
 // Node (i, j) of the D-facet at level sigma; (i, j) clamped into the D-facet's array, for the
@@ -104,10 +104,10 @@ void main() {
   [[unroll]] for (uint c = 0u; c < 4u; ++c) {
     const uint offset = word(pc.table + 5u * k + 1u + c);
     if (kClass == kLimit) {
-      if (offset != kNone) limit_target(int(c >> 1u), int(c & 1u), first + offset);
+      if (offset != kNoTarget) limit_target(int(c >> 1u), int(c & 1u), first + offset);
     } else {
       const vec3 p = step_target(c);
-      if (offset != kNone) store(first + offset, p);
+      if (offset != kNoTarget) store(first + offset, p);
     }
   }
 }
