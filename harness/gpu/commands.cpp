@@ -92,6 +92,7 @@ void Commands::dispatch(uint32_t x, uint32_t y, uint32_t z) {
                                 std::to_string(z) + " groups exceeds the device's maxComputeWorkGroupCount; use groups_for()");
   if (x == 0 || y == 0 || z == 0) return;
   ctx_->vk().vkCmdDispatch(cmd_, x, y, z);
+  ++work_;
 }
 
 void Commands::barrier(Stage from, Stage to) {
@@ -112,6 +113,7 @@ void Commands::execution_barrier() {
 void Commands::begin_render_pass(const VkRenderPassBeginInfo& info) {
   if (inside_render_pass_) throw std::logic_error("render pass begun inside another");
   ctx_->vk().vkCmdBeginRenderPass(cmd_, &info, VK_SUBPASS_CONTENTS_INLINE);
+  ++work_;
   inside_render_pass_ = true;
 }
 
@@ -127,6 +129,7 @@ void Commands::copy(const Buffer& src, const Buffer& dst, uint64_t bytes, uint64
   if (span == 0) return;
   VkBufferCopy region{src_offset, dst_offset, span};
   ctx_->vk().vkCmdCopyBuffer(cmd_, src.handle(), dst.handle(), 1, &region);
+  ++work_;
 }
 
 void Commands::fill(const Buffer& dst, uint32_t value, uint64_t bytes, uint64_t offset) {
@@ -135,6 +138,7 @@ void Commands::fill(const Buffer& dst, uint32_t value, uint64_t bytes, uint64_t 
     throw std::invalid_argument("fill of '" + dst.name() + "': offset and size must be multiples of 4");
   if (span == 0) return;
   ctx_->vk().vkCmdFillBuffer(cmd_, dst.handle(), offset, bytes, value);
+  ++work_;
 }
 
 void Commands::upload(const Buffer& staging, const Buffer& dst, uint64_t bytes, uint64_t src_offset,
@@ -162,12 +166,14 @@ void Commands::bind_index_buffer(const Buffer& buffer, uint64_t offset) {
 void Commands::draw(uint32_t vertices, uint32_t instances, uint32_t first_vertex, uint32_t first_instance) {
   bound("draw");
   ctx_->vk().vkCmdDraw(cmd_, vertices, instances, first_vertex, first_instance);
+  ++work_;
 }
 
 void Commands::draw_indexed(uint32_t indices, uint32_t instances, uint32_t first_index, int32_t vertex_offset,
                             uint32_t first_instance) {
   bound("draw_indexed");
   ctx_->vk().vkCmdDrawIndexed(cmd_, indices, instances, first_index, vertex_offset, first_instance);
+  ++work_;
 }
 
 Recording::Recording(Recording&& other) noexcept { *this = std::move(other); }

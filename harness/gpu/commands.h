@@ -33,6 +33,9 @@ class Commands {
 
   VkCommandBuffer raw() const { return cmd_; }
   Context& context() const { return *ctx_; }
+  // Work commands recorded so far (dispatch, copy, fill, draw, render pass): GpuTimer shares a
+  // timestamp between two passes with none in between. Work through raw() is not counted.
+  uint64_t work_recorded() const { return work_; }
 
   // Binds the pipeline, and its descriptor set (set 0) when given; later push() and dispatch()
   // or draw calls go to this pipeline.
@@ -82,6 +85,7 @@ class Commands {
   VkCommandBuffer cmd_;
   const Pipeline* pipeline_ = nullptr;
   bool inside_render_pass_ = false;
+  uint64_t work_ = 0;
 };
 
 class Recording {

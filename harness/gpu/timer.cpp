@@ -28,6 +28,9 @@ GpuTimer& GpuTimer::operator=(GpuTimer&& other) noexcept {
     max_passes_ = other.max_passes_;
     passes_ = std::move(other.passes_);
     open_ = std::exchange(other.open_, false);
+    queries_ = std::exchange(other.queries_, 0);
+    ended_in_ = std::exchange(other.ended_in_, VK_NULL_HANDLE);
+    work_at_end_ = other.work_at_end_;
   }
   return *this;
 }
@@ -41,6 +44,8 @@ void GpuTimer::release() {
 void GpuTimer::reset(Commands& cmd) {
   passes_.clear();
   open_ = false;
+  queries_ = 0;
+  ended_in_ = VK_NULL_HANDLE;
   if (pool_) ctx_->vk().vkCmdResetQueryPool(cmd.raw(), pool_, 0, 2 * max_passes_);
 }
 
@@ -49,31 +54,35 @@ void GpuTimer::begin(Commands& cmd, PassKind kind, std::string label) {
   if (passes_.size() >= max_passes_)
     throw std::logic_error("GpuTimer: more than " + std::to_string(max_passes_) +
                            " passes since reset(); make the timer with a larger max_passes");
-  const auto query = static_cast<uint32_t>(2 * passes_.size());
-  passes_.push_back({std::move(label), kind});
+  const bool follows = !passes_.empty() && ended_in_ == cmd.raw() && work_at_end_ == cmd.work_recorded();
+  const uint32_t begin = follows ? passes_.back().end_query : write_timestamp(cmd);
+  passes_.push_back({std::move(label), kind, begin, 0});
   open_ = true;
-  write_timestamp(cmd, query);
 }
 
 void GpuTimer::end(Commands& cmd) {
   if (!open_) throw std::logic_error("GpuTimer: end() without begin()");
   open_ = false;
-  write_timestamp(cmd, static_cast<uint32_t>(2 * passes_.size() - 1));
+  passes_.back().end_query = write_timestamp(cmd);
+  ended_in_ = cmd.raw();
+  work_at_end_ = cmd.work_recorded();
 }
 
-void GpuTimer::write_timestamp(Commands& cmd, uint32_t query) {
-  if (!pool_) return;
+uint32_t GpuTimer::write_timestamp(Commands& cmd) {
+  const uint32_t query = queries_++;
+  if (!pool_) return query;
   ctx_->vk().vkCmdWriteTimestamp(cmd.raw(), VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, query);
   // Lavapipe takes the time of a timestamp only at its next flush, which a barrier forces; without
   // it a pass's compute work lands in the next pass. Elsewhere it only keeps passes from overlapping.
   if (!cmd.inside_render_pass()) cmd.execution_barrier();
+  return query;
 }
 
 std::optional<std::vector<PassTimestamps>> GpuTimer::read_passes() const {
   if (!pool_ || open_) return std::nullopt;
   std::vector<PassTimestamps> out;
   if (passes_.empty()) return out;
-  std::vector<uint64_t> ticks(2 * passes_.size());
+  std::vector<uint64_t> ticks(queries_);
   const VkResult r = ctx_->vk().vkGetQueryPoolResults(ctx_->device(), pool_, 0, static_cast<uint32_t>(ticks.size()),
                                                       ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                                       VK_QUERY_RESULT_64_BIT);
@@ -86,8 +95,8 @@ std::optional<std::vector<PassTimestamps>> GpuTimer::read_passes() const {
     PassTimestamps p;
     p.label = passes_[i].label;
     p.kind = passes_[i].kind;
-    p.begin_ticks = ticks[2 * i] & mask;
-    p.end_ticks = ticks[2 * i + 1] & mask;
+    p.begin_ticks = ticks[passes_[i].begin_query] & mask;
+    p.end_ticks = ticks[passes_[i].end_query] & mask;
     // Modular difference: a counter with fewer than 64 valid bits may wrap inside a pass.
     p.ms = double((p.end_ticks - p.begin_ticks) & mask) * ms_per_tick;
     out.push_back(std::move(p));

@@ -10,7 +10,10 @@
 //
 // Both timestamps of a pass are written at the bottom of the pipe, i.e. when every earlier
 // command has finished: a pass's time runs from the end of the work before it to the end of its
-// own, so consecutive passes add up to the whole without overlap. Passes do not nest.
+// own, so consecutive passes add up to the whole without overlap. Passes do not nest. A pass
+// begun right after another ended, with no work recorded in between, starts at that pass's end
+// timestamp instead of writing its own: on lavapipe each timestamp costs a flush, and a pass
+// with two measured ~0.06 ms more than its work (harness/gpu/README.md, "Timing").
 #pragma once
 
 #include <cstdint>
@@ -63,7 +66,7 @@ class GpuTimer {
 
  private:
   void release();
-  void write_timestamp(Commands& cmd, uint32_t query);
+  uint32_t write_timestamp(Commands& cmd);  // the query written
 
   Context* ctx_ = nullptr;
   VkQueryPool pool_ = VK_NULL_HANDLE;
@@ -71,9 +74,13 @@ class GpuTimer {
   struct Pass {
     std::string label;
     PassKind kind;
+    uint32_t begin_query = 0, end_query = 0;
   };
   std::vector<Pass> passes_;
   bool open_ = false;
+  uint32_t queries_ = 0;        // written since reset()
+  VkCommandBuffer ended_in_ = VK_NULL_HANDLE;  // where the last pass ended,
+  uint64_t work_at_end_ = 0;    // and the work recorded there by then
 };
 
 // Sums passes into upload_ms, kernel_ms (Kernel + Draw) and readback_ms, keeping every label.

@@ -91,6 +91,36 @@ TEST_F(TimerTest, LabelledPassesAreNonZeroAndOrdered) {
   EXPECT_NE(out[size_t(w) * 100 + 100], 0.0f);
 }
 
+// A pass begun straight after another ended starts at its end timestamp (one timestamp, not
+// two: each costs lavapipe a flush); a pass after untimed work writes its own, so that work
+// stays out of both.
+TEST_F(TimerTest, ConsecutivePassesShareTheirBoundary) {
+  GpuTimer timer(ctx());
+  if (!timer.supported()) GTEST_SKIP() << ctx().info().name << " has no timestamps on its graphics+compute queue";
+  std::vector<Buffer> buffers;  // one per fill: no write-after-write hazards between them
+  for (int i = 0; i < 4; ++i) buffers.push_back(Buffer::device(ctx(), 16 << 20, BufferUsage::Storage, "filled"));
+  const Recording recording = ctx().record([&](Commands& cmd) {
+    timer.reset(cmd);
+    timer.begin(cmd, PassKind::Kernel, "a");
+    cmd.fill(buffers[0], 1);
+    timer.end(cmd);
+    timer.begin(cmd, PassKind::Kernel, "b");
+    cmd.fill(buffers[1], 2);
+    timer.end(cmd);
+    cmd.fill(buffers[2], 3);  // untimed
+    timer.begin(cmd, PassKind::Kernel, "c");
+    cmd.fill(buffers[3], 4);
+    timer.end(cmd);
+  });
+  ctx().submit(recording);
+  const auto passes = timer.read_passes();
+  ASSERT_TRUE(passes.has_value());
+  ASSERT_EQ(passes->size(), 3u);
+  EXPECT_EQ((*passes)[1].begin_ticks, (*passes)[0].end_ticks);
+  EXPECT_GT((*passes)[2].begin_ticks, (*passes)[1].end_ticks);
+  for (const PassTimestamps& p : *passes) EXPECT_GT(p.end_ticks, p.begin_ticks) << p.label;
+}
+
 TEST_F(TimerTest, MisuseIsReported) {
   GpuTimer timer(ctx(), 1);
   ctx().run([&](Commands& cmd) {
