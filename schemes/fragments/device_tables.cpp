@@ -80,6 +80,16 @@ void pack_shape(const ShapeTables& t, uint32_t header, std::vector<uint32_t>& wo
   f[kNumSlots0] = t.num_slots0;
   f[kNetSize] = lim.net_size;
   f[kNetTangents] = p.list(lim.net_tangents);
+  f[kNetSupportBegin] = p.list(lim.net_support_begin);
+  f[kNetSupport] = p.list(lim.net_support);
+  f[kBlockSize] = uint32_t(t.block_vertices() / std::max(t.owned_faces, 1));
+  if (!lim.patch_weights.empty()) {
+    f[kPatchSegments] = uint32_t(lim.patch_segments);
+    f[kPatchWeights] = p.list(lim.patch_weights);
+    std::vector<float> params;  // kernel.cpp's u and v, float(i) / float(s): a GPU's division may round otherwise
+    for (int i = 0; i <= lim.patch_segments; ++i) params.push_back(float(i) / float(lim.patch_segments));
+    f[kPatchParams] = p.list(params);
+  }
   std::copy(f, f + kHeaderLimit, words.data() + header + kHeaderPerLevel * t.levels.size());
 }
 
@@ -98,6 +108,7 @@ DeviceTables pack_tables(const FragmentSurface& s) {
     const std::vector<int>& control = s.partition.fragments[f].control;
     out.fragments.push_back(static_cast<uint32_t>(out.words.size()));
     out.fragments.push_back(static_cast<uint32_t>(s.first_vertex[f]));
+    out.fragments.push_back(static_cast<uint32_t>(s.partition.fragments[f].shape));
     out.words.insert(out.words.end(), control.begin(), control.end());
     if (out.words.size() > std::numeric_limits<uint32_t>::max())
       throw Unsupported("the pattern tables pass 2^32 words");
@@ -127,7 +138,8 @@ uint32_t rule_kind(const VertexRule& r) {
 
 uint32_t limit_kind(const ShapeTables& t, uint32_t entry, bool project) {
   const LimitTable& lim = t.limit;
-  const NormalCase normal = lim.net_size                 ? kNormalNet
+  const NormalCase normal = !lim.patch_weights.empty()  ? kNormalPatch
+                            : lim.net_size               ? kNormalNet
                             : lim.regular[entry] < 0     ? kNormalGeneral
                             : lim.regular_size == 9      ? kNormalRegular9
                             : lim.regular_size == 7      ? kNormalRegular7

@@ -20,21 +20,24 @@ namespace sdb::fragments {
 constexpr uint32_t kHeaderPerLevel = 8;
 // Limit header (at kHeaderPerLevel * levels): num_positions, positions, ring, stencil, stencil_begin,
 // stencil_slot, stencil_w, regular, regular_size, regular_slots, tangent_begin, tangent_slot,
-// tangent_w1, tangent_w2, block_vertices, num_slots0, net_size, net_tangents. The limit's entries
-// are the output blocks' vertices in order (tables.h).
-constexpr uint32_t kHeaderLimit = 18;
+// tangent_w1, tangent_w2, block_vertices, num_slots0, net_size, net_tangents, patch_segments (0:
+// no patch polynomial), patch_weights, patch_params (the s + 1 floats i / s), net_support_begin,
+// net_support, block_size (the vertices of one block). The limit's entries are the output blocks'
+// vertices in order (tables.h).
+constexpr uint32_t kHeaderLimit = 24;
 enum LimitField : uint32_t {
   kNumPositions, kPositions, kLimitRing, kStencil, kStencilBegin, kStencilSlot, kStencilW,
   kRegular, kRegularSize, kRegularSlots, kTangentBegin, kTangentSlot, kTangentW1, kTangentW2,
-  kBlockVertices, kNumSlots0, kNetSize, kNetTangents,
+  kBlockVertices, kNumSlots0, kNetSize, kNetTangents, kPatchSegments, kPatchWeights, kPatchParams,
+  kNetSupportBegin, kNetSupport, kBlockSize,
 };
 
 struct DeviceTables {
   uint32_t levels = 0;  // refinement levels (the surface's inner depth), the same for every shape
   uint32_t header_words = 0;
   std::vector<uint32_t> words;
-  // Two words per fragment, in the surface's `order`: its control list (into `words`) and its
-  // first output vertex.
+  // Three words per fragment, in the surface's `order`: its control list (into `words`), its
+  // first output vertex and its shape.
   std::vector<uint32_t> fragments;
 };
 
@@ -46,11 +49,12 @@ DeviceTables pack_tables(const FragmentSurface& surface);
 // A kind is a specialization constant of the pass's pipeline, so that lavapipe, which runs both
 // sides of every branch masked, compiles one path; kRuleAny and kLimitAny decide at run time.
 // A rule's kind: bits 0-2 and 3-5 the ring cases of its e and f terms, bit 6 a wc term. A limit
-// entry's: bits 0-6 its position's rule, bits 7-8 the position's path, bits 9-11 the normal's.
+// entry's: bits 0-6 its position's rule, bits 7-8 the position's path, bits 9-11 the normal's
+// (kNormalPatch: none here, the patch pass writes it).
 enum RingCase : uint32_t { kRingNone, kRingOne, kRingTwo, kRingFour, kRingSix, kRingEight, kRingSorted, kRingAny };
 constexpr uint32_t kRuleAny = 127;
 enum PositionCase : uint32_t { kPositionRule, kPositionStencil, kPositionAny };
-enum NormalCase : uint32_t { kNormalNet, kNormalRegular9, kNormalRegular7, kNormalGeneral, kNormalAny };
+enum NormalCase : uint32_t { kNormalNet, kNormalRegular9, kNormalRegular7, kNormalGeneral, kNormalAny, kNormalPatch };
 constexpr uint32_t kind_of(uint32_t rule, PositionCase position, NormalCase normal) {
   return rule | uint32_t(position) << 7 | uint32_t(normal) << 9;
 }

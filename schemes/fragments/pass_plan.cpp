@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <numeric>
 
 #include "harness/gpu/gpu.h"
 
@@ -94,7 +95,6 @@ class Planner {
     for (const ShapeTables& t : s_.tables) {
       costs.emplace_back();
       for (uint32_t i = 0; i < count(t); ++i) costs.back().push_back(cost(t, i));
-      p.entries.push_back(count(t));
     }
     finish(std::move(p), costs);
   }
@@ -110,7 +110,6 @@ class Planner {
       for (size_t shape = 0; shape < s_.tables.size(); ++shape) {
         costs.emplace_back();
         for (uint32_t i : kinds.lists[k][shape]) costs.back().push_back(cost(s_.tables[shape], i));
-        q.entries.push_back(static_cast<uint32_t>(kinds.lists[k][shape].size()));
       }
       finish(std::move(q), costs);
     }
@@ -124,6 +123,11 @@ class Planner {
       return std::all_of(costs.begin(), costs.end(), [&](const auto& c) { return worst_chunk(c, chunk) <= kLoopBudget; });
     };
     while (p.chunk > 1 && !fits(p.chunk)) p.chunk /= 2;
+    for (const std::vector<uint64_t>& c : costs) {
+      p.chunk_costs.emplace_back();
+      for (size_t i = 0; i < c.size(); i += p.chunk)
+        p.chunk_costs.back().push_back(std::accumulate(c.begin() + i, c.begin() + std::min(c.size(), i + p.chunk), uint64_t(0)));
+    }
     if (loop_limited_ && !fits(p.chunk))
       throw gpu::Unsupported(device_ + " stops every shader invocation after 65,535 loop iterations; a fragment's " +
                              (p.part == Part::Limit ? std::string("limit") : "level " + std::to_string(p.level)) +
@@ -159,12 +163,42 @@ std::vector<PassSpec> plan_passes(const FragmentSurface& s, DeviceTables& tables
       s, [](const ShapeTables& t) { return uint32_t(t.block_vertices()); },
       [project](const ShapeTables& t, uint32_t i) { return limit_kind(t, i, project); }, kLimitAny);
   plan.add_kinds({Part::Limit}, kinds, [](const ShapeTables& t, uint32_t i) { return limit_cost(t.limit, i); });
+  for (const bool triangle : {false, true}) {
+    auto patch = [triangle](const ShapeTables& t) { return !t.limit.patch_weights.empty() && t.limit.patch_triangle == triangle; };
+    if (std::none_of(s.tables.begin(), s.tables.end(), patch)) continue;
+    // Entries are rows; each chunk also sums the coefficients over the net.
+    plan.add({Part::Patch, 0, triangle ? 1u : 0u},
+             [&](const ShapeTables& t) { return patch(t) ? uint32_t(t.limit.patch_segments + 1) : 0u; },
+             [](const ShapeTables& t, uint32_t) { return uint64_t(t.limit.patch_segments + 1) + t.limit.net_size; });
+  }
   return std::move(plan.passes);
+}
+
+std::vector<WorkItem> interleave_by_cost(const std::vector<WorkItem>& items) {
+  std::map<uint32_t, std::vector<WorkItem>> by_batch;
+  for (const WorkItem& item : items) by_batch[item.batch].push_back(item);
+  std::vector<std::pair<uint64_t, const std::vector<WorkItem>*>> batches;
+  for (const auto& [batch, its] : by_batch) {
+    uint64_t cost = 0;
+    for (const WorkItem& item : its) cost += item.cost;
+    batches.emplace_back(cost, &its);
+  }
+  std::stable_sort(batches.begin(), batches.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  uint32_t bits = 0;
+  while ((size_t(1) << bits) < batches.size()) ++bits;
+  std::vector<WorkItem> out;
+  out.reserve(items.size());
+  for (size_t p = 0; p < (size_t(1) << bits); ++p) {
+    size_t r = 0;
+    for (uint32_t b = 0; b < bits; ++b) r |= ((p >> b) & 1) << (bits - 1 - b);
+    if (r < batches.size()) out.insert(out.end(), batches[r].second->begin(), batches[r].second->end());
+  }
+  return out;
 }
 
 std::string pass_label(const PassSpec& pass) {
   if (pass.part == Part::Gather) return "gather";
-  if (pass.part == Part::Limit) return "limit";
+  if (pass.part == Part::Limit || pass.part == Part::Patch) return "limit";
   return "level " + std::to_string(pass.level);
 }
 

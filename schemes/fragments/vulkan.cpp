@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <map>
 
 #include "harness/gpu/gpu.h"
@@ -17,7 +18,7 @@ namespace shaders = sdb_scheme_fragments_shaders;
 using gpu::BufferUsage;
 
 // Invocations per work group, one fragment each (the shaders' local_size_x_id = 0); a batch holds
-// up to that many fragments of one shape. Also on lavapipe: one subgroup a work group
+// up to that many fragments (device_batches). Also on lavapipe: one subgroup a work group
 // (gpu::work_group_size) ran fewer instructions (frog stand-in at depth 4: 892 -> 814 M) but took
 // longer (the limit 42-47 -> 61-73 ms, paired runs), with either order of batches and chunks.
 constexpr uint32_t kLocalSize = 64;
@@ -30,7 +31,7 @@ constexpr uint32_t kCatmark = 1, kProject = 2;
 
 struct Push {
   uint32_t level = 0, levels = 0, first_batch = 0, src_base = 0, dst_base = 0, header_words = 0,
-           wave_first_vertex = 0, out_shift = 0, chunk = 0, kind_pairs = 0, pad[2] = {0, 0};
+           wave_first_vertex = 0, out_shift = 0, chunk = 0, kind_pairs = 0, items = 0, pad = 0;
   float origin[4] = {0, 0, 0, 0};
 };
 
@@ -58,10 +59,41 @@ uint64_t batch_vertices(const FragmentSurface& s, const FragmentSurface::Batch& 
   return n;
 }
 
-// A batch's scratch: its shape's slots, for each of its fragments.
+// The shapes of a batch's fragments, each once.
+std::vector<uint32_t> shapes_of(const FragmentSurface& s, const FragmentSurface::Batch& b) {
+  std::vector<uint32_t> shapes;
+  for (uint32_t i = b.begin; i < b.begin + b.count; ++i) shapes.push_back(uint32_t(s.partition.fragments[s.order[i]].shape));
+  std::sort(shapes.begin(), shapes.end());
+  shapes.erase(std::unique(shapes.begin(), shapes.end()), shapes.end());
+  return shapes;
+}
+
+// A batch's scratch: the most slots of its shapes, for each of its fragments (a slot is a row of
+// `count` lanes).
 uint64_t batch_scratch_bytes(const FragmentSurface& s, const FragmentSurface::Batch& b) {
-  const ShapeTables& t = s.tables[s.partition.fragments[s.order[b.begin]].shape];
-  return uint64_t(t.max_slots) * b.count * kSlotBytes;
+  uint64_t slots = 0;
+  for (uint32_t shape : shapes_of(s, b)) slots = std::max<uint64_t>(slots, s.tables[shape].max_slots);
+  return slots * b.count * kSlotBytes;
+}
+
+// The surface's batches of one shape each, with runs of consecutive batches smaller than a
+// subgroup joined into one of several shapes (up to `local_size` fragments): lavapipe runs a
+// subgroup of 8 for a batch of 1, and the frog stand-in's 75 batches of 1 to 7 fragments (its
+// vertex patches' shapes) were 62% of its subgroups' work at 1.5 fragments each. Each invocation
+// reads its own fragment's shape (fragments.glsl); consecutive batches keep the output contiguous.
+std::vector<FragmentSurface::Batch> device_batches(const FragmentSurface& s, uint32_t local_size, uint32_t lanes) {
+  std::vector<FragmentSurface::Batch> out;
+  bool joinable = false;  // the last batch in `out` is of small batches
+  for (const FragmentSurface::Batch& b : s.batches_of(local_size)) {
+    const bool small = b.count < lanes;
+    if (small && joinable && out.back().count + b.count <= local_size) {
+      out.back().count += b.count;
+      continue;
+    }
+    out.push_back(b);
+    joinable = small;
+  }
+  return out;
 }
 
 void place_output(Wave& w, uint64_t alignment) {
@@ -130,10 +162,11 @@ class VulkanFragmentEvaluation final : public Evaluation {
       : ctx_(std::move(ctx)),
         control_(mesh.positions),
         surface_(mesh, rule, depth, project ? inner_depth_for(mesh, depth) : depth),
-        batches_(surface_.batches_of(kLocalSize)) {
+        batches_(device_batches(surface_, kLocalSize, ctx_->limits().subgroup_size)) {
     DeviceTables tables = pack_tables(surface_);
     passes_ = plan_passes(surface_, tables, project, ctx_->info().driver_name == "llvmpipe", ctx_->info().name);
     plan_ = plan_waves(surface_, batches_, ctx_->limits(), options.max_wave_bytes, ctx_->info().name);
+    append_work_items(tables);
     const uint64_t output = std::max<uint64_t>(surface_.num_output_vertices * sizeof(Point3), 16);
     const uint64_t scratch = plan_.scratch_bytes;
     gpu::check_memory(*ctx_,
@@ -198,8 +231,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
     std::vector<uint32_t> batch_words;
     for (size_t i = 0; i < batches_.size(); ++i) {
       const FragmentSurface::Batch& b = batches_[i];
-      batch_words.insert(batch_words.end(), {uint32_t(surface_.partition.fragments[surface_.order[b.begin]].shape),
-                                             b.begin, b.count, plan_.scratch_offset[i]});
+      batch_words.insert(batch_words.end(), {0u, b.begin, b.count, plan_.scratch_offset[i]});
     }
     tables_ = gpu::texel_table(c, tables.words, "fragments' pattern tables");
     batches_buffer_ = gpu::storage_table(c, batch_words, "fragments' batches");
@@ -240,7 +272,10 @@ class VulkanFragmentEvaluation final : public Evaluation {
   // `flags` (kCatmark | kProject) specialize every pipeline, the pass's part and kind each.
   void make_pipelines(uint32_t flags) {
     for (const PassSpec& p : passes_) {
-      const char* shader = p.part == Part::Gather ? "gather.comp" : p.part == Part::Limit ? "limit.comp" : "level.comp";
+      const char* shader = p.part == Part::Gather  ? "gather.comp"
+                           : p.part == Part::Limit ? "limit.comp"
+                           : p.part == Part::Patch ? "patch_normals.comp"
+                                                   : "level.comp";
       pipelines_.try_emplace({p.part, p.key},
                              gpu::shared_compute_pipeline(*ctx_, pass(shader, flags, p.part, p.key)));
     }
@@ -255,20 +290,44 @@ class VulkanFragmentEvaluation final : public Evaluation {
                                   scratch_.range(), net_.texels(VK_FORMAT_R32G32B32A32_SFLOAT), net_.range()});
   }
 
-  // Invocations take chunks of the pass's entries: x the chunk, y the batch (its work group's scratch).
-  // Levels alternate between the scratch halves: level d is in half d % 2.
+  // Per wave and pass, its work groups (a chunk of entries for a batch of the wave, two words each),
+  // appended to the tables in the order they run (interleave_by_cost); none for an empty chunk.
+  void append_work_items(DeviceTables& tables) {
+    const uint32_t lanes = std::max<uint32_t>(ctx_->limits().subgroup_size, 1);
+    for (const Wave& w : plan_.waves) {
+      items_.emplace_back();
+      for (const PassSpec& pass : passes_) {
+        std::vector<WorkItem> items;
+        for (uint32_t b = w.first_batch; b < w.first_batch + w.num_batches; ++b) {
+          // A chunk of a batch of several shapes costs about what its costliest shape's does.
+          std::vector<uint64_t> chunks;
+          for (uint32_t shape : shapes_of(surface_, batches_[b])) {
+            const std::vector<uint64_t>& c = pass.chunk_costs[shape];
+            chunks.resize(std::max(chunks.size(), c.size()), 0);
+            for (size_t k = 0; k < c.size(); ++k) chunks[k] = std::max(chunks[k], c[k]);
+          }
+          const uint64_t subgroups = (batches_[b].count + lanes - 1) / lanes;
+          for (uint32_t c = 0; c < chunks.size(); ++c) items.push_back({c, b - w.first_batch, subgroups * chunks[c]});
+        }
+        items_.back().push_back({static_cast<uint32_t>(tables.words.size()), static_cast<uint32_t>(items.size())});
+        for (const WorkItem& item : interleave_by_cost(items)) tables.words.insert(tables.words.end(), {item.chunk, item.batch});
+      }
+    }
+    if (tables.words.size() > std::numeric_limits<uint32_t>::max()) throw gpu::Unsupported("the pattern tables pass 2^32 words");
+  }
+
+  // A work group per work item (append_work_items): a chunk of the pass's entries for one batch
+  // (its work group's scratch). Levels alternate between the scratch halves: level d is in half d % 2.
   void dispatch(gpu::Commands& cmd, const gpu::ComputePipeline& p, const gpu::DescriptorSet& set, const Wave& w,
-                const PassSpec& pass) {
-    uint32_t most = 0;
-    for (uint32_t b = w.first_batch; b < w.first_batch + w.num_batches; ++b)
-      most = std::max(most, pass.entries[surface_.partition.fragments[surface_.order[batches_[b].begin]].shape]);
-    if (most == 0) return;
+                const PassSpec& pass, std::pair<uint32_t, uint32_t> items) {
+    if (items.second == 0) return;
     Push push = push_;
     push.level = pass.level;
     push.chunk = pass.chunk;
     push.kind_pairs = pass.kind_pairs;
     const uint32_t half = static_cast<uint32_t>(plan_.scratch_bytes / kSlotBytes);
-    const uint32_t made = pass.part == Part::Limit ? push_.levels + 1 : pass.level;  // the level this pass writes
+    const bool last = pass.part == Part::Limit || pass.part == Part::Patch;
+    const uint32_t made = last ? push_.levels + 1 : pass.level;  // the level this pass writes
     push.src_base = ((made + 1) % 2) * half;
     push.dst_base = (made % 2) * half;
     push.first_batch = w.first_batch;
@@ -276,19 +335,23 @@ class VulkanFragmentEvaluation final : public Evaluation {
     push.out_shift = w.shift;
     cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
     cmd.bind(p, set);
-    cmd.push(push);
-    cmd.dispatch((most + pass.chunk - 1) / pass.chunk, w.num_batches);
+    const uint32_t most = ctx_->limits().max_compute_work_group_count[0];
+    for (uint32_t done = 0; done < items.second; done += most) {
+      push.items = items.first + 2 * done;
+      cmd.push(push);
+      cmd.dispatch(std::min(most, items.second - done));
+    }
   }
 
-  // Consecutive passes of one label (a level's face, edge and vertex points; the limit's kinds)
-  // under one timestamp pair.
+  // Consecutive passes of one label (a level's face, edge and vertex points; the limit's kinds and
+  // patch normals) under one timestamp pair.
   void record_wave(gpu::Commands& cmd, size_t i) {
     const Wave& w = plan_.waves[i];
     for (size_t k = 0; k < passes_.size();) {
       const std::string label = pass_label(passes_[k]);
       frame_timer_->begin(cmd, gpu::PassKind::Kernel, label);
       for (; k < passes_.size() && pass_label(passes_[k]) == label; ++k)
-        dispatch(cmd, *pipelines_.at({passes_[k].part, passes_[k].key}), sets_[i], w, passes_[k]);
+        dispatch(cmd, *pipelines_.at({passes_[k].part, passes_[k].key}), sets_[i], w, passes_[k], items_[i][k]);
       frame_timer_->end(cmd);
     }
   }
@@ -317,6 +380,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
   std::vector<FragmentSurface::Batch> batches_;
   std::vector<PassSpec> passes_;
   WavePlan plan_;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> items_;  // per wave, per pass: first word, count
   Push push_;
   gpu::Buffer tables_, batches_buffer_, fragments_, control_staging_, control_buffer_, scratch_, net_;
   gpu::Buffer positions_, normals_;

@@ -3,10 +3,11 @@
 // multiply-adds, no reassociation), so that a point shared by fragments comes out bit-identical
 // in each, and the same as on the CPU.
 //
-// A work group is a chunk of a pass's entries (x) for one batch (y): up to gl_WorkGroupSize.x
-// fragments of one shape, one per invocation. The tables are the same for the whole group
-// (uniform loads); each invocation's slots sit in scratch with the lanes innermost, as the CPU
-// kernel's Lanes<W>, one region per batch of the wave. A slot is one 16-byte element (x, y, z, 0):
+// A work group is a chunk of a pass's entries for one batch (its work item): up to gl_WorkGroupSize.x
+// fragments, one per invocation, of one shape (the tables the same for the whole group) or, for
+// batches joined from shapes of few fragments, of several (each invocation reads its own shape's
+// tables: a gather on lavapipe either way). Each invocation's slots sit in scratch with the lanes
+// innermost, as the CPU kernel's Lanes<W>, one region per batch of the wave. A slot is one 16-byte element (x, y, z, 0):
 // one texel fetch reads it and two 64-bit words store it (sdb/words.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/words.glsl"
@@ -14,9 +15,9 @@
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0) uniform usamplerBuffer tables;  // device_tables.h, r32ui texels
-// Per batch: shape, first fragment, count, first slot of its scratch in the wave's.
+// Per batch: 0, first fragment, count, first slot of its scratch in the wave's.
 layout(std430, binding = 1) readonly buffer Batches { uvec4 batch[]; };
-layout(binding = 2) uniform usamplerBuffer fragment_words;  // control list, first vertex
+layout(binding = 2) uniform usamplerBuffer fragment_words;  // control list, first vertex, shape
 layout(binding = 3) uniform samplerBuffer control_floats;  // x y z per vertex
 // Two halves: level d - 1's slots (from src_base) and level d's (from dst_base), this wave's.
 layout(binding = 4) uniform samplerBuffer scratch_in;  // the scratch buffer, read (rgba32f)
@@ -47,7 +48,8 @@ layout(push_constant) uniform Push {
   uint out_shift;      // floats from the output bindings' start to the wave's first vertex
   uint chunk;          // entries of the pass per invocation (vulkan.cpp: llvmpipe's loop limit)
   uint kind_pairs;     // vertex points, limit: the word of this dispatch's kind's (list, count) pair for shape 0
-  uint pad1, pad2;     // (the rule's flags, the pass's part and the limit's kind are specialization constants)
+  uint items;          // the word of this dispatch's first work item: (chunk, batch of the wave) per work group
+  uint pad;            // (the rule's flags, the pass's part and the limit's kind are specialization constants)
   vec4 origin;         // the control box's centre: slots are relative to it
 } pc;
 
@@ -59,23 +61,25 @@ const uint kCatmark = 1u, kProject = 2u;
 layout(constant_id = 1) const uint kFlags = 0u;
 layout(constant_id = 2) const uint kPart = 0u;
 layout(constant_id = 3) const uint kKind = 0xfffu;
-const uint kGather = 0u, kFaces = 1u, kEdges = 2u, kLimit = 3u, kVertices = 4u;
+const uint kGather = 0u, kFaces = 1u, kEdges = 2u, kLimit = 3u, kVertices = 4u, kPatch = 5u;
 const uint kHeaderPerLevel = 8u;
 // Limit header fields (device_tables.h).
 const uint kNumPositions = 0u, kPositions = 1u, kLimitRing = 2u, kStencil = 3u, kStencilBegin = 4u, kStencilSlot = 5u,
            kStencilW = 6u, kRegular = 7u, kRegularSize = 8u, kRegularSlots = 9u, kTangentBegin = 10u,
            kTangentSlot = 11u, kTangentW1 = 12u, kTangentW2 = 13u, kBlockVertices = 14u,
-           kNumSlots0 = 15u, kNetSize = 16u, kNetTangents = 17u;
+           kNumSlots0 = 15u, kNetSize = 16u, kNetTangents = 17u, kPatchSegments = 18u, kPatchWeights = 19u,
+           kPatchParams = 20u, kNetSupportBegin = 21u, kNetSupport = 22u, kBlockSize = 23u;
 
-uint g_lane, g_group, g_shape, g_fragment, g_count, g_scratch;
+uint g_lane, g_chunk, g_group, g_shape, g_fragment, g_count, g_scratch;
 
 // False for invocations past the batch's fragments.
 bool begin_invocation() {
   g_lane = gl_LocalInvocationID.x;
-  g_group = gl_WorkGroupID.y;
+  g_chunk = table_word(pc.items + 2u * gl_WorkGroupID.x);
+  g_group = table_word(pc.items + 2u * gl_WorkGroupID.x + 1u);
   const uvec4 b = batch[pc.first_batch + g_group];
-  g_shape = b.x;
-  g_fragment = b.y + g_lane;
+  g_fragment = b.y + min(g_lane, b.z - 1u);
+  g_shape = fragment_word(3u * g_fragment + 2u);
   g_count = b.z;
   g_scratch = b.w;
   return g_lane < b.z;
@@ -85,7 +89,7 @@ uint header() { return g_shape * pc.header_words; }
 
 // This invocation's entries of a pass of `count`: [begin, end).
 uvec2 chunk_of(uint count) {
-  const uint begin = gl_WorkGroupID.x * pc.chunk;
+  const uint begin = g_chunk * pc.chunk;
   return uvec2(min(begin, count), min(begin + pc.chunk, count));
 }
 uint limit_header() { return header() + kHeaderPerLevel * pc.levels; }

@@ -5,7 +5,7 @@
 
 void main() {
   if (!begin_invocation()) return;
-  const uint list = fragment_word(2u * g_fragment);
+  const uint list = fragment_word(3u * g_fragment);
   const vec3 first = control_point(table_word(list));
   const uvec2 range = chunk_of(table_word(limit_header() + kNumSlots0));
   for (uint i = range.x; i < range.y; ++i) {

@@ -7,7 +7,8 @@
 
 const uint kRuleCase = kKind & 127u, kPositionCase = (kKind >> 7) & 3u, kNormalCase = (kKind >> 9) & 7u;
 const uint kPositionRule = 0u, kPositionStencil = 1u, kPositionAny = 2u;
-const uint kNormalNet = 0u, kNormalRegular9 = 1u, kNormalRegular7 = 2u, kNormalGeneral = 3u, kNormalAny = 4u;
+const uint kNormalNet = 0u, kNormalRegular9 = 1u, kNormalRegular7 = 2u, kNormalGeneral = 3u, kNormalAny = 4u,
+           kNormalPatch = 5u;  // patch_normals.comp writes it
 
 // Long tangent masks (a pole's ring) in compensated sums: the CPU sums them in double
 // (kernel.cpp), float alone would lose the normal's precision at valence 360.
@@ -77,11 +78,15 @@ precise vec3 general_normal(uint lh, uint entry) {
 }
 
 // kernel.cpp's net_normal: the tangents as weights on the control points relative to the first
-// (the gather pass's net points).
+// (the gather pass's net points), over the block's support alone (the control points its weights
+// do not leave at 0), in the same order: the multi-fragment CPU kernel's bits.
 precise vec3 net_normal(uint lh, uint entry) {
   const uint n = table_word(lh + kNetSize), w = table_word(lh + kNetTangents) + 2u * n * entry;
+  const uint block = entry / table_word(lh + kBlockSize), begins = table_word(lh + kNetSupportBegin);
+  const uint support = table_word(lh + kNetSupport), end = table_word(begins + block + 1u);
   precise vec3 a = vec3(0.0), b = vec3(0.0);
-  for (uint j = 1u; j < n; ++j) {
+  for (uint k = table_word(begins + block); k < end; ++k) {
+    const uint j = table_word(support + k);
     const vec3 p = load_net(j);
     a = a + p * number(w + j), b = b + p * number(w + n + j);
   }
@@ -102,19 +107,21 @@ precise vec3 limit_normal(uint lh, uint entry) {
 void main() {
   if (!begin_invocation()) return;
   const uint lh = limit_header();
-  const uint first = 3u * (fragment_word(2u * g_fragment + 1u) - pc.wave_first_vertex) + pc.out_shift;
+  const uint first = 3u * (fragment_word(3u * g_fragment + 1u) - pc.wave_first_vertex) + pc.out_shift;
   const uint list = kind_list();
   const uvec2 range = chunk_of(kind_count());
   for (uint j = range.x; j < range.y; ++j) {
     const uint i = table_word(list + j);
     precise vec3 p = limit_position(lh, i) + pc.origin.xyz;
-    const vec3 nrm = limit_normal(lh, i);
     const uint o = first + 3u * i;
+    if (kNormalCase != kNormalPatch && (kNormalCase != kNormalAny || table_word(lh + kPatchSegments) == 0u)) {
+      const vec3 nrm = limit_normal(lh, i);
+      imageStore(out_normal, int(o), vec4(nrm.x));
+      imageStore(out_normal, int(o + 1u), vec4(nrm.y));
+      imageStore(out_normal, int(o + 2u), vec4(nrm.z));
+    }
     imageStore(out_position, int(o), vec4(p.x));
     imageStore(out_position, int(o + 1u), vec4(p.y));
     imageStore(out_position, int(o + 2u), vec4(p.z));
-    imageStore(out_normal, int(o), vec4(nrm.x));
-    imageStore(out_normal, int(o + 1u), vec4(nrm.y));
-    imageStore(out_normal, int(o + 2u), vec4(nrm.z));
   }
 }
