@@ -26,21 +26,29 @@ class Packer {
     return begin;
   }
 
+  // Rules start at a multiple of 4 words and fill whole ones (device_tables.h): the shaders read
+  // them as uvec4 texels.
+  void align() {
+    while (w_.size() % 4) w_.push_back(0);
+  }
   uint32_t faces(const std::vector<FaceRule>& rules) {
+    align();
     const uint32_t begin = at();
     for (const FaceRule& r : rules) word(r.a), word(r.b), word(r.c), word(r.d);
     return begin;
   }
   uint32_t edges(const std::vector<EdgeRule>& rules) {
+    align();
     const uint32_t begin = at();
-    for (const EdgeRule& r : rules) word(r.v0), word(r.v1), word(r.f0), word(r.f1), number(r.wv), number(r.wf);
+    for (const EdgeRule& r : rules) word(r.v0), word(r.v1), word(r.f0), word(r.f1), number(r.wv), number(r.wf), word(0), word(0);
     return begin;
   }
   uint32_t vertices(const std::vector<VertexRule>& rules) {
+    align();
     const uint32_t begin = at();
     for (const VertexRule& r : rules) {
       word(r.centre), word(r.p0), word(r.p1), word(r.ring), word(uint32_t(r.num_e) | uint32_t(r.num_f) << 16);
-      number(r.wv), number(r.wc), number(r.we), number(r.wf);
+      number(r.wv), number(r.wc), number(r.we), number(r.wf), word(0), word(0), word(0);
     }
     return begin;
   }

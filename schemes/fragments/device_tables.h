@@ -15,8 +15,10 @@
 namespace sdb::fragments {
 
 // Level header: num_slots, num_faces, faces, num_edges, edges, num_vertices, vertices, ring.
-// Rules: a face 4 words (a b c d), an edge 6 (v0 v1 f0 f1 wv wf), a vertex 9
-// (centre p0 p1 ring num_e|num_f<<16 wv wc we wf); offsets are word indices into `words`.
+// Rules: a face 4 words (a b c d), an edge 8 (v0 v1 f0 f1 wv wf, 2 unused), a vertex 12
+// (centre p0 p1 ring num_e|num_f<<16 wv wc we wf, 3 unused), each list from a multiple of 4 words:
+// the shaders read a rule as 1, 2 or 3 uvec4 texels instead of 4, 6 or 9 words (on lavapipe a
+// texel fetch costs about the same whatever its width). Offsets are word indices into `words`.
 constexpr uint32_t kHeaderPerLevel = 8;
 // Limit header (at kHeaderPerLevel * levels): num_positions, positions, ring, stencil, stencil_begin,
 // stencil_slot, stencil_w, regular, regular_size, regular_slots, tangent_begin, tangent_slot,

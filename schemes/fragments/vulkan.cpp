@@ -150,7 +150,7 @@ gpu::ComputePipelineDesc pass(const char* shader, uint32_t flags, Part part, uin
   return {shaders::get(shader),
           {Binding::UniformTexelBuffer, Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
            Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
-           Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::StorageBuffer},
+           Binding::StorageBuffer, Binding::UniformTexelBuffer, Binding::StorageBuffer, Binding::UniformTexelBuffer},
           sizeof(Push),
           {{0, kLocalSize}, {1, flags}, {2, static_cast<uint32_t>(part)}, {3, key}}};
 }
@@ -233,7 +233,9 @@ class VulkanFragmentEvaluation final : public Evaluation {
       const FragmentSurface::Batch& b = batches_[i];
       batch_words.insert(batch_words.end(), {0u, b.begin, b.count, plan_.scratch_offset[i]});
     }
-    tables_ = gpu::texel_table(c, tables.words, "fragments' pattern tables");
+    std::vector<uint32_t> words = tables.words;
+    words.resize((words.size() + 3) / 4 * 4, 0);  // whole uvec4 texels for the rules' view
+    tables_ = gpu::texel_table(c, std::move(words), "fragments' pattern tables");
     batches_buffer_ = gpu::storage_table(c, batch_words, "fragments' batches");
     fragments_ = gpu::texel_table(c, tables.fragments, "fragment list");
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
@@ -287,7 +289,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
                                   scratch_.texels(VK_FORMAT_R32G32B32A32_SFLOAT),
                                   positions_.texels(VK_FORMAT_R32_SFLOAT, w.bind_offset, w.bind_bytes),
                                   normals_.texels(VK_FORMAT_R32_SFLOAT, w.bind_offset, w.bind_bytes),
-                                  scratch_.range(), net_.texels(VK_FORMAT_R32G32B32A32_SFLOAT), net_.range()});
+                                  scratch_.range(), net_.texels(VK_FORMAT_R32G32B32A32_SFLOAT), net_.range(),
+                                  tables_.texels(VK_FORMAT_R32G32B32A32_UINT)});
   }
 
   // Per wave and pass, its work groups (a chunk of entries for a batch of the wave, two words each),

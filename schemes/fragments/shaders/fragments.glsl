@@ -15,6 +15,7 @@
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0) uniform usamplerBuffer tables;  // device_tables.h, r32ui texels
+layout(binding = 10) uniform usamplerBuffer rule_texels;  // the same, rgba32ui: the rules (4-word aligned)
 // Per batch: 0, first fragment, count, first slot of its scratch in the wave's.
 layout(std430, binding = 1) readonly buffer Batches { uvec4 batch[]; };
 layout(binding = 2) uniform usamplerBuffer fragment_words;  // control list, first vertex, shape
@@ -33,6 +34,7 @@ layout(std430, binding = 9) restrict writeonly buffer NetOut { u64vec2 net_out[]
 // lanes with a branch each, a texel fetch one gather (harness/gpu/README.md, "Memory access on
 // lavapipe"). The scratch is written as 64-bit words, the output through r32f image views.
 uint table_word(uint i) { return texelFetch(tables, int(i)).x; }
+uvec4 rule_words(uint at) { return texelFetch(rule_texels, int(at / 4u)); }  // `at`: a multiple of 4
 uint fragment_word(uint i) { return texelFetch(fragment_words, int(i)).x; }
 float control_float(uint i) { return texelFetch(control_floats, int(i)).x; }
 vec4 scratch_slot(uint i) { return texelFetch(scratch_in, int(i)); }
@@ -188,15 +190,17 @@ precise vec3 ring_sum(bool from_dst, uint ref, uint n, uint ring_case) {
 // `rule_case`: the e and f terms' ring cases and whether wc is used (device_tables.h), or
 // kRuleAny to take them from the rule.
 precise vec3 apply_vertex_rule(uint at, uint ring, bool faces_in_dst, uint rule_case) {
-  const uint counts = table_word(at + 4u);
+  const uvec4 r0 = rule_words(at), r1 = rule_words(at + 4u);
+  const uint counts = r1.x;
   const uint num_e = counts & 0xffffu, num_f = counts >> 16;
-  const float wv = number(at + 5u), wc = number(at + 6u), we = number(at + 7u), wf = number(at + 8u);
+  const float wv = uintBitsToFloat(r1.y), wc = uintBitsToFloat(r1.z), we = uintBitsToFloat(r1.w);
+  const float wf = uintBitsToFloat(rule_words(at + 8u).x);
   const bool any = rule_case == kRuleAny;
   const uint e_case = any ? ring_case_of(num_e) : rule_case & 7u, f_case = any ? ring_case_of(num_f) : (rule_case >> 3) & 7u;
   const bool wc_term = any ? wc != 0.0 : (rule_case & 64u) != 0u;
-  const uint ref = ring + table_word(at + 3u);
-  precise vec3 s = load(false, table_word(at)) * wv;
-  if (wc_term) s = s + (load(false, table_word(at + 1u)) + load(false, table_word(at + 2u))) * wc;
+  const uint ref = ring + r0.w;
+  precise vec3 s = load(false, r0.x) * wv;
+  if (wc_term) s = s + (load(false, r0.y) + load(false, r0.z)) * wc;
   if (e_case != kRingNone) s = s + ring_sum(false, ref, num_e, e_case) * we;
   if (f_case != kRingNone) s = s + ring_sum(faces_in_dst, ref + num_e, num_f, f_case) * wf;
   return s;

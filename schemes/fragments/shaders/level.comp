@@ -13,8 +13,8 @@ void main() {
   if (kPart == kFaces) {
     const uvec2 range = chunk_of(num_faces);
     for (uint i = range.x; i < range.y; ++i) {
-      const uint at = faces + 4u * i;
-      precise vec3 p = ((load(false, table_word(at)) + load(false, table_word(at + 2u))) + (load(false, table_word(at + 1u)) + load(false, table_word(at + 3u)))) * 0.25;
+      const uvec4 r = rule_words(faces + 4u * i);
+      precise vec3 p = ((load(false, r.x) + load(false, r.z)) + (load(false, r.y) + load(false, r.w))) * 0.25;
       store(i, p);
     }
     return;
@@ -22,15 +22,15 @@ void main() {
   if (kPart == kEdges) {
     const uvec2 range = chunk_of(num_edges);
     for (uint j = range.x; j < range.y; ++j) {
-      const uint at = edges + 6u * j;
-      precise vec3 v = load(false, table_word(at)) + load(false, table_word(at + 1u));
-      const float wf = number(at + 5u);
+      const uvec4 r = rule_words(edges + 8u * j), w = rule_words(edges + 8u * j + 4u);
+      precise vec3 v = load(false, r.x) + load(false, r.y);
+      const float wv = uintBitsToFloat(w.x), wf = uintBitsToFloat(w.y);
       precise vec3 p;
       if (wf == 0.0) {  // a crease: its f slots name no point (kernel.cpp)
-        p = v * number(at + 4u);
+        p = v * wv;
       } else {
-        precise vec3 f = load(catmark, table_word(at + 2u)) + load(catmark, table_word(at + 3u));
-        p = v * number(at + 4u) + f * wf;
+        precise vec3 f = load(catmark, r.z) + load(catmark, r.w);
+        p = v * wv + f * wf;
       }
       store(num_faces + j, p);
     }
@@ -41,7 +41,7 @@ void main() {
   const uvec2 range = chunk_of(kind_count());
   for (uint k = range.x; k < range.y; ++k) {
     const uint j = table_word(list + k);
-    precise vec3 p = apply_vertex_rule(vertices + 9u * j, ring, catmark, kKind & 127u);
+    precise vec3 p = apply_vertex_rule(vertices + 12u * j, ring, catmark, kKind & 127u);
     store(num_faces + num_edges + j, p);
   }
 }

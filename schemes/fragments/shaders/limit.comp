@@ -15,10 +15,10 @@ const uint kNormalNet = 0u, kNormalRegular9 = 1u, kNormalRegular7 = 2u, kNormalG
 const uint kLongTangentMask = 32u;
 
 precise vec3 limit_position(uint lh, uint entry) {
-  const uint at = table_word(lh + kPositions) + 9u * entry;
+  const uint at = table_word(lh + kPositions) + 12u * entry;
   precise vec3 p;
   if ((kFlags & kProject) == 0u) {
-    p = load(false, table_word(at));
+    p = load(false, rule_words(at).x);
     return p;
   }
   const int stencil = kPositionCase == kPositionRule ? -1 : int(table_word(table_word(lh + kStencil) + entry));
