@@ -40,7 +40,9 @@ class Packer {
   uint32_t edges(const std::vector<EdgeRule>& rules) {
     align();
     const uint32_t begin = at();
-    for (const EdgeRule& r : rules) word(r.v0), word(r.v1), word(r.f0), word(r.f1), number(r.wv), number(r.wf), word(0), word(0);
+    for (const EdgeRule& r : rules) {
+      word(r.v0), word(r.v1), word(r.f0), word(r.f1), number(r.wv), number(r.wf), word(0), word(0);
+    }
     return begin;
   }
   uint32_t vertices(const std::vector<VertexRule>& rules) {

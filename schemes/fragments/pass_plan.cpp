@@ -126,7 +126,8 @@ class Planner {
     for (const std::vector<uint64_t>& c : costs) {
       p.chunk_costs.emplace_back();
       for (size_t i = 0; i < c.size(); i += p.chunk)
-        p.chunk_costs.back().push_back(std::accumulate(c.begin() + i, c.begin() + std::min(c.size(), i + p.chunk), uint64_t(0)));
+        p.chunk_costs.back().push_back(
+            std::accumulate(c.begin() + i, c.begin() + std::min(c.size(), i + p.chunk), uint64_t(0)));
     }
     if (loop_limited_ && !fits(p.chunk))
       throw gpu::Unsupported(device_ + " stops every shader invocation after 65,535 loop iterations; a fragment's " +
@@ -164,7 +165,9 @@ std::vector<PassSpec> plan_passes(const FragmentSurface& s, DeviceTables& tables
       [project](const ShapeTables& t, uint32_t i) { return limit_kind(t, i, project); }, kLimitAny);
   plan.add_kinds({Part::Limit}, kinds, [](const ShapeTables& t, uint32_t i) { return limit_cost(t.limit, i); });
   for (const bool triangle : {false, true}) {
-    auto patch = [triangle](const ShapeTables& t) { return !t.limit.patch_weights.empty() && t.limit.patch_triangle == triangle; };
+    auto patch = [triangle](const ShapeTables& t) {
+      return !t.limit.patch_weights.empty() && t.limit.patch_triangle == triangle;
+    };
     if (std::none_of(s.tables.begin(), s.tables.end(), patch)) continue;
     // Entries are rows; each chunk also sums the coefficients over the net.
     plan.add({Part::Patch, 0, triangle ? 1u : 0u},

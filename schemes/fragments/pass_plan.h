@@ -24,7 +24,8 @@ enum class Part : uint32_t { Gather = 0, Faces = 1, Edges = 2, Limit = 3, Vertic
 struct PassSpec {
   Part part;
   uint32_t level = 0;             // Faces, Edges, Vertices: the level the pass makes
-  uint32_t key = 0;               // Vertices: its rule case; Limit: its kind; Patch: 1 for triangles (specialization constant 3)
+  // Specialization constant 3: Vertices, its rule case; Limit, its kind; Patch, 1 for triangles.
+  uint32_t key = 0;
   uint32_t kind_pairs = 0;        // Vertices, Limit: the tables' word of its (list, count) pair for shape 0
   uint32_t chunk = kMaxChunk;     // entries per invocation
   // Per shape, per chunk of its entries: the sum of their costs (loop iterations, bounded from

@@ -62,7 +62,8 @@ uint64_t batch_vertices(const FragmentSurface& s, const FragmentSurface::Batch& 
 // The shapes of a batch's fragments, each once.
 std::vector<uint32_t> shapes_of(const FragmentSurface& s, const FragmentSurface::Batch& b) {
   std::vector<uint32_t> shapes;
-  for (uint32_t i = b.begin; i < b.begin + b.count; ++i) shapes.push_back(uint32_t(s.partition.fragments[s.order[i]].shape));
+  for (uint32_t i = b.begin; i < b.begin + b.count; ++i)
+    shapes.push_back(uint32_t(s.partition.fragments[s.order[i]].shape));
   std::sort(shapes.begin(), shapes.end());
   shapes.erase(std::unique(shapes.begin(), shapes.end()), shapes.end());
   return shapes;
@@ -313,10 +314,12 @@ class VulkanFragmentEvaluation final : public Evaluation {
           for (uint32_t c = 0; c < chunks.size(); ++c) items.push_back({c, b - w.first_batch, subgroups * chunks[c]});
         }
         items_.back().push_back({static_cast<uint32_t>(tables.words.size()), static_cast<uint32_t>(items.size())});
-        for (const WorkItem& item : interleave_by_cost(items)) tables.words.insert(tables.words.end(), {item.chunk, item.batch});
+        for (const WorkItem& item : interleave_by_cost(items))
+          tables.words.insert(tables.words.end(), {item.chunk, item.batch});
       }
     }
-    if (tables.words.size() > std::numeric_limits<uint32_t>::max()) throw gpu::Unsupported("the pattern tables pass 2^32 words");
+    if (tables.words.size() > std::numeric_limits<uint32_t>::max())
+      throw gpu::Unsupported("the pattern tables pass 2^32 words");
   }
 
   // A work group per work item (append_work_items): a chunk of the pass's entries for one batch

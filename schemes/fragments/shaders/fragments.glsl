@@ -3,12 +3,13 @@
 // multiply-adds, no reassociation), so that a point shared by fragments comes out bit-identical
 // in each, and the same as on the CPU.
 //
-// A work group is a chunk of a pass's entries for one batch (its work item): up to gl_WorkGroupSize.x
-// fragments, one per invocation, of one shape (the tables the same for the whole group) or, for
-// batches joined from shapes of few fragments, of several (each invocation reads its own shape's
-// tables: a gather on lavapipe either way). Each invocation's slots sit in scratch with the lanes
-// innermost, as the CPU kernel's Lanes<W>, one region per batch of the wave. A slot is one 16-byte element (x, y, z, 0):
-// one texel fetch reads it and two 64-bit words store it (sdb/words.glsl).
+// A work group is a chunk of a pass's entries for one batch (its work item): up to
+// gl_WorkGroupSize.x fragments, one per invocation, of one shape (the tables the same for the whole
+// group) or, for batches joined from shapes of few fragments, of several (each invocation reads its
+// own shape's tables: a gather on lavapipe either way). Each invocation's slots sit in scratch with
+// the lanes innermost, as the CPU kernel's Lanes<W>, one region per batch of the wave. A slot is
+// one 16-byte element (x, y, z, 0): one texel fetch reads it and two 64-bit words store it
+// (sdb/words.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/words.glsl"
 

@@ -71,7 +71,7 @@ TEST(InterleaveByCost, BalancesRandomCostsWithinAFewPercent) {
     const auto [lo, hi] = std::minmax_element(parts.begin(), parts.end());
     EXPECT_LT(double(*hi) / double(*lo), 1.05) << t << " parts";
     const std::vector<uint64_t> sorted_parts = part_costs(items, t);
-    EXPECT_GT(double(sorted_parts.back()) / double(sorted_parts.front()), 2.0) << "the input order was balanced already";
+    EXPECT_GT(double(sorted_parts.back()) / double(sorted_parts.front()), 2.0) << "the input was balanced already";
   }
 }
 

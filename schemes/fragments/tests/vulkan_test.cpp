@@ -84,15 +84,16 @@ TEST_F(FragmentsVulkan, MatchesTheCpuAndIsWatertightOnBuiltins) {
 // regular patches alone; the icosphere's are Loop's regular patches and vertex patches, whose net
 // normals come out the same here too (before the patch pass the torus differed by 2e-5 degrees).
 TEST_F(FragmentsVulkan, PatchNormalsAreTheCpusBits) {
-  for (auto [mesh, rule] : {std::pair{"torus-8x8", SubdivisionRule::CatmullClark}, std::pair{"icosphere", SubdivisionRule::Loop}}) {
+  for (auto [mesh, rule] :
+       {std::pair{"torus-8x8", SubdivisionRule::CatmullClark}, std::pair{"icosphere", SubdivisionRule::Loop}}) {
     const ControlMesh accepted = accept_mesh(load_mesh(mesh), find_scheme(scheme_name(rule))->info());
     for (int depth = 1; depth <= 4; ++depth) {
       const Output cpu = run(accepted, rule, depth, Backend::Cpu), gpu = run(accepted, rule, depth, Backend::Vulkan);
       ASSERT_EQ(cpu.t.normals.size(), gpu.t.normals.size());
       size_t identical = 0;
       for (size_t i = 0; i < cpu.t.normals.size(); ++i) identical += cpu.t.normals[i] == gpu.t.normals[i];
-      std::printf("  %-10s %-15s depth %d: %zu of %zu normals bit-identical\n", mesh, scheme_name(rule), depth, identical,
-                  cpu.t.normals.size());
+      std::printf("  %-10s %-15s depth %d: %zu of %zu normals bit-identical\n", mesh, scheme_name(rule), depth,
+                  identical, cpu.t.normals.size());
       EXPECT_EQ(identical, cpu.t.normals.size()) << mesh << " depth " << depth;
     }
   }
