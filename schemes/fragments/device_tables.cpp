@@ -31,6 +31,11 @@ class Packer {
   void align() {
     while (w_.size() % 4) w_.push_back(0);
   }
+  template <class T>
+  uint32_t aligned_list(const std::vector<T>& values) {
+    align();
+    return list(values);
+  }
   uint32_t faces(const std::vector<FaceRule>& rules) {
     align();
     const uint32_t begin = at();
@@ -58,6 +63,43 @@ class Packer {
  private:
   std::vector<uint32_t>& w_;
 };
+
+// The net tangents (tables.h) as limit.comp's net_normal reads them: per block its support
+// (net_support) padded to an even count with slot 0 (the origin: it adds 0), and per entry the
+// weight pairs (w1, w2) of its block's support in that order, `stride` words apart (a multiple of
+// 4), so that one uvec4 texel holds two control points' weights.
+struct NetPairs {
+  std::vector<uint32_t> support_begin, support;
+  std::vector<float> pairs;
+  uint32_t stride = 0;
+};
+NetPairs net_pairs(const ShapeTables& t) {
+  const LimitTable& lim = t.limit;
+  NetPairs out;
+  if (!lim.net_size || lim.net_support_begin.size() < 2) return out;
+  const uint32_t n = lim.net_size, blocks = uint32_t(lim.net_support_begin.size() - 1);
+  const size_t per_block = t.block_vertices() / blocks;
+  out.support_begin = {0};
+  for (uint32_t b = 0; b < blocks; ++b) {
+    out.support.insert(out.support.end(), lim.net_support.begin() + lim.net_support_begin[b],
+                       lim.net_support.begin() + lim.net_support_begin[b + 1]);
+    if (out.support.size() % 2) out.support.push_back(0);
+    out.support_begin.push_back(uint32_t(out.support.size()));
+    out.stride = std::max(out.stride, 2 * (out.support_begin[b + 1] - out.support_begin[b]));
+  }
+  out.stride = (out.stride + 3) / 4 * 4;
+  out.pairs.assign(t.block_vertices() * out.stride, 0.0f);
+  for (size_t i = 0; i < t.block_vertices(); ++i) {
+    const uint32_t b = uint32_t(i / per_block);
+    for (uint32_t k = out.support_begin[b]; k < out.support_begin[b + 1]; ++k) {
+      const uint32_t j = out.support[k];
+      if (j == 0) continue;  // padding
+      out.pairs[i * out.stride + 2 * (k - out.support_begin[b])] = lim.net_tangents[i * 2 * n + j];
+      out.pairs[i * out.stride + 2 * (k - out.support_begin[b]) + 1] = lim.net_tangents[i * 2 * n + n + j];
+    }
+  }
+  return out;
+}
 
 // Rules first, then the header (the words may move while the rules go in).
 void pack_shape(const ShapeTables& t, uint32_t header, std::vector<uint32_t>& words) {
@@ -89,9 +131,11 @@ void pack_shape(const ShapeTables& t, uint32_t header, std::vector<uint32_t>& wo
   f[kBlockVertices] = uint32_t(t.block_vertices());
   f[kNumSlots0] = t.num_slots0;
   f[kNetSize] = lim.net_size;
-  f[kNetTangents] = p.list(lim.net_tangents);
-  f[kNetSupportBegin] = p.list(lim.net_support_begin);
-  f[kNetSupport] = p.list(lim.net_support);
+  const NetPairs net = net_pairs(t);
+  f[kNetStride] = net.stride;
+  f[kNetTangents] = p.aligned_list(net.pairs);
+  f[kNetSupportBegin] = p.list(net.support_begin);
+  f[kNetSupport] = p.list(net.support);
   f[kBlockSize] = uint32_t(t.block_vertices() / std::max(t.owned_faces, 1));
   if (!lim.patch_weights.empty()) {
     f[kPatchSegments] = uint32_t(lim.patch_segments);

@@ -24,14 +24,15 @@ constexpr uint32_t kHeaderPerLevel = 8;
 // stencil_slot, stencil_w, regular, regular_size, regular_slots, tangent_begin, tangent_slot,
 // tangent_w1, tangent_w2, block_vertices, num_slots0, net_size, net_tangents, patch_segments (0:
 // no patch polynomial), patch_weights, patch_params (the s + 1 floats i / s), net_support_begin,
-// net_support, block_size (the vertices of one block). The limit's entries are the output blocks'
+// net_support, block_size (the vertices of one block), net_stride. The net tangents, support and
+// stride are device_tables.cpp's net_pairs layout. The limit's entries are the output blocks'
 // vertices in order (tables.h).
-constexpr uint32_t kHeaderLimit = 24;
+constexpr uint32_t kHeaderLimit = 25;
 enum LimitField : uint32_t {
   kNumPositions, kPositions, kLimitRing, kStencil, kStencilBegin, kStencilSlot, kStencilW,
   kRegular, kRegularSize, kRegularSlots, kTangentBegin, kTangentSlot, kTangentW1, kTangentW2,
   kBlockVertices, kNumSlots0, kNetSize, kNetTangents, kPatchSegments, kPatchWeights, kPatchParams,
-  kNetSupportBegin, kNetSupport, kBlockSize,
+  kNetSupportBegin, kNetSupport, kBlockSize, kNetStride,
 };
 
 struct DeviceTables {

@@ -71,7 +71,7 @@ const uint kNumPositions = 0u, kPositions = 1u, kLimitRing = 2u, kStencil = 3u, 
            kStencilW = 6u, kRegular = 7u, kRegularSize = 8u, kRegularSlots = 9u, kTangentBegin = 10u,
            kTangentSlot = 11u, kTangentW1 = 12u, kTangentW2 = 13u, kBlockVertices = 14u,
            kNumSlots0 = 15u, kNetSize = 16u, kNetTangents = 17u, kPatchSegments = 18u, kPatchWeights = 19u,
-           kPatchParams = 20u, kNetSupportBegin = 21u, kNetSupport = 22u, kBlockSize = 23u;
+           kPatchParams = 20u, kNetSupportBegin = 21u, kNetSupport = 22u, kBlockSize = 23u, kNetStride = 24u;
 
 uint g_lane, g_chunk, g_group, g_shape, g_fragment, g_count, g_scratch;
 

@@ -79,16 +79,20 @@ precise vec3 general_normal(uint lh, uint entry) {
 
 // kernel.cpp's net_normal: the tangents as weights on the control points relative to the first
 // (the gather pass's net points), over the block's support alone (the control points its weights
-// do not leave at 0), in the same order: the multi-fragment CPU kernel's bits.
+// do not leave at 0), in the same order: the multi-fragment CPU kernel's sums. Two control points
+// a step, their weights one uvec4 (device_tables.cpp, net_pairs; an odd support's last pair adds
+// the origin, 0).
 precise vec3 net_normal(uint lh, uint entry) {
-  const uint n = table_word(lh + kNetSize), w = table_word(lh + kNetTangents) + 2u * n * entry;
+  const uint w = table_word(lh + kNetTangents) + table_word(lh + kNetStride) * entry;
   const uint block = entry / table_word(lh + kBlockSize), begins = table_word(lh + kNetSupportBegin);
-  const uint support = table_word(lh + kNetSupport), end = table_word(begins + block + 1u);
+  const uint support = table_word(lh + kNetSupport), begin = table_word(begins + block);
+  const uint end = table_word(begins + block + 1u);
   precise vec3 a = vec3(0.0), b = vec3(0.0);
-  for (uint k = table_word(begins + block); k < end; ++k) {
-    const uint j = table_word(support + k);
-    const vec3 p = load_net(j);
-    a = a + p * number(w + j), b = b + p * number(w + n + j);
+  for (uint k = begin; k < end; k += 2u) {
+    const vec4 weights = uintBitsToFloat(rule_words(w + 2u * (k - begin)));
+    const vec3 p = load_net(table_word(support + k)), q = load_net(table_word(support + k + 1u));
+    a = a + p * weights.x, b = b + p * weights.y;
+    a = a + q * weights.z, b = b + q * weights.w;
   }
   return unit_normal(a, b);
 }
