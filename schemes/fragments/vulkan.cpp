@@ -298,6 +298,8 @@ class VulkanFragmentEvaluation final : public Evaluation {
   // appended to the tables in the order they run (interleave_by_cost); none for an empty chunk.
   void append_work_items(DeviceTables& tables) {
     const uint32_t lanes = std::max<uint32_t>(ctx_->limits().subgroup_size, 1);
+    std::vector<std::vector<uint32_t>> shapes;  // per batch, for every pass
+    for (const FragmentSurface::Batch& b : batches_) shapes.push_back(shapes_of(surface_, b));
     for (const Wave& w : plan_.waves) {
       items_.emplace_back();
       for (const PassSpec& pass : passes_) {
@@ -305,7 +307,7 @@ class VulkanFragmentEvaluation final : public Evaluation {
         for (uint32_t b = w.first_batch; b < w.first_batch + w.num_batches; ++b) {
           // A chunk of a batch of several shapes costs about what its costliest shape's does.
           std::vector<uint64_t> chunks;
-          for (uint32_t shape : shapes_of(surface_, batches_[b])) {
+          for (uint32_t shape : shapes[b]) {
             const std::vector<uint64_t>& c = pass.chunk_costs[shape];
             chunks.resize(std::max(chunks.size(), c.size()), 0);
             for (size_t k = 0; k < c.size(); ++k) chunks[k] = std::max(chunks[k], c[k]);

@@ -48,7 +48,8 @@ precise vec3 unit_normal(vec3 a, vec3 b) {
 void main() {
   if (!begin_invocation()) return;
   const uint lh = limit_header();
-  // s = 0: the batch's shape has no patch; its invocations loop over nothing.
+  // s = 0: this invocation's shape has no patch (a batch joined across shapes may hold both
+  // kinds); it loops over nothing.
   const uint s = table_word(lh + kPatchSegments), n = s == 0u ? 0u : table_word(lh + kNetSize);
   const uvec2 rows = chunk_of(s == 0u ? 0u : s + 1u);
   const uint weights = table_word(lh + kPatchWeights), params = table_word(lh + kPatchParams);
