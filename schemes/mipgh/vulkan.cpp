@@ -122,6 +122,12 @@ class VulkanMipghEvaluation final : public Evaluation {
     output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
     // What one texel view takes, checked before the tables are built (the D-LoD's are the largest)
     gpu::check_texel_binding(*ctx_, level_bytes_ / sizeof(Node), "a level's nodes");
+    // Levels are written as 64-bit words (mipgh.glsl, kWords) where one storage-buffer binding
+    // covers them; past that, through their texel views. Either way the bits are the same.
+    node_words_ = level_bytes_ <= ctx_->limits().max_storage_buffer_range;
+    word_range_ = node_words_ ? level_bytes_ : 16;
+    output_words_ = output_bytes_ <= ctx_->limits().max_storage_buffer_range;
+    output_word_range_ = output_words_ ? output_bytes_ : 16;
     uint64_t lod_words_total = 0;
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += level_lod_words(sigma);
     gpu::check_texel_binding(*ctx_, lod_words_total, "the D-LoD's index arrays");
@@ -296,14 +302,14 @@ class VulkanMipghEvaluation final : public Evaluation {
     level0_.resize(control_.size());
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Node), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
-    const BufferUsage level_usage = BufferUsage::UniformTexel | BufferUsage::StorageTexel;
+    const BufferUsage level_usage = BufferUsage::UniformTexel | BufferUsage::StorageTexel | BufferUsage::Storage;
     level_[0] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (even levels)");
     level_[1] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (odd levels)");
     normals_ = gpu::Buffer::device(c, level_bytes_, level_usage, "limit normals");
     lod_ = gpu::texel_table(c, tables_.lod, "D-LoD index arrays");
     words_ = gpu::texel_table(c, tables_.words, "mipgh tables");
     weights_ = gpu::texel_table(c, tables_.weights, "mask weights");
-    const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Vertex;
+    const BufferUsage output_usage = BufferUsage::StorageTexel | BufferUsage::Storage | BufferUsage::Vertex;
     positions_ = gpu::Buffer::device(c, output_bytes_, output_usage, "positions");
     out_normals_ = gpu::Buffer::device(c, output_bytes_, output_usage, "normals");
   }
@@ -314,9 +320,10 @@ class VulkanMipghEvaluation final : public Evaluation {
     return {shaders::get(shader),
             {Binding::UniformTexelBuffer, Binding::StorageTexelBuffer, Binding::StorageTexelBuffer,
              Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
-             Binding::StorageTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer},
+             Binding::StorageTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer,
+             Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer},
             sizeof(Push),
-            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}}};
+            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}, {4, node_words_}, {5, output_words_}}};
   }
 
   void make_pipelines() {
@@ -341,7 +348,9 @@ class VulkanMipghEvaluation final : public Evaluation {
           *output_, {level_[k].texels(node), level_[1 - k].texels(node), normals_.texels(node),
                      lod_.texels(VK_FORMAT_R32_UINT), words_.texels(VK_FORMAT_R32_UINT),
                      weights_.texels(VK_FORMAT_R32_SFLOAT), positions_.texels(VK_FORMAT_R32_SFLOAT),
-                     out_normals_.texels(VK_FORMAT_R32_SFLOAT), normals_.texels(node)});
+                     out_normals_.texels(VK_FORMAT_R32_SFLOAT), normals_.texels(node),
+                     level_[1 - k].range(0, word_range_), normals_.range(0, word_range_),
+                     positions_.range(0, output_word_range_), out_normals_.range(0, output_word_range_)});
   }
 
   // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma, written
@@ -450,6 +459,10 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::vector<Point3> control_;
   MeshMutation m_;
   bool has_quads_ = false, has_triangles_ = false;
+  bool node_words_ = true;     // the levels written as 64-bit words (a storage-buffer binding covers them)
+  uint64_t word_range_ = 16;   // what bindings 9 and 10 cover
+  bool output_words_ = true;   // and the output (mipgh.glsl, kOutWords)
+  uint64_t output_word_range_ = 16;  // what bindings 11 and 12 cover
   uint64_t level_bytes_ = 0, output_bytes_ = 0;
   Tables tables_;
   std::vector<uint32_t> lod_base_, rows_;
@@ -476,7 +489,8 @@ class VulkanMipghEvaluation final : public Evaluation {
 std::optional<std::string> vulkan_unavailable() {
   static const gpu::DeviceInfo device = gpu::probe();
   if (!device.available) return "no Vulkan device: " + device.reason;
-  return std::nullopt;  // nine texel bindings per pass: within Vulkan's minimum limits
+  if (!device.features.shader_int64) return device.name + " lacks shaderInt64; the MiPGH passes store 64-bit words";
+  return std::nullopt;  // nine texel and four storage bindings per pass: within Vulkan's minimum limits
 }
 
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, MeshRule rule, DAtlas atlas,

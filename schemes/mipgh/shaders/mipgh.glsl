@@ -7,6 +7,7 @@
 // fused multiply-adds, no reassociation), so the stencils' nodes equal the CPU's.
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/dispatch.glsl"
+#include "sdb/words.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -19,9 +20,20 @@ layout(binding = 5) uniform samplerBuffer weights;    // the mask tables' weight
 layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_position;
 layout(binding = 7, r32f) uniform restrict writeonly imageBuffer out_normal;
 layout(binding = 8) uniform samplerBuffer normals_in;  // the limit's normals (rgba32f), read by the output pass
+// The same level and normal buffers as bindings 1 and 2, written as two 64-bit words a node:
+// lavapipe stores lane by lane and component by component, so a u64vec2 store costs about a
+// third of an rgba32f imageStore (harness/gpu/README.md). Where a level is past the device's
+// storage-buffer range (128 MiB on lavapipe) the texel views write it (kWords = false).
+layout(std430, binding = 9) restrict writeonly buffer DstWords { u64vec2 dst_words[]; };
+layout(std430, binding = 10) restrict writeonly buffer NormalWords { u64vec2 normal_words[]; };
+layout(constant_id = 4) const bool kWords = true;
 // The pipeline writes the limit straight into the output (bindings 6 and 7, packed xyz), not
 // into a level's buffers: where the limit is the whole output.
 layout(constant_id = 3) const bool kToOutput = false;
+// The output's buffers as 64-bit words too (kOutWords; where one binding covers them).
+layout(std430, binding = 11) restrict writeonly buffer OutPositionWords { uint64_t out_position_words[]; };
+layout(std430, binding = 12) restrict writeonly buffer OutNormalWords { uint64_t out_normal_words[]; };
+layout(constant_id = 5) const bool kOutWords = true;
 
 layout(push_constant) uniform Push {
   uint count;        // invocations that do work
@@ -53,19 +65,37 @@ vec3 node(uint i) { return texelFetch(src_nodes, int(i)).xyz; }
     imageStore(image, o_ + 1, vec4((v).y));    \
     imageStore(image, o_ + 2, vec4((v).z));    \
   }
+// Packed xyz at float 3i as one 64-bit word, the two of its floats that share an aligned 8 bytes
+// (x, y for even i; y, z for odd), and the float left over through the r32f view: two lane
+// stores where STORE_XYZ makes three, about half its cost on lavapipe. No branch: the parity
+// picks the halves.
+#define STORE_XYZ_WORDS(image, words, i, v)                                   \
+  {                                                                           \
+    const uint o_ = 3u * (i), odd_ = (i) & 1u;                                \
+    const uvec3 b_ = floatBitsToUint(v);                                      \
+    words[(o_ + odd_) >> 1u] = packUint2x32(odd_ != 0u ? b_.yz : b_.xy);      \
+    imageStore(image, int(o_ + 2u - 2u * odd_), vec4(odd_ != 0u ? (v).x : (v).z)); \
+  }
+#define STORE_OUTPUT_XYZ(image, words, i, v) \
+  {                                          \
+    if (kOutWords) STORE_XYZ_WORDS(image, words, i, v) \
+    else STORE_XYZ(image, i, v)              \
+  }
 void store_output(uint i, vec3 p, vec3 n) {
-  STORE_XYZ(out_position, i, p);
-  STORE_XYZ(out_normal, i, n);
+  STORE_OUTPUT_XYZ(out_position, out_position_words, i, p);
+  STORE_OUTPUT_XYZ(out_normal, out_normal_words, i, n);
 }
 // Steps push a zero origin; a limit written straight into the output the box's centre (as the
 // cpu adds it: after the node is computed).
 void store(uint i, vec3 node) {
   precise vec3 p = node + pc.origin.xyz;
-  if (kToOutput) STORE_XYZ(out_position, i, p)
+  if (kToOutput) STORE_OUTPUT_XYZ(out_position, out_position_words, i, p)
+  else if (kWords) dst_words[i] = as_words(vec4(p, 0.0));
   else imageStore(dst_nodes, int(i), vec4(p, 0.0));
 }
 void store_normal(uint i, vec3 n) {
-  if (kToOutput) STORE_XYZ(out_normal, i, n)
+  if (kToOutput) STORE_OUTPUT_XYZ(out_normal, out_normal_words, i, n)
+  else if (kWords) normal_words[i] = as_words(vec4(n, 0.0));
   else imageStore(normal_nodes, int(i), vec4(n, 0.0));
 }
 // tile.cpp's unit_normals: a zero normal stays zero, without a branch.
