@@ -126,8 +126,8 @@ class VulkanMipghEvaluation final : public Evaluation {
     // covers them; past that, through their texel views. Either way the bits are the same.
     node_words_ = level_bytes_ <= ctx_->limits().max_storage_buffer_range;
     word_range_ = node_words_ ? level_bytes_ : 16;
-    output_words_ = output_bytes_ <= ctx_->limits().max_storage_buffer_range;
-    output_word_range_ = output_words_ ? output_bytes_ : 16;
+    output_vec3_ = output_bytes_ <= ctx_->limits().max_storage_buffer_range;
+    output_vec3_range_ = output_vec3_ ? output_bytes_ : 16;
     uint64_t lod_words_total = 0;
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += level_lod_words(sigma);
     gpu::check_texel_binding(*ctx_, lod_words_total, "the D-LoD's index arrays");
@@ -323,7 +323,7 @@ class VulkanMipghEvaluation final : public Evaluation {
              Binding::StorageTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer,
              Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer},
             sizeof(Push),
-            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}, {4, node_words_}, {5, output_words_}}};
+            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}, {4, node_words_}, {5, output_vec3_}}};
   }
 
   void make_pipelines() {
@@ -350,7 +350,7 @@ class VulkanMipghEvaluation final : public Evaluation {
                      weights_.texels(VK_FORMAT_R32_SFLOAT), positions_.texels(VK_FORMAT_R32_SFLOAT),
                      out_normals_.texels(VK_FORMAT_R32_SFLOAT), normals_.texels(node),
                      level_[1 - k].range(0, word_range_), normals_.range(0, word_range_),
-                     positions_.range(0, output_word_range_), out_normals_.range(0, output_word_range_)});
+                     positions_.range(0, output_vec3_range_), out_normals_.range(0, output_vec3_range_)});
   }
 
   // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma, written
@@ -461,8 +461,8 @@ class VulkanMipghEvaluation final : public Evaluation {
   bool has_quads_ = false, has_triangles_ = false;
   bool node_words_ = true;     // the levels written as 64-bit words (a storage-buffer binding covers them)
   uint64_t word_range_ = 16;   // what bindings 9 and 10 cover
-  bool output_words_ = true;   // and the output (mipgh.glsl, kOutWords)
-  uint64_t output_word_range_ = 16;  // what bindings 11 and 12 cover
+  bool output_vec3_ = true;    // the output written as packed vec3s (mipgh.glsl, kOutVec3)
+  uint64_t output_vec3_range_ = 16;  // what bindings 11 and 12 cover
   uint64_t level_bytes_ = 0, output_bytes_ = 0;
   Tables tables_;
   std::vector<uint32_t> lod_base_, rows_;
@@ -490,6 +490,8 @@ std::optional<std::string> vulkan_unavailable() {
   static const gpu::DeviceInfo device = gpu::probe();
   if (!device.available) return "no Vulkan device: " + device.reason;
   if (!device.features.shader_int64) return device.name + " lacks shaderInt64; the MiPGH passes store 64-bit words";
+  if (!device.features.scalar_block_layout)
+    return device.name + " lacks scalarBlockLayout; the MiPGH limit stores packed vec3s";
   return std::nullopt;  // nine texel and four storage bindings per pass: within Vulkan's minimum limits
 }
 

@@ -30,10 +30,14 @@ layout(constant_id = 4) const bool kWords = true;
 // The pipeline writes the limit straight into the output (bindings 6 and 7, packed xyz), not
 // into a level's buffers: where the limit is the whole output.
 layout(constant_id = 3) const bool kToOutput = false;
-// The output's buffers as 64-bit words too (kOutWords; where one binding covers them).
-layout(std430, binding = 11) restrict writeonly buffer OutPositionWords { uint64_t out_position_words[]; };
-layout(std430, binding = 12) restrict writeonly buffer OutNormalWords { uint64_t out_normal_words[]; };
-layout(constant_id = 5) const bool kOutWords = true;
+// The output's buffers as storage buffers of packed vec3 too (scalar layout, a 12-byte stride;
+// kOutVec3, where one binding covers them): one vec3 lane store a vertex, where three r32f
+// imageStores made 4% more instructions per execute and a 64-bit word and a float 2% more
+// (harness/gpu/README.md).
+#extension GL_EXT_scalar_block_layout : require
+layout(scalar, binding = 11) restrict writeonly buffer OutPositionVec3 { vec3 out_position_vec3[]; };
+layout(scalar, binding = 12) restrict writeonly buffer OutNormalVec3 { vec3 out_normal_vec3[]; };
+layout(constant_id = 5) const bool kOutVec3 = true;
 
 layout(push_constant) uniform Push {
   uint count;        // invocations that do work
@@ -65,36 +69,25 @@ vec3 node(uint i) { return texelFetch(src_nodes, int(i)).xyz; }
     imageStore(image, o_ + 1, vec4((v).y));    \
     imageStore(image, o_ + 2, vec4((v).z));    \
   }
-// Packed xyz at float 3i as one 64-bit word, the two of its floats that share an aligned 8 bytes
-// (x, y for even i; y, z for odd), and the float left over through the r32f view: two lane
-// stores where STORE_XYZ makes three, about half its cost on lavapipe. No branch: the parity
-// picks the halves.
-#define STORE_XYZ_WORDS(image, words, i, v)                                   \
-  {                                                                           \
-    const uint o_ = 3u * (i), odd_ = (i) & 1u;                                \
-    const uvec3 b_ = floatBitsToUint(v);                                      \
-    words[(o_ + odd_) >> 1u] = packUint2x32(odd_ != 0u ? b_.yz : b_.xy);      \
-    imageStore(image, int(o_ + 2u - 2u * odd_), vec4(odd_ != 0u ? (v).x : (v).z)); \
-  }
-#define STORE_OUTPUT_XYZ(image, words, i, v) \
+#define STORE_OUTPUT_XYZ(image, vec3s, i, v) \
   {                                          \
-    if (kOutWords) STORE_XYZ_WORDS(image, words, i, v) \
+    if (kOutVec3) vec3s[i] = (v);            \
     else STORE_XYZ(image, i, v)              \
   }
 void store_output(uint i, vec3 p, vec3 n) {
-  STORE_OUTPUT_XYZ(out_position, out_position_words, i, p);
-  STORE_OUTPUT_XYZ(out_normal, out_normal_words, i, n);
+  STORE_OUTPUT_XYZ(out_position, out_position_vec3, i, p);
+  STORE_OUTPUT_XYZ(out_normal, out_normal_vec3, i, n);
 }
 // Steps push a zero origin; a limit written straight into the output the box's centre (as the
 // cpu adds it: after the node is computed).
 void store(uint i, vec3 node) {
   precise vec3 p = node + pc.origin.xyz;
-  if (kToOutput) STORE_OUTPUT_XYZ(out_position, out_position_words, i, p)
+  if (kToOutput) STORE_OUTPUT_XYZ(out_position, out_position_vec3, i, p)
   else if (kWords) dst_words[i] = as_words(vec4(p, 0.0));
   else imageStore(dst_nodes, int(i), vec4(p, 0.0));
 }
 void store_normal(uint i, vec3 n) {
-  if (kToOutput) STORE_OUTPUT_XYZ(out_normal, out_normal_words, i, n)
+  if (kToOutput) STORE_OUTPUT_XYZ(out_normal, out_normal_vec3, i, n)
   else if (kWords) normal_words[i] = as_words(vec4(n, 0.0));
   else imageStore(normal_nodes, int(i), vec4(n, 0.0));
 }
