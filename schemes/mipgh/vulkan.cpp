@@ -66,11 +66,15 @@ class Tables {
   }
 };
 
-// facets.comp's tables: blocks of up to four targets in a D-facet's interior, each block as its
-// node (a << 16 | b) and the four targets' offsets in the interior (the CPU's order, kNoTarget
-// where a target is not in it). Every interior target is in exactly one block.
+// facets.comp's blocks: a step's, kStepNodes nodes of level sigma side by side, (a, b) ..
+// (a, b + kStepNodes - 1), and the four targets each owns at sigma + 1; the limit's, 2 x
+// kLimitColumns interior nodes from (a, b). Per block: (a << 16 | b), then the targets' offsets in
+// the interior (the CPU's order per node, kNoTarget where a target is not in it). Every interior
+// target is in exactly one block. Wider blocks share more of their window: a step's 2 nodes read
+// 3 x 4 nodes for 8 targets (9 for 4 apart), the limit's 2 x 4 read 4 x 6 (16 for 2 x 2).
 constexpr uint32_t kNoTarget = 0xffffffffu;
-constexpr size_t kBlockWords = 5;
+constexpr int kStepNodes = 2, kLimitColumns = 4;  // facets.comp's constants of the same names
+constexpr size_t kStepBlockWords = 1 + 4 * kStepNodes, kLimitBlockWords = 1 + 2 * kLimitColumns;
 
 // Offset of node (r, c), 1-based, in an interior `width` nodes wide (triangles: row r is
 // width - r long), or kNoTarget outside it.
@@ -81,21 +85,31 @@ uint32_t interior_offset(int width, bool quad, int r, int c) {
   return uint32_t(before + size_t(c - 1));
 }
 
-// `limit` = false: a step's, per node (a, b) at level sigma, its targets (2a, 2b), (2a, 2b + 1),
-// (2a + 1, 2b), (2a + 1, 2b + 1) of the interior at sigma + 1 (the nodes it owns: (r >> 1, c >> 1)).
-// `limit` = true: the projection's, per node (a, b), a and b odd, the interior nodes (a, b),
-// (a, b + 1), (a + 1, b), (a + 1, b + 1) at sigma.
+// `limit` = false: a step's, per node (a, b + m) at level sigma, its targets (2a, 2b'),
+// (2a, 2b' + 1), (2a + 1, 2b'), (2a + 1, 2b' + 1) of the interior at sigma + 1, b' = b + m (the
+// nodes it owns: (r >> 1, c >> 1)). `limit` = true: the projection's, per node (a, b), a odd and
+// b = 1 + kLimitColumns k, the interior nodes (a + i, b + j) at sigma, i in 0..1, j in
+// 0..kLimitColumns - 1, row by row.
 std::vector<uint32_t> facet_blocks(int n, bool quad, bool limit) {
-  const int width = limit ? n - 2 : 2 * n - 3, scale = limit ? 1 : 2, first = limit ? 1 : 0, step = limit ? 2 : 1;
-  std::vector<uint32_t> table;
-  for (int a = first; a < n; a += step)
-    for (int b = first; b < n; b += step) {
-      const int r = scale * a, c = scale * b;
-      const uint32_t targets[4] = {interior_offset(width, quad, r, c), interior_offset(width, quad, r, c + 1),
-                                   interior_offset(width, quad, r + 1, c), interior_offset(width, quad, r + 1, c + 1)};
-      if (std::all_of(targets, targets + 4, [](uint32_t t) { return t == kNoTarget; })) continue;
+  const int width = limit ? n - 2 : 2 * n - 3, first = limit ? 1 : 0;
+  const int row_step = limit ? 2 : 1, column_step = limit ? kLimitColumns : kStepNodes;
+  std::vector<uint32_t> table, targets;
+  for (int a = first; a < n; a += row_step)
+    for (int b = first; b < n; b += column_step) {
+      targets.clear();
+      if (limit) {
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < kLimitColumns; ++j) targets.push_back(interior_offset(width, quad, a + i, b + j));
+      } else {
+        for (int m = 0; m < kStepNodes; ++m) {
+          const int r = 2 * a, c = 2 * (b + m);
+          targets.insert(targets.end(), {interior_offset(width, quad, r, c), interior_offset(width, quad, r, c + 1),
+                                         interior_offset(width, quad, r + 1, c), interior_offset(width, quad, r + 1, c + 1)});
+        }
+      }
+      if (std::all_of(targets.begin(), targets.end(), [](uint32_t t) { return t == kNoTarget; })) continue;
       table.push_back(uint32_t(a) << 16 | uint32_t(b));
-      table.insert(table.end(), targets, targets + 4);
+      table.insert(table.end(), targets.begin(), targets.end());
     }
   return table;
 }
@@ -247,7 +261,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       if (quad ? has_quads_ : has_triangles_) {
         const int n = m_.lod.layout(sigma).n;
         const std::vector<uint32_t> t = facet_blocks(n, quad, limit);
-        l.facet_table[quad] = {tables_.add(t), uint32_t(t.size() / kBlockWords)};
+        l.facet_table[quad] = {tables_.add(t), uint32_t(t.size() / (limit ? kLimitBlockWords : kStepBlockWords))};
       }
     add_facet_lists(sigma, limit, facets, l);
     add_fast_edges(sigma, limit, edges, l);

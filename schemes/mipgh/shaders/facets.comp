@@ -1,16 +1,16 @@
 #version 450
 // The D-facet visit of a step, or the limit projection of the D-facets' interiors; all D-facets of
-// one pass are of one kind. One invocation per block of up to four targets of a D-facet's interior
+// one pass are of one kind. One invocation per block of targets of a D-facet's interior
 // (vulkan.cpp, facet_blocks), whose stencils lie in one window of nodes, fetched once (a D-LoD
 // index and a node each):
-// - a step: node (a, b) at level sigma and the targets it owns at sigma + 1, the vertex point
-//   (2a, 2b), the edge points (2a, 2b + 1) and (2a + 1, 2b), the facet or diagonal point
-//   (2a + 1, 2b + 1): the 3 x 3 nodes around (a, b), where an invocation per target fetched 4 to 9
-//   nodes for one;
-// - the limit: nodes (a, b) .. (a + 1, b + 1): the 4 x 4 nodes around them, where an invocation
-//   per node fetched 9 (quads) or 7 (triangles).
+// - a step: nodes (a, b) and (a, b + 1) at level sigma and the targets each owns at sigma + 1,
+//   the vertex point (2a, 2b), the edge points (2a, 2b + 1) and (2a + 1, 2b), the facet or
+//   diagonal point (2a + 1, 2b + 1): the 3 x 4 nodes around them, where an invocation per target
+//   fetched 4 to 9 nodes for one and one per node 9 for four;
+// - the limit: nodes (a, b) .. (a + 1, b + 3): the 4 x 6 nodes around them, where an invocation
+//   per node fetched 9 (quads) or 7 (triangles) and one per 2 x 2 nodes 16.
 // And one dispatch per kind, not one per class of target. The table holds per block (a << 16 | b)
-// and its four targets' offsets in the interior (kNoTarget where a target is outside it).
+// and its targets' offsets in the interior (kNoTarget where a target is outside it).
 //
 // Each target's sum is the CPU's (tile.cpp), in its order.
 #extension GL_EXT_control_flow_attributes : require
@@ -20,6 +20,8 @@ layout(constant_id = 1) const bool kQuad = true;
 layout(constant_id = 2) const uint kClass = 0u;  // 0: a step, 1: the limit
 const uint kLimit = 1u;
 const uint kNoTarget = 0xffffffffu;  // vulkan.cpp's kNoTarget
+const int kStepNodes = 2, kLimitColumns = 4;  // vulkan.cpp's: a block's nodes (a step) or columns (the limit)
+const uint kTargets = kClass == kLimit ? uint(2 * kLimitColumns) : uint(4 * kStepNodes);
 
 uint g_base;
 // Node (i, j) of the D-facet at level sigma; (i, j) clamped into the D-facet's array, for the
@@ -33,14 +35,15 @@ vec3 P(int i, int j) {
   return node(texelFetch(lod, int(g_base + at)).x);
 }
 
-// The window around the block's node (a, b): W(da, db) is node (a + da, b + db), da, db in -1..1
-// (a step) or -1..2 (the limit).
-vec3 g_window[4][4];
-vec3 W(int da, int db) { return g_window[da + 1][db + 1]; }
+// The window around the block's node (a, b): W(da, db) is node (a + da, b + db), da in -1..1
+// and db in -1..kStepNodes (a step), or da in -1..2 and db in -1..kLimitColumns (the limit).
+vec3 g_window[4][kLimitColumns + 2];
+vec3 g_node_window(int da, int db) { return g_window[da + 1][db + 1]; }
 
-// A step's four targets of block (a, b) in the order of its table: vertex point, edge point
-// towards b + 1, edge point towards a + 1, facet (quads) or diagonal (triangles) point.
-vec3 step_target(uint c) {
+// A step's four targets of the block's node (a, b + m) in the order of its table: vertex point,
+// edge point towards b + 1, edge point towards a + 1, facet (quads) or diagonal (triangles) point.
+vec3 step_target(uint c, int m) {
+#define W(da, db) g_node_window(da, (db) + m)
   precise vec3 p;
   if (kQuad) {
     if (c == 0u) {
@@ -66,7 +69,9 @@ vec3 step_target(uint c) {
     }
   }
   return p;
+#undef W
 }
+#define W(da, db) g_node_window(da, db)
 
 // The limit at node (a + da, b + db) of the block, da, db in 0..1, into `target`.
 void limit_target(int da, int db, uint target) {
@@ -96,17 +101,18 @@ void main() {
   const bool listed = pc.facet_list != 0u;  // D-facets of both kinds: where each one's array and interior are
   const uint first = listed ? word(pc.facet_list + 2u * f + 1u) : pc.dst_base + f * pc.interior;
   g_base = pc.lod_base + (listed ? word(pc.facet_list + 2u * f) : f * pc.facet_nodes);
-  const uint ab = word(pc.table + 5u * k);
+  const uint block = pc.table + (1u + kTargets) * k;
+  const uint ab = word(block);
   const int a = int(ab >> 16u), b = int(ab & 0xffffu);
-  const int reach = kClass == kLimit ? 2 : 1;
-  [[unroll]] for (int da = -1; da <= reach; ++da)
-    [[unroll]] for (int db = -1; db <= reach; ++db) g_window[da + 1][db + 1] = P(a + da, b + db);
-  [[unroll]] for (uint c = 0u; c < 4u; ++c) {
-    const uint offset = word(pc.table + 5u * k + 1u + c);
+  const int rows = kClass == kLimit ? 2 : 1, columns = kClass == kLimit ? kLimitColumns : kStepNodes;
+  [[unroll]] for (int da = -1; da <= rows; ++da)
+    [[unroll]] for (int db = -1; db <= columns; ++db) g_window[da + 1][db + 1] = P(a + da, b + db);
+  [[unroll]] for (uint c = 0u; c < kTargets; ++c) {
+    const uint offset = word(block + 1u + c);
     if (kClass == kLimit) {
-      if (offset != kNoTarget) limit_target(int(c >> 1u), int(c & 1u), first + offset);
+      if (offset != kNoTarget) limit_target(int(c) / kLimitColumns, int(c) % kLimitColumns, first + offset);
     } else {
-      const vec3 p = step_target(c);
+      const vec3 p = step_target(c & 3u, int(c >> 2u));
       if (offset != kNoTarget) store(first + offset, p);
     }
   }
