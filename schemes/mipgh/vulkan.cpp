@@ -34,6 +34,8 @@ constexpr uint32_t kFacetClasses = 2, kFacetStep = 0, kFacetLimit = 1;
 // edges.comp's parts: a step's (edge point t and vertex point t + 1 per invocation) and the
 // limit's (nodes t, t + 1).
 constexpr uint32_t kEdgeParts = 2, kEdgeStep = 0, kEdgeLimit = 1;
+// edges.comp's kPairs: pairs of targets per invocation.
+constexpr uint32_t kEdgePairs = 2;
 
 // One dispatch: the pipeline, its push constants, and its descriptor set (reads level buffer 0 or
 // 1 and writes the other, or, where the pipeline writes the output, the output).
@@ -399,9 +401,9 @@ class VulkanMipghEvaluation final : public Evaluation {
       if (l.num_fast_edges[quad] > 0) {
         Push p = base;
         p.table = l.fast_edges[quad];
-        // Pairs along the edge: edge points 0 .. n - 2 (each with the vertex point after it), or
-        // the limit's inner nodes 1 .. n - 2 two by two.
-        p.per_item = limit ? (src.n - 1) / 2 : src.n - 1;
+        // kEdgePairs pairs along the edge: edge points 0 .. n - 2 (each with the vertex point
+        // after it), or the limit's inner nodes 1 .. n - 2, 2 kEdgePairs at a time.
+        p.per_item = limit ? (src.n - 2 + 2 * kEdgePairs - 1) / (2 * kEdgePairs) : (src.n - 1 + kEdgePairs - 1) / kEdgePairs;
         p.count = checked_u32(size_t(l.num_fast_edges[quad]) * p.per_item, "a D-edge pass");
         pass.dispatches.push_back({to_output ? &*edges_out_[quad] : &*edges_[quad][limit ? kEdgeLimit : kEdgeStep], p, reads});
       }

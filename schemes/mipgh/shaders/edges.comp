@@ -5,11 +5,13 @@
 // holds per fast D-edge: its first node at the target level, the major D-facet and its side kind,
 // the minor's.
 //
-// One invocation per pair of targets along the edge, whose stencils share the strip's nodes:
+// One invocation per kPairs pairs of targets along the edge, whose stencils share the strip's
+// nodes:
 // - a step: edge point t and vertex point t + 1 (t = 0 .. n - 2; the last edge point has none),
-//   from the strip's nodes t .. t + 2: 9 node gathers where the two apart took 15;
-// - the limit: nodes t and t + 1 (t = 1, 3, ..; the last may be alone), from t - 1 .. t + 2: 12
-//   where two apart took 18.
+//   two pairs from the strip's nodes t .. t + 3: 12 node gathers where a pair apart took 9 and
+//   a target apart 4 to 9;
+// - the limit: nodes t .. t + 3 (t = 1, 5, ..; the last may be short), from t - 1 .. t + 4: 18
+//   where two pairs apart took 24 and four nodes apart 36.
 // Each target's sum is the CPU's, in its order.
 #extension GL_EXT_control_flow_attributes : require
 #include "mipgh.glsl"
@@ -26,9 +28,12 @@ vec3 A(int t) { return node(texelFetch(lod, int(g_major + word(g_on + uint(clamp
 vec3 B(int t) { return node(texelFetch(lod, int(g_major + word(g_in + uint(clamp(t, 0, int(g_last)))))).x); }
 vec3 C(int t) { return node(texelFetch(lod, int(g_minor + word(g_across + g_last - uint(clamp(t, 0, int(g_last)))))).x); }
 
-// The strip's nodes t0 - 1 .. t0 + 2, fetched once: a_(d) is A(t0 + d), d in -1..2, and so on
-// (d is a constant wherever it is used: no array is indexed at run time).
-vec3 g_a[4], g_b[4], g_c[4];
+// Pairs of targets per invocation (vulkan.cpp's kEdgePairs): a step's edge points t0 .. t0 +
+// kPairs - 1 with the vertex point after each, or the limit's nodes t0 .. t0 + 2 kPairs - 1.
+const int kPairs = 2;
+// The strip's nodes t0 - 1 .. t0 + 2 kPairs, fetched once: a_(d) is A(t0 + d), and so on (d is a
+// constant wherever it is used: no array is indexed at run time).
+vec3 g_a[2 * kPairs + 2], g_b[2 * kPairs + 2], g_c[2 * kPairs + 2];
 vec3 a_(int d) { return g_a[d + 1]; }
 vec3 b_(int d) { return g_b[d + 1]; }
 vec3 c_(int d) { return g_c[d + 1]; }
@@ -83,20 +88,24 @@ void main() {
   g_on = row(word(at + 2u), 0u), g_in = row(word(at + 2u), 1u), g_across = row(word(at + 4u), 1u);
   g_last = kQuad ? pc.n - 1u : pc.n - 2u;
   const uint edge = word(at);  // the D-edge's first node at the target level
-  // A step's pair: edge point t, vertex point t + 1 (reads t .. t + 2); the limit's: t, t + 1
-  // (reads t - 1 .. t + 2).
-  const int t0 = kPart == kStep ? int(k) : 1 + 2 * int(k);
-  const int lowest = kPart == kStep ? 0 : -1;
-  [[unroll]] for (int d = lowest; d <= 2; ++d) {
+  // A step's pairs: edge point t, vertex point t + 1 (reads t .. t + 2), t = t0 .. t0 + kPairs - 1;
+  // the limit's nodes t0 .. t0 + 2 kPairs - 1 (reads t0 - 1 .. t0 + 2 kPairs). Edge points are
+  // 0 .. n - 2, vertex points and limit nodes 1 .. n - 2: the ones past them are not stored.
+  const int t0 = kPart == kStep ? kPairs * int(k) : 1 + 2 * kPairs * int(k);
+  const int lowest = kPart == kStep ? 0 : -1, highest = kPart == kStep ? kPairs + 1 : 2 * kPairs;
+  [[unroll]] for (int d = lowest; d <= highest; ++d) {
     g_a[d + 1] = A(t0 + d), g_b[d + 1] = B(t0 + d), g_c[d + 1] = C(t0 + d);
   }
-  const bool second = t0 + 1 <= int(pc.n) - 2;  // vertex points and limit nodes: 1 .. n - 2
+  const int last = int(pc.n) - 2;
   if (kPart == kStep) {
-    const vec3 e = edge_point(0), v = vertex_point(1);
-    store(edge + 2u * uint(t0), e);
-    if (second) store(edge + 2u * uint(t0) + 1u, v);
+    [[unroll]] for (int m = 0; m < kPairs; ++m) {
+      const vec3 e = edge_point(m), v = vertex_point(m + 1);
+      const uint o = edge + 2u * uint(t0 + m);
+      if (t0 + m <= last) store(o, e);
+      if (t0 + m + 1 <= last) store(o + 1u, v);
+    }
     return;
   }
-  limit_node(0, edge + uint(t0) - 1u);
-  if (second) limit_node(1, edge + uint(t0));
+  [[unroll]] for (int j = 0; j < 2 * kPairs; ++j)
+    if (t0 + j <= last) limit_node(j, edge + uint(t0 + j) - 1u);
 }
