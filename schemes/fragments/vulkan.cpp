@@ -178,14 +178,14 @@ class VulkanFragmentEvaluation final : public Evaluation {
     if (output > std::min(ctx_->limits().max_memory_allocation_size, ctx_->limits().max_buffer_size))
       throw gpu::Unsupported("the output's " + gpu::gib_text(output) + " of positions exceed one buffer on " +
                              ctx_->info().name);
-    make_buffers(tables, scratch, output);
+    push_.levels = tables.levels;
+    push_.header_words = tables.header_words;
+    make_buffers(std::move(tables), scratch, output);
     make_pipelines((rule == SubdivisionRule::CatmullClark ? kCatmark : 0) | (project ? kProject : 0));
     surface_.describe(out_);
     if (options.render_width > 0) make_renderer(options);
     const Bounds box = bounds_of(control_);
     for (int k = 0; k < 3; ++k) push_.origin[k] = static_cast<float>(box.centre(k));
-    push_.levels = tables.levels;
-    push_.header_words = tables.header_words;
     record_frame();
     readback_.emplace(*ctx_, positions_, normals_, output);
     out_.positions.resize(surface_.num_output_vertices);
@@ -227,18 +227,18 @@ class VulkanFragmentEvaluation final : public Evaluation {
   }
 
  private:
-  void make_buffers(const DeviceTables& tables, uint64_t scratch, uint64_t output) {
+  // Takes the tables: their words go to the device as they are, not copied.
+  void make_buffers(DeviceTables tables, uint64_t scratch, uint64_t output) {
     gpu::Context& c = *ctx_;
     std::vector<uint32_t> batch_words;
     for (size_t i = 0; i < batches_.size(); ++i) {
       const FragmentSurface::Batch& b = batches_[i];
       batch_words.insert(batch_words.end(), {0u, b.begin, b.count, plan_.scratch_offset[i]});
     }
-    std::vector<uint32_t> words = tables.words;
-    words.resize((words.size() + 3) / 4 * 4, 0);  // whole uvec4 texels for the rules' view
-    tables_ = gpu::texel_table(c, std::move(words), "fragments' pattern tables");
+    tables.words.resize((tables.words.size() + 3) / 4 * 4, 0);  // whole uvec4 texels for the rules' view
+    tables_ = gpu::texel_table(c, std::move(tables.words), "fragments' pattern tables");
     batches_buffer_ = gpu::storage_table(c, batch_words, "fragments' batches");
-    fragments_ = gpu::texel_table(c, tables.fragments, "fragment list");
+    fragments_ = gpu::texel_table(c, std::move(tables.fragments), "fragment list");
     const uint64_t control_bytes = std::max<uint64_t>(control_.size() * sizeof(Point3), 16);
     control_staging_ = gpu::Buffer::upload(c, control_bytes, "control points (staging)");
     control_buffer_ = gpu::Buffer::device(c, control_bytes, BufferUsage::UniformTexel, "control points");

@@ -141,9 +141,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     // Levels are written as 64-bit words (mipgh.glsl, kWords) where one storage-buffer binding
     // covers them; past that, through their texel views. Either way the bits are the same.
     node_words_ = level_bytes_ <= ctx_->limits().max_storage_buffer_range;
-    word_range_ = node_words_ ? level_bytes_ : 16;
     output_vec3_ = output_bytes_ <= ctx_->limits().max_storage_buffer_range;
-    output_vec3_range_ = output_vec3_ ? output_bytes_ : 16;
     uint64_t lod_words_total = 0;
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += level_lod_words(sigma);
     gpu::check_texel_binding(*ctx_, lod_words_total, "the D-LoD's index arrays");
@@ -359,14 +357,17 @@ class VulkanMipghEvaluation final : public Evaluation {
     output_ = gpu::shared_compute_pipeline(*ctx_, desc("output.comp", m_.project(), 0));
     // Set k reads level buffer k and writes the other (or, a kToOutput pipeline, the output).
     constexpr VkFormat node = VK_FORMAT_R32G32B32A32_SFLOAT;
+    // Bindings 9 to 12 (mipgh.glsl): the whole buffer where the pipelines store through them, a
+    // token 16 bytes where they do not (past the storage-buffer range).
+    const uint64_t level_range = node_words_ ? level_bytes_ : 16, output_range = output_vec3_ ? output_bytes_ : 16;
     for (int k = 0; k < 2; ++k)
       sets_[k] = gpu::DescriptorSet(
           *output_, {level_[k].texels(node), level_[1 - k].texels(node), normals_.texels(node),
                      lod_.texels(VK_FORMAT_R32_UINT), words_.texels(VK_FORMAT_R32_UINT),
                      weights_.texels(VK_FORMAT_R32_SFLOAT), positions_.texels(VK_FORMAT_R32_SFLOAT),
                      out_normals_.texels(VK_FORMAT_R32_SFLOAT), normals_.texels(node),
-                     level_[1 - k].range(0, word_range_), normals_.range(0, word_range_),
-                     positions_.range(0, output_vec3_range_), out_normals_.range(0, output_vec3_range_)});
+                     level_[1 - k].range(0, level_range), normals_.range(0, level_range), positions_.range(0, output_range),
+                     out_normals_.range(0, output_range)});
   }
 
   // Level sigma's passes: a step to sigma + 1, or (limit) the projection at sigma, written
@@ -475,10 +476,8 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::vector<Point3> control_;
   MeshMutation m_;
   bool has_quads_ = false, has_triangles_ = false;
-  bool node_words_ = true;     // the levels written as 64-bit words (a storage-buffer binding covers them)
-  uint64_t word_range_ = 16;   // what bindings 9 and 10 cover
-  bool output_vec3_ = true;    // the output written as packed vec3s (mipgh.glsl, kOutVec3)
-  uint64_t output_vec3_range_ = 16;  // what bindings 11 and 12 cover
+  bool node_words_ = true;   // the levels written as 64-bit words (a storage-buffer binding covers them)
+  bool output_vec3_ = true;  // the output written as packed vec3s (mipgh.glsl, kOutVec3)
   uint64_t level_bytes_ = 0, output_bytes_ = 0;
   Tables tables_;
   std::vector<uint32_t> lod_base_, rows_;
