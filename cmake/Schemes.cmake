@@ -47,6 +47,15 @@ endfunction()
 
 function(sdb_add_scheme_test name family)
   cmake_parse_arguments(T "" "" "SOURCES;LIBS;PROPERTIES" ${ARGN})
+  # The conformance suite's cases run as one ctest test (sdb_add_test's BATCHED) where a source
+  # instantiates it.
+  set(batched "")
+  foreach(source ${T_SOURCES})
+    file(READ ${source} text)
+    if(text MATCHES "SDB_CONFORMANCE_SUITE")
+      set(batched BATCHED "Conformance/*")
+    endif()
+  endforeach()
   sdb_add_test(${name} SOURCES ${T_SOURCES} LIBS sdb_scheme_${family}_registered sdb_conformance ${T_LIBS}
-               PROPERTIES ${T_PROPERTIES})
+               PROPERTIES ${T_PROPERTIES} ${batched})
 endfunction()

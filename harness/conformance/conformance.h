@@ -17,6 +17,9 @@
 // an InputError (exit code 2 at the command line), never another exception; a level below every
 // sensible one (-1) is declined with a reason, not run.
 // Vulkan cases run on the tests' shared context with validation on, and skip without a device.
+// ctest runs an executable's cases as one test, `<executable>.Conformance`, in one process (the
+// reference and the Vulkan pipelines are made once); one case alone: the executable with
+// --gtest_filter='Conformance/SchemeConformance.*/<scheme>_<backend>_<mesh>_<level>'.
 #pragma once
 
 #include <gtest/gtest.h>
