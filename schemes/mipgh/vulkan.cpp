@@ -70,13 +70,14 @@ class Tables {
 
 // facets.comp's blocks: a step's, kStepNodes nodes of level sigma side by side, (a, b) ..
 // (a, b + kStepNodes - 1), and the four targets each owns at sigma + 1; the limit's, 2 x
-// kLimitColumns interior nodes from (a, b). Per block: (a << 16 | b), then the targets' offsets in
-// the interior (the CPU's order per node, kNoTarget where a target is not in it). Every interior
-// target is in exactly one block. Wider blocks share more of their window: a step's 2 nodes read
-// 3 x 4 nodes for 8 targets (9 for 4 apart), the limit's 2 x 4 read 4 x 6 (16 for 2 x 2).
+// kLimitColumns interior nodes from (a, b). Per block one word, (a << 16 | b): the shader works out
+// its targets' offsets in the interior (interior_offset, the same in facets.comp; none where a
+// target is outside it), which 8 words a block read from the table had cost 8 gathers an
+// invocation. Every interior target is in exactly one block. Wider blocks share more of their
+// window: a step's 2 nodes read 3 x 4 nodes for 8 targets (9 for 4 apart), the limit's 2 x 4 read
+// 4 x 6 (16 for 2 x 2).
 constexpr uint32_t kNoTarget = 0xffffffffu;
 constexpr int kStepNodes = 2, kLimitColumns = 4;  // facets.comp's constants of the same names
-constexpr size_t kStepBlockWords = 1 + 4 * kStepNodes, kLimitBlockWords = 1 + 2 * kLimitColumns;
 
 // Offset of node (r, c), 1-based, in an interior `width` nodes wide (triangles: row r is
 // width - r long), or kNoTarget outside it.
@@ -91,27 +92,24 @@ uint32_t interior_offset(int width, bool quad, int r, int c) {
 // (2a, 2b' + 1), (2a + 1, 2b'), (2a + 1, 2b' + 1) of the interior at sigma + 1, b' = b + m (the
 // nodes it owns: (r >> 1, c >> 1)). `limit` = true: the projection's, per node (a, b), a odd and
 // b = 1 + kLimitColumns k, the interior nodes (a + i, b + j) at sigma, i in 0..1, j in
-// 0..kLimitColumns - 1, row by row.
+// 0..kLimitColumns - 1, row by row. The blocks with a target in the interior.
 std::vector<uint32_t> facet_blocks(int n, bool quad, bool limit) {
   const int width = limit ? n - 2 : 2 * n - 3, first = limit ? 1 : 0;
   const int row_step = limit ? 2 : 1, column_step = limit ? kLimitColumns : kStepNodes;
-  std::vector<uint32_t> table, targets;
+  std::vector<uint32_t> table;
   for (int a = first; a < n; a += row_step)
     for (int b = first; b < n; b += column_step) {
-      targets.clear();
+      bool any = false;
       if (limit) {
         for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < kLimitColumns; ++j) targets.push_back(interior_offset(width, quad, a + i, b + j));
+          for (int j = 0; j < kLimitColumns; ++j) any = any || interior_offset(width, quad, a + i, b + j) != kNoTarget;
       } else {
-        for (int m = 0; m < kStepNodes; ++m) {
-          const int r = 2 * a, c = 2 * (b + m);
-          targets.insert(targets.end(), {interior_offset(width, quad, r, c), interior_offset(width, quad, r, c + 1),
-                                         interior_offset(width, quad, r + 1, c), interior_offset(width, quad, r + 1, c + 1)});
-        }
+        for (int m = 0; m < kStepNodes; ++m)
+          for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j)
+              any = any || interior_offset(width, quad, 2 * a + i, 2 * (b + m) + j) != kNoTarget;
       }
-      if (std::all_of(targets.begin(), targets.end(), [](uint32_t t) { return t == kNoTarget; })) continue;
-      table.push_back(uint32_t(a) << 16 | uint32_t(b));
-      table.insert(table.end(), targets.begin(), targets.end());
+      if (any) table.push_back(uint32_t(a) << 16 | uint32_t(b));
     }
   return table;
 }
@@ -261,7 +259,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       if (quad ? has_quads_ : has_triangles_) {
         const int n = m_.lod.layout(sigma).n;
         const std::vector<uint32_t> t = facet_blocks(n, quad, limit);
-        l.facet_table[quad] = {tables_.add(t), uint32_t(t.size() / (limit ? kLimitBlockWords : kStepBlockWords))};
+        l.facet_table[quad] = {tables_.add(t), uint32_t(t.size())};
       }
     add_facet_lists(sigma, limit, facets, l);
     add_fast_edges(sigma, limit, edges, l);

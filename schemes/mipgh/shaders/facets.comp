@@ -9,8 +9,9 @@
 //   fetched 4 to 9 nodes for one and one per node 9 for four;
 // - the limit: nodes (a, b) .. (a + 1, b + 3): the 4 x 6 nodes around them, where an invocation
 //   per node fetched 9 (quads) or 7 (triangles) and one per 2 x 2 nodes 16.
-// And one dispatch per kind, not one per class of target. The table holds per block (a << 16 | b)
-// and its targets' offsets in the interior (kNoTarget where a target is outside it).
+// And one dispatch per kind, not one per class of target. The table holds per block (a << 16 | b);
+// its targets' offsets in the interior are worked out here (interior_offset; kNoTarget where a
+// target is outside it).
 //
 // Each target's sum is the CPU's (tile.cpp), in its order.
 #extension GL_EXT_control_flow_attributes : require
@@ -24,6 +25,15 @@ const int kStepNodes = 2, kLimitColumns = 4;  // vulkan.cpp's: a block's nodes (
 const uint kTargets = kClass == kLimit ? uint(2 * kLimitColumns) : uint(4 * kStepNodes);
 
 uint g_base;
+// vulkan.cpp's interior_offset: node (r, c), 1-based, of an interior `width` nodes wide (triangles:
+// row r is width - r long), or kNoTarget outside it.
+uint interior_offset(int width, int r, int c) {
+  const int row_width = kQuad ? width : width - r;
+  if (r < 1 || r > width || c < 1 || c > row_width) return kNoTarget;
+  const int before = kQuad ? (r - 1) * width : (r - 1) * width - ((r - 1) * r) / 2;
+  return uint(before + c - 1);
+}
+
 // Node (i, j) of the D-facet at level sigma; (i, j) clamped into the D-facet's array, for the
 // window's nodes past its edge that only targets outside the interior would read.
 vec3 P(int i, int j) {
@@ -101,18 +111,22 @@ void main() {
   const bool listed = pc.facet_list != 0u;  // D-facets of both kinds: where each one's array and interior are
   const uint first = listed ? word(pc.facet_list + 2u * f + 1u) : pc.dst_base + f * pc.interior;
   g_base = pc.lod_base + (listed ? word(pc.facet_list + 2u * f) : f * pc.facet_nodes);
-  const uint block = pc.table + (1u + kTargets) * k;
-  const uint ab = word(block);
+  const uint ab = word(pc.table + k);
   const int a = int(ab >> 16u), b = int(ab & 0xffffu);
   const int rows = kClass == kLimit ? 2 : 1, columns = kClass == kLimit ? kLimitColumns : kStepNodes;
   [[unroll]] for (int da = -1; da <= rows; ++da)
     [[unroll]] for (int db = -1; db <= columns; ++db) g_window[da + 1][db + 1] = P(a + da, b + db);
+  // The interior at the targets' level: level sigma's less its border (the limit), or sigma + 1's.
+  const int width = kClass == kLimit ? int(pc.n) - 2 : 2 * int(pc.n) - 3;
   [[unroll]] for (uint c = 0u; c < kTargets; ++c) {
-    const uint offset = word(block + 1u + c);
     if (kClass == kLimit) {
-      if (offset != kNoTarget) limit_target(int(c) / kLimitColumns, int(c) % kLimitColumns, first + offset);
+      const int i = int(c) / kLimitColumns, j = int(c) % kLimitColumns;
+      const uint offset = interior_offset(width, a + i, b + j);
+      if (offset != kNoTarget) limit_target(i, j, first + offset);
     } else {
-      const vec3 p = step_target(c & 3u, int(c >> 2u));
+      const int m = int(c >> 2u), i = int(c & 3u) >> 1, j = int(c & 1u);
+      const uint offset = interior_offset(width, 2 * a + i, 2 * (b + m) + j);
+      const vec3 p = step_target(c & 3u, m);
       if (offset != kNoTarget) store(first + offset, p);
     }
   }
