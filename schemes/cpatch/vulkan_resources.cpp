@@ -45,17 +45,12 @@ EvaluateRuns evaluate_runs(const CpatchTopology& t, const gpu::ChunkPlan& plan, 
   for (size_t k = 0; k < plan.chunks.size(); ++k) {
     const uint64_t first = plan.chunks[k].first_element / samples_per_quad;
     const uint64_t end = first + plan.chunks[k].elements / samples_per_quad;
-    // Bicubic quads by the parity of their first output index in the chunk (where N^2 is odd,
-    // every other quad's); c-patch rows store sample by sample.
     for (bool cpatch : {false, true}) {
-      const uint64_t parities = !cpatch && samples_per_quad % 2 ? 2 : 1;
-      for (uint64_t parity = 0; parity < parities; ++parity) {
-        EvaluateRun run{k, cpatch, static_cast<uint32_t>(first), static_cast<uint32_t>(r.lists.size()), 0};
-        for (uint64_t q = first + parity; q < end; q += parities)
-          if ((t.extraordinary_index[q] >= 0) == cpatch) r.lists.push_back(uint32_t(q) << 4 | t.forward_sides[q]);
-        run.count = static_cast<uint32_t>(r.lists.size() - run.list_offset);
-        if (run.count > 0) r.runs.push_back(run);
-      }
+      EvaluateRun run{k, cpatch, static_cast<uint32_t>(first), static_cast<uint32_t>(r.lists.size()), 0};
+      for (uint64_t q = first; q < end; ++q)
+        if ((t.extraordinary_index[q] >= 0) == cpatch) r.lists.push_back(uint32_t(q) << 4 | t.forward_sides[q]);
+      run.count = static_cast<uint32_t>(r.lists.size() - run.list_offset);
+      if (run.count > 0) r.runs.push_back(run);
     }
   }
   return r;

@@ -78,9 +78,10 @@ void bicubic_sample(vec3 column[4], vec3 column_dv[4], vec3 record[kRecordSize],
   if (i == kLast) position = end_p[1], normal = end_n[1];
 }
 
-// The row in pairs of samples (i, i + 1) from the first i whose output index is even. That i is
-// the same in every lane of a dispatch: evaluate_runs() splits the quads by the parity of their
-// first output index (vulkan_resources.h).
+// The row in pairs of samples (i, i + 1) from the first i whose output index is even. Where N^2 is
+// odd that i is 0 in some lanes and 1 in others (neighbouring quads' rows start at alternating
+// parities), but both make the same number of pairs: only the lone first or last sample's store
+// is masked per lane.
 void bicubic_row(PatchControl c, vec3 record[kRecordSize], uint forward_sides, int j, int first) {
   vec3 column[4], column_dv[4];
   bicubic_columns(c, j, column, column_dv);
