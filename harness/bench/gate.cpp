@@ -96,7 +96,9 @@ std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file, 
 }  // namespace
 
 bool GateReport::failed() const {
-  return !problems.empty() || std::any_of(entries.begin(), entries.end(), [](const GateEntry& e) { return e.regression; });
+  if (!problems.empty()) return true;
+  return other_machine.empty() &&
+         std::any_of(entries.begin(), entries.end(), [](const GateEntry& e) { return e.regression; });
 }
 
 namespace {
@@ -168,8 +170,21 @@ GateConfig read_gate_config(const std::string& path) {
   return c;
 }
 
+namespace {
+
+// Empty where both files name the same processor and core count (or either names none).
+std::string other_machine(const MachineInfo& baseline, const MachineInfo& current) {
+  if (baseline.cpu_model.empty() || current.cpu_model.empty()) return "";
+  if (baseline.cpu_model == current.cpu_model && baseline.cores == current.cores) return "";
+  return "the baseline was recorded on " + baseline.cpu_model + " (" + std::to_string(baseline.cores) +
+         " cores), this run is on " + current.cpu_model + " (" + std::to_string(current.cores) + " cores)";
+}
+
+}  // namespace
+
 GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, const GateConfig& config) {
   GateReport report;
+  report.other_machine = other_machine(baseline.machine, current.machine);
   std::map<std::string, const RunRow*> base;
   for (const RunRow& r : baseline.runs)
     if (r.status == RunStatus::Ok) base[r.name()] = &r;

@@ -1,5 +1,6 @@
 // How the gate judges a Vulkan row (gate.h): by its kernel timestamps, over its peer on the peer's
-// backend in the same round, or (ci/gate.json's normalisers) over its own cpu-mt row; nothing timed.
+// backend in the same round, or (ci/gate.json's normalisers) over its own cpu-mt row; and what it
+// enforces against a baseline from another machine. Nothing timed.
 #include <gtest/gtest.h>
 
 #include "harness/bench/gate.h"
@@ -89,4 +90,28 @@ TEST(GateVulkanRows, ANormaliserNamesTheRowsOwnCpuMtRun) {
   const GateReport none = run_gate(run(around(5.0), around(2.0)), missing, config);
   ASSERT_EQ(none.problems.size(), 1u);
   EXPECT_NE(none.problems[0].find("its own row on cpu-mt"), std::string::npos) << none.problems[0];
+}
+
+// A baseline from another processor: the ratios between kernels move with it, so a slowdown is
+// shown, not enforced; the same slowdown on the same processor fails.
+TEST(GateMachines, ABaselineFromAnotherProcessorIsShownNotEnforced) {
+  GateConfig config;
+  config.thresholds = {{"/vulkan/", 0.40}};
+  ResultsFile baseline = run(around(5.0), around(2.0)), current = run(around(5.0), around(4.0));
+  baseline.machine.cpu_model = "AMD EPYC";
+  current.machine.cpu_model = "Intel(R) Xeon(R) Processor";
+  baseline.machine.cores = current.machine.cores = 2;
+  const GateReport other = run_gate(baseline, current, config);
+  EXPECT_TRUE(vulkan_entry(other).regression);
+  EXPECT_NE(other.other_machine.find("AMD EPYC"), std::string::npos);
+  EXPECT_FALSE(other.failed());
+
+  current.machine.cpu_model = "AMD EPYC";
+  current.machine.cores = 4;
+  EXPECT_FALSE(run_gate(baseline, current, config).failed()) << "another core count is another machine";
+
+  current.machine.cores = 2;
+  const GateReport same = run_gate(baseline, current, config);
+  EXPECT_TRUE(same.other_machine.empty());
+  EXPECT_TRUE(same.failed());
 }
