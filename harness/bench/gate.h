@@ -44,7 +44,7 @@ struct GateReport {
   std::vector<std::string> problems;  // benchmarks that cannot be judged (too few repetitions, ...)
   // Set when the baseline was recorded on another processor or core count: the ratios between
   // kernels move with the processor (measured: the AMD EPYC baseline read on an Intel Xeon gave
-  // +35% to +90% on rows nothing had touched, identical instruction counts), so its verdicts are
+  // +44% to +90% on rows nothing had touched, identical instruction counts), so its verdicts are
   // shown but fail nothing; the instruction gate still judges.
   std::string other_machine;
   bool failed() const;
