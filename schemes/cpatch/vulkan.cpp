@@ -122,8 +122,6 @@ std::optional<std::string> vulkan_unsupported(GpuVariant variant, GpuMode mode, 
            device + " allows " + std::to_string(l.max_per_stage_storage_buffers);
   if (variant == GpuVariant::TwoPass && mode == GpuMode::Evaluate && !f.scalar_block_layout)
     return name + " (evaluate-only) stores vec3 arrays with a 12-byte stride; " + device + " lacks scalarBlockLayout";
-  if (variant == GpuVariant::TwoPass && mode == GpuMode::Evaluate && !f.shader_int64)
-    return name + " (evaluate-only) stores pairs of samples as 64-bit words; " + device + " lacks shaderInt64";
   const bool stores = variant != GpuVariant::TwoPass && mode == GpuMode::Evaluate;
   if (stores && !f.vertex_pipeline_stores_and_atomics)
     return name + " (evaluate-only) stores from the " +

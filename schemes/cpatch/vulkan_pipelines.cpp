@@ -50,7 +50,7 @@ gpu::ComputePipelineDesc patches_pass_desc() { return {shaders::get("patches.com
 gpu::ComputePipelineDesc evaluate_pass_desc(int rate, bool cpatch, bool border_rows, uint32_t local_size) {
   return {shaders::get("evaluate.comp"),
           {Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::StorageBuffer,
-           Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer},
+           Binding::StorageBuffer, Binding::StorageBuffer},
           5 * sizeof(uint32_t),
           {rate_constant(rate), {1, cpatch ? 1u : 0u}, {2, border_rows ? 1u : 0u}, {3, local_size}}};
 }
@@ -84,7 +84,7 @@ std::vector<gpu::BufferRange> patches_pass_bindings(const DeviceMesh& m) {
 std::vector<gpu::BufferRange> evaluate_pass_bindings(const DeviceMesh& m, const DeviceOutput& out, const gpu::Chunk& c,
                                                      const gpu::Buffer& quad_lists) {
   return {m.records.texels(VK_FORMAT_R32G32B32A32_SFLOAT), m.grid.texels(VK_FORMAT_R32G32B32A32_SFLOAT),
-          out.positions(c), out.normals(c), quad_lists.range(), out.positions(c), out.normals(c)};
+          out.positions(c), out.normals(c), quad_lists.range()};
 }
 
 std::vector<gpu::BufferRange> grid_render_bindings(const DeviceMesh& m, const gpu::Buffer& camera, const gpu::Buffer* heat) {

@@ -102,8 +102,7 @@ void DeviceMesh::record_upload(gpu::Commands& cmd) const { cmd.upload(control_st
 
 DeviceOutput::DeviceOutput(gpu::Context& ctx, int num_quads, int rate, uint32_t local_size, uint64_t max_chunk_bytes)
     : samples_(uint64_t(rate) * rate) {
-  // 8: evaluate.comp stores pairs of samples as 64-bit words, aligned from the chunk's start.
-  plan_ = gpu::plan_chunks(ctx.limits(), {uint64_t(num_quads) * samples_, 12, samples_, local_size, max_chunk_bytes, 8});
+  plan_ = gpu::plan_chunks(ctx.limits(), {uint64_t(num_quads) * samples_, 12, samples_, local_size, max_chunk_bytes});
   for (uint64_t bytes : plan_.buffer_bytes) {
     const gpu::BufferUsage usage = gpu::BufferUsage::Storage;
     positions_.push_back(gpu::Buffer::device(ctx, bytes, usage, "c-patch output positions"));

@@ -38,9 +38,7 @@ struct EvaluateRuns {
   std::vector<uint32_t> lists;
   std::vector<EvaluateRun> runs;  // none empty
 };
-// Per chunk and per kind (bicubic, c-patch), in quad order. Not also per parity of the quads' first
-// output index (where N^2 is odd it alternates, and evaluate.comp's bicubic pairs start at an even
-// index): a run split in two cost more in dispatches than uniform pairs saved (README.md).
+// Per chunk and per kind (bicubic, c-patch), in quad order.
 EvaluateRuns evaluate_runs(const CpatchTopology& t, const gpu::ChunkPlan& plan, uint64_t samples_per_quad);
 
 class DeviceMesh {

@@ -43,7 +43,7 @@ struct Wave {
   uint32_t shift = 0;                        // floats from bind_offset to the wave's first vertex
 };
 
-// A scratch slot: one point, (x, y, z, 0), read by one texel fetch and stored as two 64-bit words.
+// A scratch slot: one point, (x, y, z, 0), read by one texel fetch and stored as one vec4.
 constexpr uint64_t kSlotBytes = 16;
 
 struct WavePlan {
@@ -410,7 +410,6 @@ class VulkanFragmentEvaluation final : public Evaluation {
 std::optional<std::string> vulkan_unavailable() {
   static const gpu::DeviceInfo device = gpu::probe();
   if (!device.available) return "no Vulkan device: " + device.reason;
-  if (!device.features.shader_int64) return device.name + " lacks shaderInt64; the fragments' passes store 64-bit words";
   return std::nullopt;  // three storage buffers and seven texel views per pass: within Vulkan's minimum limits
 }
 

@@ -104,8 +104,6 @@ std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx
                                                          PassPlan plan) {
   const gpu::DeviceLimits& limits = ctx.limits();
   const std::string& device = ctx.info().name;
-  if (!ctx.info().features.shader_int64)
-    return device + " lacks shaderInt64; the geometry-image output passes store 64-bit words";
   if (limits.max_per_stage_storage_buffers < kMaxBindings)
     return device + " binds " + std::to_string(limits.max_per_stage_storage_buffers) +
            " storage buffers per shader stage; the geometry-image passes bind " + std::to_string(kMaxBindings);

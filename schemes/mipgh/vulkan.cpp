@@ -136,9 +136,9 @@ class VulkanMipghEvaluation final : public Evaluation {
     output_bytes_ = std::max<uint64_t>(uint64_t(nodes) * 12, 16);
     // What one texel view takes, checked before the tables are built (the D-LoD's are the largest)
     gpu::check_texel_binding(*ctx_, level_bytes_ / sizeof(Node), "a level's nodes");
-    // Levels are written as 64-bit words (mipgh.glsl, kWords) where one storage-buffer binding
-    // covers them; past that, through their texel views. Either way the bits are the same.
-    node_words_ = level_bytes_ <= ctx_->limits().max_storage_buffer_range;
+    // Levels are written as storage buffers of vec4 (mipgh.glsl, kVec4) where one storage-buffer
+    // binding covers them; past that, through their texel views. Either way the bits are the same.
+    node_vec4_ = level_bytes_ <= ctx_->limits().max_storage_buffer_range;
     output_vec3_ = output_bytes_ <= ctx_->limits().max_storage_buffer_range;
     uint64_t lod_words_total = 0;
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) lod_words_total += level_lod_words(sigma);
@@ -335,7 +335,7 @@ class VulkanMipghEvaluation final : public Evaluation {
              Binding::StorageTexelBuffer, Binding::StorageTexelBuffer, Binding::UniformTexelBuffer,
              Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer, Binding::StorageBuffer},
             sizeof(Push),
-            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}, {4, node_words_}, {5, output_vec3_}}};
+            {{0, kLocalSize}, {1, constant1}, {2, constant2}, {3, to_output}, {4, node_vec4_}, {5, output_vec3_}}};
   }
 
   void make_pipelines() {
@@ -357,7 +357,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     constexpr VkFormat node = VK_FORMAT_R32G32B32A32_SFLOAT;
     // Bindings 9 to 12 (mipgh.glsl): the whole buffer where the pipelines store through them, a
     // token 16 bytes where they do not (past the storage-buffer range).
-    const uint64_t level_range = node_words_ ? level_bytes_ : 16, output_range = output_vec3_ ? output_bytes_ : 16;
+    const uint64_t level_range = node_vec4_ ? level_bytes_ : 16, output_range = output_vec3_ ? output_bytes_ : 16;
     for (int k = 0; k < 2; ++k)
       sets_[k] = gpu::DescriptorSet(
           *output_, {level_[k].texels(node), level_[1 - k].texels(node), normals_.texels(node),
@@ -474,7 +474,7 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::vector<Point3> control_;
   MeshMutation m_;
   bool has_quads_ = false, has_triangles_ = false;
-  bool node_words_ = true;   // the levels written as 64-bit words (a storage-buffer binding covers them)
+  bool node_vec4_ = true;    // the levels written as storage buffers of vec4 (a binding covers them)
   bool output_vec3_ = true;  // the output written as packed vec3s (mipgh.glsl, kOutVec3)
   uint64_t level_bytes_ = 0, output_bytes_ = 0;
   Tables tables_;
@@ -502,7 +502,6 @@ class VulkanMipghEvaluation final : public Evaluation {
 std::optional<std::string> vulkan_unavailable() {
   static const gpu::DeviceInfo device = gpu::probe();
   if (!device.available) return "no Vulkan device: " + device.reason;
-  if (!device.features.shader_int64) return device.name + " lacks shaderInt64; the MiPGH passes store 64-bit words";
   if (!device.features.scalar_block_layout)
     return device.name + " lacks scalarBlockLayout; the MiPGH limit stores packed vec3s";
   return std::nullopt;  // nine texel and four storage bindings per pass: within Vulkan's minimum limits

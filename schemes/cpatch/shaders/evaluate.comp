@@ -15,17 +15,13 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "buffers.glsl"
-// Float3 positions and normals of the output chunk (scalar block layout: a 12-byte stride). Lavapipe
-// stores lane by lane and component by component (README.md, "The evaluate pass"): bicubic rows
-// store two samples at once as three 64-bit words (bindings 5 and 6: the same ranges, read as
-// u64vec3 at a 24-byte stride), a pair starting at an even output index; a vec3 store does the
-// rest. The words carry the floats' bits.
+// Float3 positions and normals of the output chunk (scalar block layout: a 12-byte stride), one vec3
+// store per sample. Lavapipe stores lane by lane and component by component (README.md, "The
+// evaluate pass"); bicubic rows stored pairs of samples as three 64-bit words until that turned out
+// to cost time where LLVM targets AVX-512 (harness/gpu/README.md, "Memory access on lavapipe").
 #extension GL_EXT_scalar_block_layout : require
-#extension GL_ARB_gpu_shader_int64 : require
 layout(scalar, binding = 2) writeonly buffer OutPositions { vec3 out_positions[]; };
 layout(scalar, binding = 3) writeonly buffer OutNormals { vec3 out_normals[]; };
-layout(scalar, binding = 5) writeonly buffer OutPositionPairs { u64vec3 out_position_pairs[]; };
-layout(scalar, binding = 6) writeonly buffer OutNormalPairs { u64vec3 out_normal_pairs[]; };
 layout(binding = 0) uniform samplerBuffer record_texels;  // conversion.h PatchRecord, a vec4 per entry
 layout(binding = 1) uniform samplerBuffer grid_texels;    // vulkan_resources.cpp grid_table()
 // Per quad of this dispatch: its index << 4 | forward_sides (vulkan_resources.cpp quad_lists()).
@@ -55,11 +51,6 @@ void store_sample(int index, vec3 position, SurfacePoint p) {
   out_normals[index] = unit_normal(p.du, p.dv);
 }
 
-u64vec3 pair_words(vec3 a, vec3 b) {
-  const uvec3 x = floatBitsToUint(a), y = floatBitsToUint(b);
-  return u64vec3(packUint2x32(x.xy), packUint2x32(uvec2(x.z, y.x)), packUint2x32(y.yz));
-}
-
 // The position of sample (i, j), 0 < i < N - 1, from the patch point: on a border row the side's
 // curve (write_border), else p*_0 + the patch.
 vec3 row_position(vec3 record[kRecordSize], uint forward_sides, int i, int j, vec3 patch_position) {
@@ -78,10 +69,7 @@ void bicubic_sample(vec3 column[4], vec3 column_dv[4], vec3 record[kRecordSize],
   if (i == kLast) position = end_p[1], normal = end_n[1];
 }
 
-// The row in pairs of samples (i, i + 1) from the first i whose output index is even. Where N^2 is
-// odd that i is 0 in some lanes and 1 in others (neighbouring quads' rows start at alternating
-// parities), but both make the same number of pairs: only the lone first or last sample's store
-// is masked per lane.
+// The row's samples in order, its ends (computed once, before the loop) included.
 void bicubic_row(PatchControl c, vec3 record[kRecordSize], uint forward_sides, int j, int first) {
   vec3 column[4], column_dv[4];
   bicubic_columns(c, j, column, column_dv);
@@ -92,16 +80,12 @@ void bicubic_row(PatchControl c, vec3 record[kRecordSize], uint forward_sides, i
     end_p[end] = sample_position(record, forward_sides, i, j, p.position);
     end_n[end] = unit_normal(p.du, p.dv);
   }
-  int i = first & 1;
-  if (i == 1) out_positions[first] = end_p[0], out_normals[first] = end_n[0];
-  for (; i + 1 < kRate; i += 2) {
-    vec3 pa, na, pb, nb;
-    bicubic_sample(column, column_dv, record, forward_sides, i, j, end_p, end_n, pa, na);
-    bicubic_sample(column, column_dv, record, forward_sides, i + 1, j, end_p, end_n, pb, nb);
-    out_position_pairs[(first + i) / 2] = pair_words(pa, pb);
-    out_normal_pairs[(first + i) / 2] = pair_words(na, nb);
+  for (int i = 0; i < kRate; ++i) {
+    vec3 p, n;
+    bicubic_sample(column, column_dv, record, forward_sides, i, j, end_p, end_n, p, n);
+    out_positions[first + i] = p;
+    out_normals[first + i] = n;
   }
-  if (i == kLast) out_positions[first + kLast] = end_p[1], out_normals[first + kLast] = end_n[1];
 }
 
 // Samples [begin, end) of row j, all in piece `piece`.

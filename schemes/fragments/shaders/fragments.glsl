@@ -8,10 +8,8 @@
 // group) or, for batches joined from shapes of few fragments, of several (each invocation reads its
 // own shape's tables: a gather on lavapipe either way). Each invocation's slots sit in scratch with
 // the lanes innermost, as the CPU kernel's Lanes<W>, one region per batch of the wave. A slot is
-// one 16-byte element (x, y, z, 0): one texel fetch reads it and two 64-bit words store it
-// (sdb/words.glsl).
+// one 16-byte element (x, y, z, 0): one texel fetch reads it and one vec4 store writes it.
 #extension GL_GOOGLE_include_directive : require
-#include "sdb/words.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -23,17 +21,18 @@ layout(binding = 2) uniform usamplerBuffer fragment_words;  // control list, fir
 layout(binding = 3) uniform samplerBuffer control_floats;  // x y z per vertex
 // Two halves: level d - 1's slots (from src_base) and level d's (from dst_base), this wave's.
 layout(binding = 4) uniform samplerBuffer scratch_in;  // the scratch buffer, read (rgba32f)
-layout(std430, binding = 7) restrict writeonly buffer ScratchOut { u64vec2 scratch_out[]; };  // and written (other slots)
+layout(std430, binding = 7) restrict writeonly buffer ScratchOut { vec4 scratch_out[]; };  // and written (other slots)
 layout(binding = 5, r32f) uniform restrict writeonly imageBuffer out_position;
 layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_normal;
 // The fragment's control points relative to its first (kernel.cpp's net tangents weigh these),
 // laid out as a scratch half: the gather pass writes them, the limit's net normals read them.
 layout(binding = 8) uniform samplerBuffer net_in;  // rgba32f
-layout(std430, binding = 9) restrict writeonly buffer NetOut { u64vec2 net_out[]; };
+layout(std430, binding = 9) restrict writeonly buffer NetOut { vec4 net_out[]; };
 
 // Every buffer is read through a texel view: on lavapipe a storage-buffer load is a loop over the
 // lanes with a branch each, a texel fetch one gather (harness/gpu/README.md, "Memory access on
-// lavapipe"). The scratch is written as 64-bit words, the output through r32f image views.
+// lavapipe"). The scratch is written as storage buffers of vec4 (not 64-bit words: in time those
+// cost more, harness/gpu/README.md), the output through r32f image views.
 uint table_word(uint i) { return texelFetch(tables, int(i)).x; }
 uvec4 rule_words(uint at) { return texelFetch(rule_texels, int(at / 4u)); }  // `at`: a multiple of 4
 uint fragment_word(uint i) { return texelFetch(fragment_words, int(i)).x; }
@@ -109,9 +108,9 @@ vec3 load(bool from_dst, uint slot) { return scratch_slot((from_dst ? pc.dst_bas
 float load_axis(bool from_dst, uint slot, uint axis) {
   return scratch_slot((from_dst ? pc.dst_base : pc.src_base) + scratch_index(slot))[axis];
 }
-void store(uint slot, vec3 p) { scratch_out[pc.dst_base + scratch_index(slot)] = as_words(vec4(p, 0.0)); }
+void store(uint slot, vec3 p) { scratch_out[pc.dst_base + scratch_index(slot)] = vec4(p, 0.0); }
 vec3 load_net(uint slot) { return texelFetch(net_in, int(scratch_index(slot))).xyz; }
-void store_net(uint slot, vec3 p) { net_out[scratch_index(slot)] = as_words(vec4(p, 0.0)); }
+void store_net(uint slot, vec3 p) { net_out[scratch_index(slot)] = vec4(p, 0.0); }
 vec3 control_point(uint v) { return vec3(control_float(3u * v), control_float(3u * v + 1u), control_float(3u * v + 2u)); }
 
 // -0 as +0, by its bits (what kernel.cpp's "+ 0.0f" does, and no compiler can fold away): min and

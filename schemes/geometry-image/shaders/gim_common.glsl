@@ -24,4 +24,3 @@ layout(push_constant) uniform Push {
   uint rows;       // output passes: the chunk's rows
 } pc;
 
-#include "sdb/words.glsl"  // as_words

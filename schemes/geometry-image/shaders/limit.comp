@@ -5,7 +5,7 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(std430, binding = 1) restrict writeonly buffer Positions { u64vec4 positions[]; };
+layout(std430, binding = 1) restrict writeonly buffer Positions { vec4 positions[]; };
 
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();

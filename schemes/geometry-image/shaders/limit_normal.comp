@@ -6,8 +6,8 @@
 #include "source_planes.glsl"
 #include "output_grid.glsl"
 
-layout(std430, binding = 1) restrict writeonly buffer Positions { u64vec4 positions[]; };
-layout(std430, binding = 2) restrict writeonly buffer Normals { u64vec4 normals[]; };
+layout(std430, binding = 1) restrict writeonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = 2) restrict writeonly buffer Normals { vec4 normals[]; };
 
 void main() {
   const uint t = SDB_LINEAR_INVOCATION();

@@ -1,5 +1,5 @@
 // Output passes (E, T, fused E+T): invocation t computes vertices 8 t .. 8 t + 7 of its chunk
-// (row-major over the chunk's rows of the n x n grid) and stores their 24 floats as three 32-byte
+// (row-major over the chunk's rows of the n x n grid) and stores their 24 floats as six vec4
 // elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks hold whole groups of eight
 // rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the last chunk's last invocation
 // may run past the grid's end, and writes up to seven copies of the last vertex into the padding
@@ -18,18 +18,20 @@ uint vertex_source(uint j) {
   return padded_index(v % pc.dst_side, pc.first_row + v / pc.dst_side);
 }
 
-// Vertices 8 t .. 8 t + 7 (vec3 v[8]), 96 bytes, as 32-byte elements 3 t .. 3 t + 2 of a storage
-// buffer of u64vec4 (four 64-bit words; as_words, gim_common.glsl). A macro: GLSL passes no
-// buffer to a function.
-u64vec4 words_of_eight(vec3 v[8], int m) {
-  float f[8];
-  [[unroll]] for (int q = 0; q < 8; ++q) f[q] = v[(8 * m + q) / 3][(8 * m + q) % 3];
-  return u64vec4(as_words(vec4(f[0], f[1], f[2], f[3])), as_words(vec4(f[4], f[5], f[6], f[7])));
+// Vertices 8 t .. 8 t + 7 (vec3 v[8]), 96 bytes, as vec4 elements 6 t .. 6 t + 5 of a storage
+// buffer of vec4. A macro: GLSL passes no buffer to a function. Floats, not 64-bit words: lavapipe
+// stores lane by lane and word by word, and on 64-bit words its code spills a whole 512-bit
+// register to the stack per word and reloads one lane from it (harness/gpu/README.md, "Memory
+// access on lavapipe").
+vec4 floats_of_eight(vec3 v[8], int m) {
+  float f[4];
+  [[unroll]] for (int q = 0; q < 4; ++q) f[q] = v[(4 * m + q) / 3][(4 * m + q) % 3];
+  return vec4(f[0], f[1], f[2], f[3]);
 }
 #define STORE_EIGHT(out_array, t, v)                                        \
   {                                                                         \
-    [[unroll]] for (int m_ = 0; m_ < 3; ++m_)                               \
-      out_array[3u * (t) + uint(m_)] = words_of_eight(v, m_);               \
+    [[unroll]] for (int m_ = 0; m_ < 6; ++m_)                               \
+      out_array[6u * (t) + uint(m_)] = floats_of_eight(v, m_);              \
   }
 
 // A vertex's 3 x 3 source samples: s[3 r + q] at padded index c + (r - 1) S + (q - 1).

@@ -7,7 +7,6 @@
 // fused multiply-adds, no reassociation), so the stencils' nodes equal the CPU's.
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/dispatch.glsl"
-#include "sdb/words.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -20,13 +19,14 @@ layout(binding = 5) uniform samplerBuffer weights;    // the mask tables' weight
 layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_position;
 layout(binding = 7, r32f) uniform restrict writeonly imageBuffer out_normal;
 layout(binding = 8) uniform samplerBuffer normals_in;  // the limit's normals (rgba32f), read by the output pass
-// The same level and normal buffers as bindings 1 and 2, written as two 64-bit words a node:
-// lavapipe stores lane by lane and component by component, so a u64vec2 store costs about a
-// third of an rgba32f imageStore (harness/gpu/README.md). Where a level is past the device's
-// storage-buffer range (128 MiB on lavapipe) the texel views write it (kWords = false).
-layout(std430, binding = 9) restrict writeonly buffer DstWords { u64vec2 dst_words[]; };
-layout(std430, binding = 10) restrict writeonly buffer NormalWords { u64vec2 normal_words[]; };
-layout(constant_id = 4) const bool kWords = true;
+// The same level and normal buffers as bindings 1 and 2, written as storage buffers of vec4:
+// lavapipe stores lane by lane and component by component, and a vec4 store costs less than an
+// rgba32f imageStore and, in time, than two 64-bit words (harness/gpu/README.md). Where a level
+// is past the device's storage-buffer range (128 MiB on lavapipe) the texel views write it
+// (kVec4 = false).
+layout(std430, binding = 9) restrict writeonly buffer DstVec4 { vec4 dst_vec4[]; };
+layout(std430, binding = 10) restrict writeonly buffer NormalVec4 { vec4 normal_vec4[]; };
+layout(constant_id = 4) const bool kVec4 = true;
 // The pipeline writes the limit straight into the output (bindings 6 and 7, packed xyz), not
 // into a level's buffers: where the limit is the whole output.
 layout(constant_id = 3) const bool kToOutput = false;
@@ -83,12 +83,12 @@ void store_output(uint i, vec3 p, vec3 n) {
 void store(uint i, vec3 node) {
   precise vec3 p = node + pc.origin.xyz;
   if (kToOutput) STORE_OUTPUT_XYZ(out_position, out_position_vec3, i, p)
-  else if (kWords) dst_words[i] = as_words(vec4(p, 0.0));
+  else if (kVec4) dst_vec4[i] = vec4(p, 0.0);
   else imageStore(dst_nodes, int(i), vec4(p, 0.0));
 }
 void store_normal(uint i, vec3 n) {
   if (kToOutput) STORE_OUTPUT_XYZ(out_normal, out_normal_vec3, i, n)
-  else if (kWords) normal_words[i] = as_words(vec4(n, 0.0));
+  else if (kVec4) normal_vec4[i] = vec4(n, 0.0);
   else imageStore(normal_nodes, int(i), vec4(n, 0.0));
 }
 // tile.cpp's unit_normals: a zero normal stays zero, without a branch.
