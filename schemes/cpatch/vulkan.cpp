@@ -322,20 +322,23 @@ void CpatchVulkan::record_two_pass_evaluation(gpu::Commands& cmd) {
   d.frame_timer.end(cmd);
 }
 
-// One evaluate.comp dispatch: a run's quads (x, y) times its rows (z): rows 1..N-2, or 0 and N-1.
+// One evaluate.comp dispatch: a run's rows (x: rows 1..N-2, or 0 and N-1) times its quads (y, z).
 void CpatchVulkan::record_evaluate_run(gpu::Commands& cmd, const EvaluateRun& run, bool border_rows) const {
   Device& d = *device_;
   const uint32_t last = static_cast<uint32_t>(rate() - 1);
   const uint32_t rows = border_rows ? 2 : last - 1;
   if (rows == 0) return;
-  const gpu::Groups groups = gpu::groups_for(run.count, d.evaluate_local_size, ctx_->limits());
-  if (groups.z != 1 || rows > ctx_->limits().max_compute_work_group_count[2])
+  gpu::DeviceLimits quad_dimensions = ctx_->limits();  // the quads take dimensions y and z
+  const auto& max = quad_dimensions.max_compute_work_group_count;
+  quad_dimensions.max_compute_work_group_count = {max[1], max[2], 1};
+  const gpu::Groups groups = gpu::groups_for(run.count, d.evaluate_local_size, quad_dimensions);
+  if (groups.z != 1 || rows > max[0])
     throw gpu::Unsupported("c-patch evaluate: " + std::to_string(run.count) + " quads of " + std::to_string(rows) +
                            " rows exceed the device's work group counts");
   const uint32_t push[5] = {run.first_quad, run.list_offset, run.count, border_rows ? 0 : 1u, border_rows ? last : 1u};
   cmd.bind(*d.evaluate[(run.cpatch ? 1 : 0) + (border_rows ? 2 : 0)], d.chunk_sets[run.chunk]);
   cmd.push(push);
-  cmd.dispatch(groups.x, groups.y, rows);
+  cmd.dispatch(rows, groups.x, groups.y);
 }
 
 // cpatch-1pass and cpatch-tess: one draw of the quads' corners (render mode), or one per output

@@ -41,7 +41,7 @@ layout(push_constant) uniform Push {
   uint first_quad;   // of the output chunk: output vertex (q - first_quad) N^2 + j N + i
   uint list_offset;  // of this dispatch's quads in quad_list
   uint count;        // quads in this dispatch
-  uint first_row, row_step;  // row j = first_row + gl_WorkGroupID.z row_step
+  uint first_row, row_step;  // row j = first_row + gl_WorkGroupID.x row_step
 } push;
 
 const int kLast = kRate - 1;
@@ -117,12 +117,14 @@ void cpatch_row(PatchControl c, vec3 record[kRecordSize], uint forward_sides, in
 }
 
 void main() {
-  const uint slot = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+  // Rows vary fastest across work groups: lavapipe runs groups in x, y, z order, so a lane writes its
+  // quad's rows one after another, a stream where rows apart in time were cache misses each.
+  const uint slot = (gl_WorkGroupID.z * gl_NumWorkGroups.y + gl_WorkGroupID.y) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   // Past the last quad a lane repeats it (same values to the same place): no lane leaves early.
   const uint entry = quad_list[push.list_offset + min(slot, push.count - 1u)];
   const int quad = int(entry >> 4u);
   const uint forward_sides = entry & 15u;
-  const int j = int(push.first_row + gl_WorkGroupID.z * push.row_step);
+  const int j = int(push.first_row + gl_WorkGroupID.x * push.row_step);
   vec3 record[kRecordSize];
   load_record(quad, kCpatch, record);
   const PatchControl c = local_control(record);
