@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -181,6 +182,24 @@ std::string other_machine(const MachineInfo& baseline, const MachineInfo& curren
 }
 
 }  // namespace
+
+std::string machine_baseline_name(const MachineInfo& m) {
+  std::string name;
+  for (char c : m.cpu_model) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) != 0;
+    if (keep) name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    else if (!name.empty() && name.back() != '-') name += '-';
+  }
+  if (!name.empty() && name.back() != '-') name += '-';
+  return (name.empty() ? "unknown-" : name) + std::to_string(m.cores) + "c.json";
+}
+
+std::optional<std::string> baseline_for_machine(const MachineInfo& current, const std::vector<std::string>& files) {
+  if (current.cpu_model.empty()) return std::nullopt;
+  for (const std::string& f : files)
+    if (const MachineInfo m = read_results(f).machine; m.cpu_model == current.cpu_model && m.cores == current.cores) return f;
+  return std::nullopt;
+}
 
 GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, const GateConfig& config) {
   GateReport report;

@@ -7,6 +7,7 @@
 // Mann-Whitney U test says it is significant.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,5 +52,12 @@ struct GateReport {
 };
 
 GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, const GateConfig& config);
+
+// Per-machine baselines (ci/baselines/): a file name for a baseline recorded on `m`, its processor
+// and core count in lower case with every other character a dash ("intel-r-xeon-r-processor-2c"),
+// and the path of the first of `files` (results.json files, read in the order given) recorded on
+// the same processor and core count as `current`, or nothing.
+std::string machine_baseline_name(const MachineInfo& m);
+std::optional<std::string> baseline_for_machine(const MachineInfo& current, const std::vector<std::string>& files);
 
 }  // namespace sdb

@@ -2,11 +2,15 @@
 // backend in the same round, or (ci/gate.json's normalisers) over its own cpu-mt row; and what it
 // enforces against a baseline from another machine. Nothing timed.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include "harness/bench/gate.h"
 #include "harness/bench/measure.h"
 
 using namespace sdb;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -114,4 +118,30 @@ TEST(GateMachines, ABaselineFromAnotherProcessorIsShownNotEnforced) {
   const GateReport same = run_gate(baseline, current, config);
   EXPECT_TRUE(same.other_machine.empty());
   EXPECT_TRUE(same.failed());
+}
+
+// ci/baselines/: the baseline recorded on this processor and core count is found among others by
+// what its file says, not by its name; none matching leaves the default (CI's) in place.
+TEST(GateMachines, APerMachineBaselineIsFoundByItsProcessorAndCores) {
+  MachineInfo xeon;
+  xeon.cpu_model = "Intel(R) Xeon(R) Processor";
+  xeon.cores = 2;
+  EXPECT_EQ(machine_baseline_name(xeon), "intel-r-xeon-r-processor-2c.json");
+
+  const fs::path dir = fs::temp_directory_path() / ("sdb_machine_baselines_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto recorded_on = [&](const std::string& file, const std::string& model, int cores) {
+    ResultsFile r = run(around(5.0), around(2.0));
+    r.machine.cpu_model = model;
+    r.machine.cores = cores;
+    write_results(r, (dir / file).string());
+    return (dir / file).string();
+  };
+  const std::string epyc = recorded_on("a.json", "AMD EPYC", 2), xeon4 = recorded_on("b.json", xeon.cpu_model, 4),
+                    own = recorded_on("c.json", xeon.cpu_model, 2);
+  EXPECT_EQ(baseline_for_machine(xeon, {epyc, xeon4, own}), own);
+  EXPECT_EQ(baseline_for_machine(xeon, {epyc, xeon4}), std::nullopt);
+  MachineInfo unnamed;
+  EXPECT_EQ(baseline_for_machine(unnamed, {epyc, own}), std::nullopt) << "a run naming no processor matches none";
+  fs::remove_all(dir);
 }

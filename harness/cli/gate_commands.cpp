@@ -30,6 +30,8 @@ struct GateOptions {
   std::string workload_config;  // bench --workload FILE: the "workload" of a gate configuration
   std::vector<int> levels;
   std::string out, baseline, current, config = SDB_SOURCE_DIR "/ci/gate.json";
+  std::string machine_baselines;  // gate: a folder of per-machine baselines (ci/baselines)
+  bool record_machine = false;    // gate: copy --current into that folder, named for its machine
   bool callgrind = false, record = false;
   std::string scheme, mesh, backend = "cpu";
   int level = 0, iterations = 3, rounds = 0;
@@ -122,11 +124,42 @@ int callgrind_gate(const GateOptions& opts) {
   return failed ? 1 : 0;
 }
 
+// The .json files of a folder of per-machine baselines, by name; none where the folder is absent.
+std::vector<std::string> machine_baseline_files(const std::string& dir) {
+  std::vector<std::string> files;
+  if (dir.empty() || !fs::is_directory(dir)) return files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// gate --record-machine: the current results become this machine's baseline in the folder.
+int record_machine_baseline(const GateOptions& opts) {
+  if (opts.machine_baselines.empty() || opts.current.empty())
+    throw InputError("gate", "--record-machine needs --machine-baselines DIR and --current FILE");
+  const ResultsFile current = read_results(opts.current);
+  if (current.machine.cpu_model.empty()) throw InputError(opts.current, "names no processor to record a baseline for");
+  fs::create_directories(opts.machine_baselines);
+  const fs::path path = fs::path(opts.machine_baselines) / machine_baseline_name(current.machine);
+  fs::copy_file(opts.current, path, fs::copy_options::overwrite_existing);
+  std::printf("gate: baseline for %s (%d cores) recorded in %s\n", current.machine.cpu_model.c_str(),
+              current.machine.cores, path.string().c_str());
+  return 0;
+}
+
 int gate(const GateOptions& opts) {
   if (opts.callgrind) return callgrind_gate(opts);
+  if (opts.record_machine) return record_machine_baseline(opts);
   if (opts.current.empty()) throw InputError("gate", "--current FILE is required (or --callgrind)");
   const GateConfig config = read_gate_config(opts.config);
-  const GateReport report = run_gate(read_results(opts.baseline), read_results(opts.current), config);
+  const ResultsFile current = read_results(opts.current);
+  std::string baseline = opts.baseline;
+  if (auto own = baseline_for_machine(current.machine, machine_baseline_files(opts.machine_baselines))) {
+    baseline = *own;
+    std::printf("gate: this machine's baseline: %s\n", baseline.c_str());
+  }
+  const GateReport report = run_gate(read_results(baseline), current, config);
   std::printf("%-44s %-22s %9s %9s %9s  %s\n", "benchmark", "normalised by", "change", "p-value", "threshold", "verdict");
   for (const GateEntry& e : report.entries)
     std::printf("%-44s %-22s %+8.1f%% %9.4f %8.0f%%  %s\n", e.name.c_str(), e.normaliser.c_str(), 100 * e.change,
@@ -138,7 +171,7 @@ int gate(const GateOptions& opts) {
                                        report.problems.front() + ")");
   if (!report.other_machine.empty())
     std::printf("gate: timing verdicts not enforced: %s; ratios between kernels differ between processors. Record "
-                "a baseline on this machine (scripts/gate --record) to gate here\n",
+                "a baseline on this machine (scripts/gate --record-here) to gate here\n",
                 report.other_machine.c_str());
   return report.failed() ? 1 : 0;
 }
@@ -205,6 +238,10 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   gt->add_option("--config", opts->config, "thresholds (ci/gate.json)");
   gt->add_flag("--callgrind", opts->callgrind, "compare instruction counts of the fixed workloads instead of time");
   gt->add_flag("--record", opts->record, "with --callgrind: write the counts to --baseline");
+  gt->add_option("--machine-baselines", opts->machine_baselines,
+                 "folder of per-machine baselines: one recorded on this processor and core count replaces --baseline");
+  gt->add_flag("--record-machine", opts->record_machine,
+               "copy --current into --machine-baselines as this machine's baseline");
   verbs["gate"] = [opts] { return gate(*opts); };
 
   struct ReportRequest {
