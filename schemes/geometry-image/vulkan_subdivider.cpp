@@ -81,11 +81,16 @@ gpu::ComputePipelineDesc pass(const char* shader, std::vector<Binding> bindings)
   return {shaders::get(shader), std::move(bindings), sizeof(Push), {{0, kLocalSize}}};
 }
 
-// An output pass (output_grid.glsl): its eight vertices share one fetch window where the
-// n x n grid has n >= 8 (eight consecutive vertices then cross at most one row's end).
-gpu::ComputePipelineDesc output_pass(const char* shader, std::vector<Binding> bindings, uint64_t n) {
+// An output pass (output_grid.glsl): where the n x n grid has n >= 8 a block's eight vertices share
+// one fetch window, every block's as if in one row, then (row_ends) the blocks holding a row's end
+// with the window that crosses it; smaller grids fetch per vertex.
+enum class OutputWindow : uint32_t { PerVertex = 0, Crossing = 1, Row = 2 };  // output_grid.glsl's kWindow
+
+gpu::ComputePipelineDesc output_pass(const char* shader, std::vector<Binding> bindings, uint64_t n, bool row_ends) {
   gpu::ComputePipelineDesc desc = pass(shader, std::move(bindings));
-  desc.constants.push_back({1, n >= 8 ? 1u : 0u});
+  const OutputWindow window = n < 8 ? OutputWindow::PerVertex : row_ends ? OutputWindow::Crossing : OutputWindow::Row;
+  desc.constants.push_back({1, static_cast<uint32_t>(window)});
+  desc.constants.push_back({2, row_ends ? 1u : 0u});
   return desc;
 }
 
@@ -98,6 +103,8 @@ gpu::BufferRange image_view(const gpu::Buffer& image) { return image.texels(VK_F
 struct VulkanSubdivider::Pipelines {
   // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
   std::shared_ptr<const gpu::ComputePipeline> pad, split, average, split_average, limit, normal, limit_normal, cut_normal;
+  // The output passes' second dispatches, the blocks holding a row's end (none where n < 8).
+  std::shared_ptr<const gpu::ComputePipeline> limit_ends, normal_ends, limit_normal_ends;
 };
 
 std::optional<std::string> VulkanSubdivider::unsupported(const gpu::Context& ctx, int base_size, int levels,
@@ -202,12 +209,18 @@ void VulkanSubdivider::make_pipelines() {
   p.cut_normal = gpu::shared_compute_pipeline(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
   if (plan_ == PassPlan::Fused) {
     p.split_average = gpu::shared_compute_pipeline(ctx_, image_pass("split_average", {kRead, write}));
-    p.limit_normal = gpu::shared_compute_pipeline(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n));
+    p.limit_normal = gpu::shared_compute_pipeline(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n, false));
+    if (n >= 8)
+      p.limit_normal_ends = gpu::shared_compute_pipeline(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n, true));
   } else {
     p.split = gpu::shared_compute_pipeline(ctx_, image_pass("split", {kRead, write}));
     p.average = gpu::shared_compute_pipeline(ctx_, image_pass("average", {kRead, write}));
-    p.limit = gpu::shared_compute_pipeline(ctx_, output_pass("limit.comp", {kRead, kTable}, n));
-    p.normal = gpu::shared_compute_pipeline(ctx_, output_pass("normal.comp", {kRead, kTable}, n));
+    p.limit = gpu::shared_compute_pipeline(ctx_, output_pass("limit.comp", {kRead, kTable}, n, false));
+    p.normal = gpu::shared_compute_pipeline(ctx_, output_pass("normal.comp", {kRead, kTable}, n, false));
+    if (n >= 8) {
+      p.limit_ends = gpu::shared_compute_pipeline(ctx_, output_pass("limit.comp", {kRead, kTable}, n, true));
+      p.normal_ends = gpu::shared_compute_pipeline(ctx_, output_pass("normal.comp", {kRead, kTable}, n, true));
+    }
   }
 }
 
@@ -261,19 +274,29 @@ void VulkanSubdivider::record_image_pass(gpu::Commands& cmd, const gpu::ComputeP
 
 void VulkanSubdivider::record_output_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline,
                                           const std::vector<gpu::DescriptorSet>& sets, int src_side,
-                                          OutputWork work) const {
+                                          OutputWork work, const gpu::ComputePipeline* row_ends) const {
   const uint64_t n = uint64_t(src_side - 2);
+  const auto each_chunk = [&](const auto& dispatch) {
+    for (size_t i = 0; i < outputs_.chunks.size(); ++i) {
+      const gpu::Chunk& c = outputs_.chunks[i];
+      const uint64_t first_row = c.first_element / n, rows = c.elements / n;
+      cmd.bind(sets[i]);
+      cmd.push(Push{uint32_t(src_side), uint32_t(n), uint32_t(first_row), uint32_t(rows)});
+      dispatch(c, rows);
+    }
+  };
   cmd.bind(pipeline);
-  for (size_t i = 0; i < outputs_.chunks.size(); ++i) {
-    const gpu::Chunk& c = outputs_.chunks[i];
-    const uint64_t first_row = c.first_element / n, rows = c.elements / n;
-    cmd.bind(sets[i]);
-    cmd.push(Push{uint32_t(src_side), uint32_t(n), uint32_t(first_row), uint32_t(rows)});
+  each_chunk([&](const gpu::Chunk& c, uint64_t) {
     if (work == OutputWork::EveryVertex)
       cmd.dispatch(gpu::groups_for((c.elements + kOutputGroup - 1) / kOutputGroup, kLocalSize, ctx_.limits()));
     else
       cmd.dispatch(1);  // four invocations, one per cut vertex
-  }
+  });
+  if (!row_ends) return;
+  // The blocks holding a row's end again, one invocation per row, over what the first wrote.
+  cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
+  cmd.bind(*row_ends);
+  each_chunk([&](const gpu::Chunk&, uint64_t rows) { cmd.dispatch(gpu::groups_for(rows, kLocalSize, ctx_.limits())); });
 }
 
 // g^0 -> g^k, one level after the other; every pass reads what the one before wrote.
@@ -307,14 +330,14 @@ void VulkanSubdivider::record_outputs(gpu::Commands& cmd) {
   cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
   if (plan_ == PassPlan::Fused) {
     frame_timer_.begin(cmd, gpu::PassKind::Kernel, "E+T");
-    record_output_pass(cmd, *p.limit_normal, limit_normal_sets_, side);
+    record_output_pass(cmd, *p.limit_normal, limit_normal_sets_, side, OutputWork::EveryVertex, p.limit_normal_ends.get());
     frame_timer_.end(cmd);
   } else {
     frame_timer_.begin(cmd, gpu::PassKind::Kernel, "E");
-    record_output_pass(cmd, *p.limit, limit_sets_, side);
+    record_output_pass(cmd, *p.limit, limit_sets_, side, OutputWork::EveryVertex, p.limit_ends.get());
     frame_timer_.end(cmd);
     frame_timer_.begin(cmd, gpu::PassKind::Kernel, "T");
-    record_output_pass(cmd, *p.normal, normal_sets_, side);
+    record_output_pass(cmd, *p.normal, normal_sets_, side, OutputWork::EveryVertex, p.normal_ends.get());
     frame_timer_.end(cmd);
   }
   if (side < 7) return;  // a 3 x 3 image (the octahedron) has no cut-vertex stencil (masks.cpp)

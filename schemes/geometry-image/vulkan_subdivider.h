@@ -94,11 +94,13 @@ class VulkanSubdivider {
   enum class ImageWork { PerSample, PerSourceSample, PerBlock, PerSourceBlock };
   void record_image_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline, const gpu::DescriptorSet& set,
                          int src_side, int dst_side, ImageWork work) const;
-  // Output passes run over every vertex of each chunk, or (the cut-vertex normals) over four.
+  // Output passes run over every vertex of each chunk, or (the cut-vertex normals) over four; with
+  // `row_ends`, a second dispatch over the blocks holding a row's end (output_grid.glsl).
   enum class OutputWork { EveryVertex, CutVertices };
   void record_output_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline,
                           const std::vector<gpu::DescriptorSet>& sets, int src_side,
-                          OutputWork work = OutputWork::EveryVertex) const;
+                          OutputWork work = OutputWork::EveryVertex,
+                          const gpu::ComputePipeline* row_ends = nullptr) const;
 
   gpu::Context& ctx_;
   int base_size_, levels_;

@@ -10,8 +10,8 @@ layout(std430, binding = 1) restrict writeonly buffer Positions { vec4 positions
 layout(std430, binding = 2) restrict writeonly buffer Normals { vec4 normals[]; };
 
 void main() {
-  const uint t = SDB_LINEAR_INVOCATION();
-  if (8u * t >= chunk_vertices()) return;
+  uint t;
+  if (!output_block(t)) return;
   vec3 p[8], n[8];
   vec3 s[8][9];
   eight_neighbourhoods(t, s);

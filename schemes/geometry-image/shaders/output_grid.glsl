@@ -1,9 +1,10 @@
-// Output passes (E, T, fused E+T): invocation t computes vertices 8 t .. 8 t + 7 of its chunk
-// (row-major over the chunk's rows of the n x n grid) and stores their 24 floats as six vec4
-// elements into the chunk's storage-buffer range (STORE_EIGHT). Chunks hold whole groups of eight
-// rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks); the last chunk's last invocation
-// may run past the grid's end, and writes up to seven copies of the last vertex into the padding
-// after the outputs.
+// Output passes (E, T, fused E+T): an invocation computes block t, vertices 8 t .. 8 t + 7 of its
+// chunk (row-major over the chunk's rows of the n x n grid; output_block), and stores their 24
+// floats as six vec4 elements into the chunk's storage-buffer range (STORE_EIGHT). Each pass is two
+// dispatches where n >= 8: every block, then the blocks holding a row's end again (kRowEnds).
+// Chunks hold whole groups of eight rows (vulkan_subdivider.cpp plans them with gpu::plan_chunks);
+// the grid's last block may run past its end, and writes up to seven copies of the last vertex
+// into the padding after the outputs.
 #extension GL_EXT_control_flow_attributes : require
 #include "sdb/dispatch.glsl"
 
@@ -40,26 +41,52 @@ void neighbourhood(uint c, out vec3 s[9]) {
     [[unroll]] for (int q = 0; q < 3; ++q) s[3 * r + q] = src(c + uint(r) * pc.src_side + uint(q) - pc.src_side - 1u);
 }
 
-// Whether an invocation's eight vertices share one fetch window (host: the grid's side n >= 8).
-// Vertex d after the first lies d + 2 texels on in the padded image, past a row's end (padded
-// rows are n + 2 long), and with n >= 8 eight vertices cross at most one row's end: all eight
-// neighbourhoods lie in 3 rows x 12 columns from the first's, 36 fetches where eight apart take 72
-// and two windows of four 48. A texel fetch is a gather on lavapipe, few instructions but many
-// cycles: the E and T passes take as long as splitting passes of twice their instructions.
-// Smaller grids fetch per vertex.
-layout(constant_id = 1) const bool kSharedWindow = false;
+// How an invocation's eight vertices get their 3 x 3 neighbourhoods (the host picks, per pipeline):
+// - kPerVertex: nine fetches each (grids with n < 8);
+// - kRowWindow: the block's vertices in one row, one window of 3 rows x 10 columns from the
+//   first's (30 fetches where eight apart take 72), each vertex's nine at fixed places in it. Wrong
+//   for a block holding a row's end, which the row-end pass then writes again;
+// - kCrossingWindow: the row-end pass (kRowEnds): invocation r takes the block holding the chunk's
+//   row r's last vertex. Vertex d after the first lies d + 2 texels on in the padded image past a
+//   row's end (padded rows are n + 2 long), and with n >= 8 eight vertices cross at most one row's
+//   end: a window of 3 x 12, each vertex's nine selected by whether it lies past the row's end,
+//   and past the chunk's end copies of its last vertex (the outputs' padding).
+// Until 2026-12-06 every block took the crossing window: its selects (216 a block) and the arrays
+// they fill cost E and T about a quarter of their time on lavapipe (README.md, "Vulkan passes").
+const int kPerVertex = 0, kCrossingWindow = 1, kRowWindow = 2;
+layout(constant_id = 1) const int kWindow = kPerVertex;
+layout(constant_id = 2) const bool kRowEnds = false;
 
-// The neighbourhoods of vertices 8 t .. 8 t + 7 (8 t within the chunk); past the chunk's end, the
-// last vertex's (vertex_source's clamp).
+// The block t (vertices 8 t .. 8 t + 7 of the chunk) this invocation computes; false: none.
+bool output_block(out uint t) {
+  const uint i = SDB_LINEAR_INVOCATION();
+  if (kRowEnds) {
+    t = ((i + 1u) * pc.dst_side - 1u) / 8u;
+    return i < pc.rows;
+  }
+  t = i;
+  return 8u * t < chunk_vertices();
+}
+
+// The neighbourhoods of vertices 8 t .. 8 t + 7 (8 t within the chunk).
 void eight_neighbourhoods(uint t, out vec3 s[8][9]) {
-  if (!kSharedWindow) {
+  if (kWindow == kPerVertex) {
     [[unroll]] for (int k = 0; k < 8; ++k) neighbourhood(vertex_source(8u * t + uint(k)), s[k]);
     return;
   }
   const uint count = chunk_vertices();
   const uint v0 = 8u * t, x0 = v0 % pc.dst_side;
   const uint first = padded_index(x0, pc.first_row + v0 / pc.dst_side) - pc.src_side - 1u;
-  const uint last = pc.src_side * pc.src_side - 1u;  // the window of the grid's last group runs past it
+  const uint last = pc.src_side * pc.src_side - 1u;  // the window of the grid's last block runs past it
+  if (kWindow == kRowWindow) {
+    vec3 w[30];  // w[10 r + q] at first + r S + q
+    [[unroll]] for (int r = 0; r < 3; ++r)
+      [[unroll]] for (int q = 0; q < 10; ++q) w[10 * r + q] = src(min(first + uint(r) * pc.src_side + uint(q), last));
+    [[unroll]] for (int k = 0; k < 8; ++k)
+      [[unroll]] for (int r = 0; r < 3; ++r)
+        [[unroll]] for (int q = 0; q < 3; ++q) s[k][3 * r + q] = w[10 * r + k + q];
+    return;
+  }
   vec3 w[36];  // w[12 r + q] at first + r S + q
   [[unroll]] for (int r = 0; r < 3; ++r)
     [[unroll]] for (int q = 0; q < 12; ++q) w[12 * r + q] = src(min(first + uint(r) * pc.src_side + uint(q), last));
