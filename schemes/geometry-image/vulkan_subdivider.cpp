@@ -260,16 +260,18 @@ void VulkanSubdivider::make_descriptor_sets() {
 void VulkanSubdivider::record_image_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline,
                                          const gpu::DescriptorSet& set, int src_side, int dst_side,
                                          ImageWork work) const {
-  uint64_t side = 0;  // of the square of invocations
+  uint64_t width = 0, rows = 0;  // of invocations
   switch (work) {
-    case ImageWork::PerSample: side = uint64_t(dst_side); break;
-    case ImageWork::PerSourceSample: side = uint64_t(src_side); break;
-    case ImageWork::PerBlock: side = (uint64_t(dst_side) + 1) / 2; break;
-    case ImageWork::PerSourceBlock: side = uint64_t(src_side - 1); break;
+    case ImageWork::PerSample: width = rows = uint64_t(dst_side); break;
+    case ImageWork::PerSourceSample: width = rows = uint64_t(src_side); break;
+    case ImageWork::PerBlock:  // 2 rows x 4 columns (average.glsl)
+      width = (uint64_t(dst_side) + 3) / 4, rows = (uint64_t(dst_side) + 1) / 2;
+      break;
+    case ImageWork::PerSourceBlock: width = rows = uint64_t(src_side - 1); break;
   }
   cmd.bind(pipeline, set);
   cmd.push(Push{uint32_t(src_side), uint32_t(dst_side), 0, uint32_t(dst_side)});
-  cmd.dispatch(row_groups(side, side));
+  cmd.dispatch(row_groups(width, rows));
 }
 
 void VulkanSubdivider::record_output_pass(gpu::Commands& cmd, const gpu::ComputePipeline& pipeline,
