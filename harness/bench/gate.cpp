@@ -173,10 +173,11 @@ GateConfig read_gate_config(const std::string& path) {
 
 namespace {
 
+bool same_machine(const MachineInfo& a, const MachineInfo& b) { return a.cpu_model == b.cpu_model && a.cores == b.cores; }
+
 // Empty where both files name the same processor and core count (or either names none).
 std::string other_machine(const MachineInfo& baseline, const MachineInfo& current) {
-  if (baseline.cpu_model.empty() || current.cpu_model.empty()) return "";
-  if (baseline.cpu_model == current.cpu_model && baseline.cores == current.cores) return "";
+  if (baseline.cpu_model.empty() || current.cpu_model.empty() || same_machine(baseline, current)) return "";
   return "the baseline was recorded on " + baseline.cpu_model + " (" + std::to_string(baseline.cores) +
          " cores), this run is on " + current.cpu_model + " (" + std::to_string(current.cores) + " cores)";
 }
@@ -197,7 +198,7 @@ std::string machine_baseline_name(const MachineInfo& m) {
 std::optional<std::string> baseline_for_machine(const MachineInfo& current, const std::vector<std::string>& files) {
   if (current.cpu_model.empty()) return std::nullopt;
   for (const std::string& f : files)
-    if (const MachineInfo m = read_results(f).machine; m.cpu_model == current.cpu_model && m.cores == current.cores) return f;
+    if (same_machine(read_results(f).machine, current)) return f;
   return std::nullopt;
 }
 

@@ -38,9 +38,8 @@ ChunkPlan plan_chunks(const DeviceLimits& limits, const ChunkRequest& request) {
   // Chunk sizes are multiples of `step` elements, so every chunk starts on a granule and on an
   // offset the device can bind.
   // Storage and texel views of a chunk both start at its offset.
-  const uint64_t alignment = std::lcm(std::lcm(std::max<uint64_t>(1, limits.min_storage_buffer_offset_alignment),
-                                               std::max<uint64_t>(1, limits.min_texel_buffer_offset_alignment)),
-                                      std::max<uint64_t>(1, request.byte_alignment));
+  const uint64_t alignment = std::lcm(std::max<uint64_t>(1, limits.min_storage_buffer_offset_alignment),
+                                      std::max<uint64_t>(1, limits.min_texel_buffer_offset_alignment));
   const uint64_t align_elements = alignment / std::gcd(alignment, eb);
   const uint64_t step = std::lcm(request.granule, align_elements);
   const uint64_t max_buffer = std::min(limits.max_memory_allocation_size, limits.max_buffer_size);

@@ -23,7 +23,6 @@ struct ChunkRequest {
   uint64_t granule = 1;  // chunk boundaries fall on multiples of this many elements (a face's N*N vertices)
   uint32_t local_size = 64;  // invocations per work group, one element each: for Chunk::groups
   uint64_t max_chunk_bytes = 0;  // a smaller cap than the device's binding range; 0: none
-  uint32_t byte_alignment = 1;   // chunk offsets are multiples of this too (8: 64-bit words stored)
 };
 
 struct Chunk {

@@ -207,20 +207,21 @@ void VulkanSubdivider::make_pipelines() {
   };
   p.pad = gpu::shared_compute_pipeline(ctx_, image_pass("pad", {kTable, kTable, write}));
   p.cut_normal = gpu::shared_compute_pipeline(ctx_, pass("cut_normal.comp", {kRead, kTable, kTable}));
+  // An output pass's pipeline over every block and, where n >= 8, its row-end pipeline.
+  using PipelinePtr = std::shared_ptr<const gpu::ComputePipeline>;
+  auto output_pipelines = [&](const char* shader, const std::vector<Binding>& bindings, PipelinePtr& every_block,
+                              PipelinePtr& row_ends) {
+    every_block = gpu::shared_compute_pipeline(ctx_, output_pass(shader, bindings, n, false));
+    if (n >= 8) row_ends = gpu::shared_compute_pipeline(ctx_, output_pass(shader, bindings, n, true));
+  };
   if (plan_ == PassPlan::Fused) {
     p.split_average = gpu::shared_compute_pipeline(ctx_, image_pass("split_average", {kRead, write}));
-    p.limit_normal = gpu::shared_compute_pipeline(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n, false));
-    if (n >= 8)
-      p.limit_normal_ends = gpu::shared_compute_pipeline(ctx_, output_pass("limit_normal.comp", {kRead, kTable, kTable}, n, true));
+    output_pipelines("limit_normal.comp", {kRead, kTable, kTable}, p.limit_normal, p.limit_normal_ends);
   } else {
     p.split = gpu::shared_compute_pipeline(ctx_, image_pass("split", {kRead, write}));
     p.average = gpu::shared_compute_pipeline(ctx_, image_pass("average", {kRead, write}));
-    p.limit = gpu::shared_compute_pipeline(ctx_, output_pass("limit.comp", {kRead, kTable}, n, false));
-    p.normal = gpu::shared_compute_pipeline(ctx_, output_pass("normal.comp", {kRead, kTable}, n, false));
-    if (n >= 8) {
-      p.limit_ends = gpu::shared_compute_pipeline(ctx_, output_pass("limit.comp", {kRead, kTable}, n, true));
-      p.normal_ends = gpu::shared_compute_pipeline(ctx_, output_pass("normal.comp", {kRead, kTable}, n, true));
-    }
+    output_pipelines("limit.comp", {kRead, kTable}, p.limit, p.limit_ends);
+    output_pipelines("normal.comp", {kRead, kTable}, p.normal, p.normal_ends);
   }
 }
 

@@ -80,22 +80,6 @@ TEST(PlanChunks, ChunksEndOnGranulesAndAlignedOffsets) {
   expect_valid(plan, l, r);
 }
 
-// A device that binds at any 4 bytes still gets chunks at multiples of 8 when the request asks
-// (cpatch's evaluate pass stores 64-bit words from a chunk's start).
-TEST(PlanChunks, ByteAlignmentAddsToTheDevicesOwn) {
-  DeviceLimits l = lavapipe_limits();
-  l.min_storage_buffer_offset_alignment = l.min_texel_buffer_offset_alignment = 4;
-  ChunkRequest r{1000003, 12, 3, 32, 100000};  // chunks of 8,331 elements: 99,972 bytes
-  bool unaligned = false;
-  for (const Chunk& c : plan_chunks(l, r).chunks) unaligned = unaligned || c.byte_offset % 8 != 0;
-  EXPECT_TRUE(unaligned);  // without the request's alignment, 4 is all the device asks
-  r.byte_alignment = 8;
-  const ChunkPlan plan = plan_chunks(l, r);
-  EXPECT_GT(plan.chunks.size(), 100u);
-  for (const Chunk& c : plan.chunks) EXPECT_EQ(c.byte_offset % 8, 0u) << c.byte_offset;
-  expect_valid(plan, l, r);
-}
-
 TEST(PlanChunks, RefusesAGranuleLargerThanABinding) {
   const DeviceLimits l = lavapipe_limits();
   EXPECT_THROW(plan_chunks(l, {100, 12, 100, 64, 1000}), std::invalid_argument);
