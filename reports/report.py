@@ -17,7 +17,7 @@ import report_html as H
 from report_data import Results, load_results, fmt, spec_of
 from report_history import History, read_gate_config, verdict_lines
 from report_plots import cost_growth, deviation_distributions, history_plot, rate_grid
-from report_summary import fastest, fastest_lines, matrix, scheme_lines, validation_grid, validation_sentence
+from report_summary import fastest, fastest_lines, gpu_lines, matrix, scheme_lines, validation_grid, validation_sentence
 
 READING = ("Each cell is the run at the level nearest 1 M output triangles (the paired level where the run paired "
            "it): triangle rate in M triangles/s; its ratio to the scheme's peer (above 1: faster than the peer), "
@@ -59,6 +59,7 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
         (f"<p class='lede bad'>Part of a sweep only: {H.e(merged_from)}.</p>" if "MISSING" in merged_from else ""),
         "<h3>Fastest per mesh</h3>", H.sentences(fast),
         "<h3>Where each scheme wins and loses against its peer</h3>", H.sentences(verdicts, results.schemes),
+        *gpu_section_html(results),
         f"<h3>Matrix: meshes &times; schemes, per backend</h3><p class='reading'>{READING}</p>",
         f"<div id='summary-matrix'>{H.summary_matrix(results, m, fastest)}</div></section>",
         "<section id='validation'><h2>Validation</h2>",
@@ -81,6 +82,19 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
                        nav, "\n".join(body)))
 
 
+GPU_READING = ("Each scheme's GPU row against its own cpu-mt row on the same mesh and level, timed in the same "
+               "paired rounds: the triangle rate's ratio (GPU time: the kernel's timestamps; below 1: the device path "
+               "is slower than the CPU path on this machine).")
+
+
+def gpu_section_html(results):
+    lines = gpu_lines(results)
+    if not lines:
+        return []
+    return ["<h3>GPU against the same scheme's CPU</h3>", f"<p class='reading'>{H.e(GPU_READING)}</p>",
+            H.sentences(lines, results.schemes)]
+
+
 def md_cell(cell):
     if not cell.ok:
         return cell.row["status"]
@@ -101,6 +115,10 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
         out += [f"- **{mesh}**"] + [f"  - {p}" for p in parts]
     out += ["", "### Where each scheme wins and loses against its peer", ""]
     out += [f"- **{spec}**: {text}" for spec, text in verdicts]
+    gpu = gpu_lines(results)
+    if gpu:
+        out += ["", "### GPU against the same scheme's CPU", "", GPU_READING, ""]
+        out += [f"- **{spec}**: {text}" for spec, text in gpu]
     for backend, per_mesh in m.items():
         specs = [s for s in results.specs(backend) if any(s in c for c in per_mesh.values())]
         out += ["", f"### {backend}", "", "| mesh | " + " | ".join(specs) + " |", "|---" * (len(specs) + 1) + "|"]

@@ -103,7 +103,10 @@ class Results:
         for r in self.rows:
             if r["status"] == "ok":
                 self._by_tess[(spec_of(r), r["mesh"], r["backend"], r["tessellation"])] = r
-        self._paired = {(p["scheme"], p["mesh"], p["backend"]): p for p in self.paired}
+        # Backend cells pair a GPU row with its own scheme's cpu-mt row (harness/bench/paired.h);
+        # the summary cells are the peer ones.
+        self.backend_pairs = [p for p in self.paired if is_backend_pair(p)]
+        self._paired = {(p["scheme"], p["mesh"], p["backend"]): p for p in self.paired if not is_backend_pair(p)}
 
     def meshes(self):
         return sorted({r["mesh"] for r in self.rows})
@@ -138,6 +141,11 @@ class Results:
                     return Cell(r, self, p)
         ok = [r for r in rows if r["status"] == "ok" and r["triangles"] > 0] or rows
         return Cell(min(ok, key=lambda r: abs(math.log(max(r["triangles"], 1) / COMMON_TRIANGLES))), self, None)
+
+
+def is_backend_pair(p):
+    """A paired cell of a scheme's row against the same scheme on another backend (paired.h)."""
+    return p["peer"]["scheme"] == p["scheme"] and p["peer"]["backend"] != p["backend"]
 
 
 class Cell:

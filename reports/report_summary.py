@@ -129,3 +129,14 @@ def dev_words(r):
     if dev.get("pos_p95_pct") is None:
         return ""
     return f"; deviation p95 {fmt(dev.get('pos_p95_pct'))}%, max {fmt(dev.get('pos_max_pct'))}% of the local face size"
+
+
+def gpu_lines(results):
+    """Per scheme, its GPU rows against its own cpu-mt rows in the same paired rounds: [(spec, text)]."""
+    by_spec = {}
+    for p in results.backend_pairs:
+        rr = p["rate_ratio"]
+        by_spec.setdefault(p["scheme"], []).append(
+            f"{p['mesh']} {p['backend']} {rr['median']:.3f}x of {p['peer']['backend']} (range {rr['min']:.3f}-{rr['max']:.3f}, "
+            f"{p['rounds']} rounds; {fmt(p['time_ms']['median'])} against {fmt(p['peer_time_ms']['median'])} ms)")
+    return [(spec, "; ".join(parts) + ".") for spec, parts in sorted(by_spec.items(), key=lambda kv: results.schemes.key(kv[0]))]

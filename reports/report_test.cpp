@@ -65,6 +65,13 @@ TEST(Report, SummaryComesFirstWithPairedAndSinglePassRatios) {
   // A paired cell's rate is the paired rounds' (the fixture's geometry-image on quadsphere: 10 M
   // triangles/s there, 29.6 in its single pass).
   EXPECT_NE(md.find("| 10 Mtri/s, 14.19x (14.02-16.35, 5 rounds) |"), std::string::npos) << md;
+  // A backend cell (a GPU row against its own scheme's cpu-mt row) has its own lines and leaves
+  // the vulkan cell's ratio to its peer alone.
+  EXPECT_NE(md.find("### GPU against the same scheme's CPU"), std::string::npos) << md;
+  EXPECT_NE(md.find("- **cpatch-2pass**: quadsphere vulkan 0.029x of cpu-mt (range 0.028-0.031, 5 rounds;"), std::string::npos)
+      << md;
+  EXPECT_NE(html.find("<h3>GPU against the same scheme's CPU</h3>"), std::string::npos);
+  EXPECT_EQ(md.find("0.03x cpatch-2pass"), std::string::npos) << "a backend cell read as the peer ratio";
   EXPECT_FALSE(has_work_folder(out));
 }
 

@@ -32,6 +32,16 @@ const RunRow* peer_row(const RunRow& row, const std::vector<RunRow>& rows) {
   return best;
 }
 
+bool on_gpu(Backend b) { return b == Backend::Vulkan || b == Backend::OpenGl; }
+
+// The same scheme, as spelled, on cpu-mt at the row's mesh and level, or none.
+const RunRow* own_cpu_row(const RunRow& row, const std::vector<RunRow>& rows) {
+  for (const RunRow& r : rows)
+    if (usable(r) && r.mesh == row.mesh && spec_of(r) == spec_of(row) && r.backend == Backend::CpuMt && r.level == row.level)
+      return &r;
+  return nullptr;
+}
+
 const std::vector<double>& round_samples(const RunRow& r) {
   return r.gpu_time_ms ? r.gpu_time_ms->samples : r.time_ms.samples;
 }
@@ -56,8 +66,16 @@ std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows,
     const RunRow& row = *nearest[key];
     if (const RunRow* peer = peer_row(row, rows)) cells.push_back({row, *peer});
   }
+  for (const std::string& key : order) {
+    const RunRow& row = *nearest[key];
+    if (!on_gpu(row.backend)) continue;
+    if (const RunRow* cpu = own_cpu_row(row, rows)) cells.push_back({row, *cpu});
+  }
   return cells;
 }
+
+bool is_backend_cell(const PairedCell& c) { return c.peer.scheme == c.row.scheme && c.peer.backend != c.row.backend; }
+bool is_backend_cell(const PairedPlanCell& c) { return spec_of(c.peer) == spec_of(c.row) && c.peer.backend != c.row.backend; }
 
 PairedCell pair_rounds(const std::string& mesh, const RunRow& row, const RunRow& peer) {
   PairedCell c;

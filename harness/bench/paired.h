@@ -23,8 +23,14 @@ struct PairedPlanCell {
 };
 
 // The cells of `rows` in row order: rows that are not ok, have no peer or whose peer has no ok
-// row on the same mesh and backend give none.
+// row on the same mesh and backend give none. After them the backend cells: each GPU row chosen
+// (vulkan, opengl) against its own scheme's cpu-mt row on the same mesh and level, where the run
+// has one: how the device path of a method compares with its CPU path, measured in the same rounds.
 std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows, long target = kSummaryTriangles);
+
+// A backend cell (above): the peer side is the row's own scheme on the CPU.
+bool is_backend_cell(const PairedCell& c);
+bool is_backend_cell(const PairedPlanCell& c);
 
 // The cell from its two sides measured in the same `rounds` rounds: sample r of each in round r
 // (GPU time for GPU backends, wall time otherwise, as the rows' rates).

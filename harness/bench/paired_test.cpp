@@ -72,3 +72,34 @@ TEST(PairRounds, GpuRowsUseTheirGpuTime) {
   peer.time_ms.samples = {2.0, 2.0};
   EXPECT_DOUBLE_EQ(pair_rounds("cube", scheme, peer).rate_ratio_median, 2.0);
 }
+
+TEST(ChoosePairedCells, AGpuRowIsAlsoPairedWithItsOwnSchemeOnTheCpuAtItsLevel) {
+  const std::vector<RunRow> rows = {
+      row("osd-bfr", Backend::CpuMt, "cube", 17, 800'000),
+      row("cpatch", Backend::CpuMt, "cube", 9, 200'000, "osd-bfr", Backend::CpuMt),
+      row("cpatch", Backend::CpuMt, "cube", 17, 800'000, "osd-bfr", Backend::CpuMt),
+      row("cpatch", Backend::Vulkan, "cube", 17, 800'000, "osd-bfr", Backend::CpuMt),
+      row("cpatch", Backend::Vulkan, "torus", 17, 800'000, "osd-bfr", Backend::CpuMt),  // no cpu-mt row on torus
+      row("cpatch:n=3", Backend::Vulkan, "cube", 17, 800'000, "osd-bfr", Backend::CpuMt),  // another spec
+  };
+  const std::vector<PairedPlanCell> cells = choose_paired_cells(rows);
+  // Peer cells first (cpatch cpu-mt, cpatch vulkan and cpatch:n=3 vulkan against osd-bfr), then the one backend cell.
+  ASSERT_EQ(cells.size(), 4u);
+  const PairedPlanCell& gpu = cells.back();
+  EXPECT_EQ(gpu.row.backend, Backend::Vulkan);
+  EXPECT_EQ(gpu.row.spec, "cpatch");
+  EXPECT_EQ(gpu.peer.spec, "cpatch");
+  EXPECT_EQ(gpu.peer.backend, Backend::CpuMt);
+  EXPECT_EQ(gpu.peer.level, 17);  // the GPU row's level, not the one nearest in triangles
+  for (size_t i = 0; i + 1 < cells.size(); ++i) EXPECT_EQ(cells[i].peer.scheme, "osd-bfr");
+}
+
+TEST(PairRounds, ABackendCellIsTheSameSchemeOnAnotherBackend) {
+  RunRow gpu = row("cpatch", Backend::Vulkan, "cube", 17, 1000), cpu = row("cpatch", Backend::CpuMt, "cube", 17, 1000);
+  gpu.gpu_time_ms = TimeStats{4, 4, 4, 1, {4.0}};
+  cpu.time_ms.samples = {1.0};
+  const PairedCell c = pair_rounds("cube", gpu, cpu);
+  EXPECT_TRUE(is_backend_cell(c));
+  EXPECT_DOUBLE_EQ(c.rate_ratio_median, 0.25);
+  EXPECT_FALSE(is_backend_cell(pair_rounds("cube", gpu, row("osd-bfr", Backend::CpuMt, "cube", 17, 1000))));
+}

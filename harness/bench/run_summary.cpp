@@ -5,6 +5,8 @@
 #include <map>
 #include <set>
 
+#include "harness/bench/paired.h"
+
 namespace sdb {
 
 bool has_crack(const RunRow& r) {
@@ -68,8 +70,24 @@ std::pair<PairedSide, const PairedCell*> fastest(const std::vector<PairedCell>& 
       best = c.peer, rate = rate_mtris(c.peer, c.peer_time_ms_median);
   }
   for (const PairedCell& c : cells)
-    if (c.mesh == mesh && c.row.backend == backend && c.row.scheme == best.scheme) return {best, &c};
+    if (c.mesh == mesh && c.row.backend == backend && c.row.scheme == best.scheme && !is_backend_cell(c)) return {best, &c};
   return {best, nullptr};
+}
+
+// The backend cells (paired.h) as lines: a GPU row's rate over its own scheme's cpu-mt rate.
+std::vector<std::string> backend_lines(const std::vector<PairedCell>& cells) {
+  std::vector<std::string> lines;
+  for (const PairedCell& c : cells) {
+    if (!is_backend_cell(c)) continue;
+    if (lines.empty()) lines.push_back("GPU against the same scheme's CPU (paired rounds: median rate ratio, range over rounds):");
+    char buf[320];
+    std::snprintf(buf, sizeof buf, "  %-28s %-24s %-7s %.3fx %s (%.3f-%.3f over %d rounds; %.3f against %.3f ms)", c.mesh.c_str(),
+                  c.row.scheme.c_str(), std::string(to_string(c.row.backend)).c_str(), c.rate_ratio_median,
+                  std::string(to_string(c.peer.backend)).c_str(), c.rate_ratio_min, c.rate_ratio_max, c.rounds,
+                  c.time_ms_median, c.peer_time_ms_median);
+    lines.push_back(buf);
+  }
+  return lines;
 }
 
 }  // namespace
@@ -93,10 +111,11 @@ std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells) {
                       std::string(to_string(own->peer.backend)).c_str(), own->rate_ratio_min, own->rate_ratio_max, own->rounds);
         line += buf;
       } else {
-        line += "  (a peer without one of its own)";
+        line += "  (no peer of its own in this run)";
       }
       lines.push_back(line);
     }
+  for (std::string& line : backend_lines(cells)) lines.push_back(std::move(line));
   return lines;
 }
 

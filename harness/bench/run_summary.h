@@ -23,7 +23,8 @@ std::vector<std::string> summary_lines(const RunSummary& summary, const std::str
 
 // From the paired cells: for each mesh and backend, the fastest scheme (triangle rate from its
 // paired median time, either side of a cell) and, where it has a peer, its paired ratio with the
-// range over rounds; no lines without cells.
+// range over rounds; then each backend cell, a GPU row against its own scheme's cpu-mt row; no
+// lines without cells.
 std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells);
 
 // Whether a closed input's row shows an open edge or a ray crack (rows on open inputs have their

@@ -49,3 +49,25 @@ TEST(RunSummary, SaysWhenEverythingIsWatertightAndNoReportWasWritten) {
   EXPECT_EQ(lines[1], "watertight: every closed input gave a closed surface without ray cracks");
   EXPECT_EQ(lines.back(), "wrote r.json");
 }
+
+TEST(PairedLines, ABackendCellHasItsOwnLineAndIsNoSchemesPeerRatio) {
+  PairedCell peer_cell;
+  peer_cell.mesh = "cube";
+  peer_cell.row = {"cpatch", Backend::Vulkan, 17, 1000};
+  peer_cell.peer = {"osd-bfr", Backend::CpuMt, 17, 1000};
+  peer_cell.rounds = 3;
+  peer_cell.rate_ratio_median = 0.5, peer_cell.rate_ratio_min = 0.4, peer_cell.rate_ratio_max = 0.6;
+  peer_cell.time_ms_median = 2.0, peer_cell.peer_time_ms_median = 1.0;
+  PairedCell backend_cell = peer_cell;
+  backend_cell.peer = {"cpatch", Backend::CpuMt, 17, 1000};
+  backend_cell.rate_ratio_median = 0.25, backend_cell.rate_ratio_min = 0.2, backend_cell.rate_ratio_max = 0.3;
+  backend_cell.peer_time_ms_median = 0.5;
+  const std::vector<std::string> lines = paired_lines({peer_cell, backend_cell});
+  auto has = [&](const std::string& text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(has("0.50x osd-bfr/cpu-mt")) << "the vulkan row's ratio is to its peer";
+  EXPECT_TRUE(has("GPU against the same scheme's CPU"));
+  EXPECT_TRUE(has("0.250x cpu-mt (0.200-0.300 over 3 rounds; 2.000 against 0.500 ms)"));
+  EXPECT_FALSE(has("0.25x cpatch/cpu-mt")) << "a backend cell read as a peer ratio";
+}

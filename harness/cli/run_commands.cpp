@@ -132,9 +132,10 @@ std::vector<PairedCell> paired_figures(RunSet& set, const ResultsFile& results, 
     return {};
   }
   const size_t items = paired_items(cells, opts.rounds);
-  std::printf("paired rounds: %zu summary cells (each scheme+backend at the level nearest 1 M triangles against its peer), "
-              "%d rounds on each of %zu meshes\n",
-              cells.size(), opts.rounds, items / size_t(opts.rounds));
+  const size_t gpu = size_t(std::count_if(cells.begin(), cells.end(), [](const PairedPlanCell& c) { return is_backend_cell(c); }));
+  std::printf("paired rounds: %zu summary cells (each scheme+backend at the level nearest 1 M triangles against its peer) "
+              "and %zu GPU rows against their scheme's cpu-mt row, %d rounds on each of %zu meshes\n",
+              cells.size() - gpu, gpu, opts.rounds, items / size_t(opts.rounds));
   std::fflush(stdout);
   Progress progress(std::cout, stdout_is_terminal(), items, Progress::steady_seconds, terminal_columns());
   auto note = [&](const std::string& line) { progress.note("note: " + line); };
