@@ -96,6 +96,15 @@ PairedCell pair_rounds(const std::string& mesh, const RunRow& row, const RunRow&
   return c;
 }
 
+std::vector<PairedCell> pair_measured_rows(const std::vector<RunRow>& rows, long target) {
+  std::vector<PairedCell> out;
+  for (const PairedPlanCell& c : choose_paired_cells(rows, target)) {
+    PairedCell cell = pair_rounds(c.row.mesh, c.row, c.peer);
+    if (cell.rounds > 0) out.push_back(std::move(cell));
+  }
+  return out;
+}
+
 namespace {
 
 // Each mesh's distinct rows to time (a row can be one cell's scheme and another's peer).

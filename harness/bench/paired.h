@@ -41,6 +41,10 @@ struct PairedOptions {
   double min_time_s = 0.05;  // per benchmark and round
 };
 
+// The cells of rows that were measured in the same rounds already (bench --rounds: sample r of
+// every row is round r), paired from their samples, in choose_paired_cells' order.
+std::vector<PairedCell> pair_measured_rows(const std::vector<RunRow>& rows, long target = kSummaryTriangles);
+
 // Measures the cells mesh by mesh (each mesh's evaluations alive only while its rounds run). A mesh
 // whose rounds fail is reported through `note` and left out, never ending the run.
 std::vector<PairedCell> measure_paired(const std::vector<PairedPlanCell>& cells, const PairedOptions& options,

@@ -103,3 +103,21 @@ TEST(PairRounds, ABackendCellIsTheSameSchemeOnAnotherBackend) {
   EXPECT_DOUBLE_EQ(c.rate_ratio_median, 0.25);
   EXPECT_FALSE(is_backend_cell(pair_rounds("cube", gpu, row("osd-bfr", Backend::CpuMt, "cube", 17, 1000))));
 }
+
+TEST(PairMeasuredRows, RowsTimedInTheSameRoundsPairAsTheyAre) {
+  std::vector<RunRow> rows = {
+      row("osd-bfr", Backend::CpuMt, "cube", 17, 1000),
+      row("cpatch", Backend::CpuMt, "cube", 17, 1000, "osd-bfr", Backend::CpuMt),
+      row("cpatch", Backend::Vulkan, "cube", 17, 1000, "osd-bfr", Backend::CpuMt),
+  };
+  rows[0].time_ms.samples = {4.0, 4.0};
+  rows[1].time_ms.samples = {1.0, 2.0};
+  rows[2].time_ms.samples = {9.0, 9.0};  // wall time; the GPU's is what pairs
+  rows[2].gpu_time_ms = TimeStats{4, 4, 4, 2, {4.0, 4.0}};
+  const std::vector<PairedCell> cells = pair_measured_rows(rows);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[0].rate_ratio_per_round, (std::vector<double>{4.0, 2.0}));  // cpatch cpu-mt / osd-bfr
+  EXPECT_EQ(cells[1].rate_ratio_per_round, (std::vector<double>{1.0, 1.0}));  // cpatch vulkan / osd-bfr
+  EXPECT_TRUE(is_backend_cell(cells[2]));
+  EXPECT_EQ(cells[2].rate_ratio_per_round, (std::vector<double>{0.25, 0.5}));  // cpatch vulkan / its cpu-mt
+}

@@ -12,9 +12,11 @@
 #include "harness/bench/gate.h"
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
+#include "harness/bench/paired.h"
 #include "harness/bench/plan.h"
 #include "harness/bench/process.h"
 #include "harness/bench/progress.h"
+#include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
@@ -72,10 +74,15 @@ int bench(const GateOptions& opts) {
     how.progress = &progress.emplace(std::cout, stdout_is_terminal(), size_t(opts.rounds), Progress::steady_seconds, terminal_columns());
   results.runs = bench_runs(plan.runs, m, ctx, &console, how);
   if (progress) progress->close();
-  if (opts.rounds > 0)
+  if (opts.rounds > 0) {
     for (const RunRow& r : results.runs)
       std::printf("%-44s median %9.4f ms  min %9.4f ms  over %d rounds\n", r.name().c_str(), r.time_ms.median,
                   r.time_ms.min, r.time_ms.reps);
+    // Every row ran once per round: a row and its peer, or a GPU row and its scheme's cpu-mt row,
+    // pair by round as they are (results.json's paired, the report's ratios).
+    results.paired = pair_measured_rows(results.runs);
+    for (const std::string& line : paired_lines(results.paired)) std::printf("%s\n", line.c_str());
+  }
   if (!opts.out.empty()) {
     write_results(results, (fs::path(opts.out) / "results.json").string());
     std::printf("wrote %s\n", (fs::path(opts.out) / "results.json").string().c_str());
