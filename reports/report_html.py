@@ -120,8 +120,8 @@ def matrix_cell(cell, best):
                      f"<div class='range'>{lo:.2f}&ndash;{hi:.2f}, {n} rounds</div>")
         else:
             ratio = f"<div class='ratio'>{cell.ratio:.2f}&times;</div><div class='single'>single pass</div>"
-    else:
-        ratio = "<div class='ratio range'>anchor</div><div class='range'>&nbsp;</div>"
+    else:  # the anchor has no peer; a scheme whose peer did not run here has no ratio either
+        ratio = f"<div class='ratio range'>{'no peer row' if cell.peer else 'anchor'}</div><div class='range'>&nbsp;</div>"
     dev = (r.get("deviation") or {}).get("pos_p95_pct")
     dev_text = f"p95 {fmt(dev, 2)}%" if finite(dev) else "p95 &ndash;"
     cls = " class='best'" if best else ""

@@ -75,6 +75,17 @@ TEST(Report, SummaryComesFirstWithPairedAndSinglePassRatios) {
   EXPECT_FALSE(has_work_folder(out));
 }
 
+TEST(Report, ASchemeWhosePeerDidNotRunIsNotCalledTheAnchor) {
+  // cpatch-2pass's rows alone (reports/testdata/no_peer): its peer, osd-bfr, has no row.
+  const fs::path out = fresh_folder("no_peer");
+  const auto r = run_cli(report_args({kData / "no_peer" / "results.json"}, out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html"), md = slurp(out / "report.md");
+  EXPECT_NE(html.find("<div class='ratio range'>no peer row</div>"), std::string::npos);
+  EXPECT_EQ(html.find("<div class='ratio range'>anchor</div>"), std::string::npos) << "cpatch-2pass is no anchor";
+  EXPECT_NE(md.find("Mtri/s, no peer row"), std::string::npos) << md;
+}
+
 TEST(Report, SaysWhyThereAreNoPictures) {
   const fs::path out = fresh_folder("no-pictures");
   fs::create_directories(out / "pictures");
