@@ -7,6 +7,7 @@
 
 #include "harness/bench/progress.h"
 #include "harness/bench/statistics.h"
+#include "harness/core/backend.h"
 
 namespace sdb {
 namespace {
@@ -31,8 +32,6 @@ const RunRow* peer_row(const RunRow& row, const std::vector<RunRow>& rows) {
     if (usable(r) && r.mesh == row.mesh && r.scheme == row.peer && r.backend == *row.peer_backend && better(r)) best = &r;
   return best;
 }
-
-bool on_gpu(Backend b) { return b == Backend::Vulkan || b == Backend::OpenGl; }
 
 // The same scheme, as spelled, on cpu-mt at the row's mesh and level, or none.
 const RunRow* own_cpu_row(const RunRow& row, const std::vector<RunRow>& rows) {
@@ -68,7 +67,7 @@ std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows,
   }
   for (const std::string& key : order) {
     const RunRow& row = *nearest[key];
-    if (!on_gpu(row.backend)) continue;
+    if (!is_gpu(row.backend)) continue;
     if (const RunRow* cpu = own_cpu_row(row, rows)) cells.push_back({row, *cpu});
   }
   return cells;
