@@ -80,10 +80,20 @@ def machine_words(machine, created, extra=""):
     parts = [f"{e(m.get('cpu_model', '?'))}, {m.get('cores', '?')} cores",
              f"write bandwidth {m.get('write_bandwidth_gbs', 0):.1f} GB/s one thread, "
              f"{m.get('write_bandwidth_mt_gbs', 0):.1f} GB/s all",
-             f"Vulkan: {e(m.get('vulkan_device') or 'none')}",
+             f"Vulkan: {e(m.get('vulkan_device') or 'none')}{vulkan_bandwidths(m)}",
              f"{e(m.get('compiler', '?'))} {e(m.get('build_type', ''))}, commit <code>{e(m.get('git_commit', '?'))}</code>",
              f"created {e(created)}"]
     return " · ".join(parts) + (f" · {extra}" if extra else "")
+
+
+def vulkan_bandwidths(m):
+    """The device's buffer fill (what bandwidth fractions divide by) and what a compute shader
+    that only stores reaches (harness/bench/machine.h): on a CPU-emulated device far apart."""
+    fill, shader = m.get("gpu_write_bandwidth_gbs", 0), m.get("gpu_shader_write_bandwidth_gbs", 0)
+    if not fill:
+        return ""
+    words = f", buffer fill {fill:.1f} GB/s"
+    return words + (f", a store-only shader {shader:.1f} GB/s" if shader else "")
 
 
 def swatch(colour):

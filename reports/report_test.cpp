@@ -57,6 +57,9 @@ TEST(Report, SummaryComesFirstWithPairedAndSinglePassRatios) {
   EXPECT_NE(html.find("class='picture-shaded'"), std::string::npos);
   EXPECT_NE(html.find("shaded picture not made: vkQueueSubmit: VK_ERROR_DEVICE_LOST"), std::string::npos);
   EXPECT_NE(html.find("class='paper'"), std::string::npos);
+  // The machine line gives the Vulkan device's two write figures: the fill that bandwidth
+  // fractions divide by, and what a shader that only stores reaches.
+  EXPECT_NE(html.find("buffer fill 6.4 GB/s, a store-only shader 2.1 GB/s"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos) << "nothing may be fetched";
   EXPECT_EQ(html.find("https://"), std::string::npos) << "nothing may be fetched";
   EXPECT_TRUE(fs::exists(out / "plots" / "cost_growth.png"));

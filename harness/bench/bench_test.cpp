@@ -28,9 +28,19 @@ MeasureOptions quick() {
 
 }  // namespace
 
+// Both Vulkan write probes measure something where there is a device, and nothing where there is
+// none (the vulkan rows then have no bandwidth fraction).
+TEST(Machine, VulkanWriteProbesRunWhereThereIsADevice) {
+  const bool device = !describe_machine().vulkan_device.empty();
+  const double fill = measure_gpu_write_bandwidth(), shader = measure_gpu_shader_write_bandwidth();
+  EXPECT_EQ(fill > 0, device) << fill;
+  EXPECT_EQ(shader > 0, device) << shader;
+}
+
 TEST(Results, RoundTripAndRefuseUnknownSchema) {
   ResultsFile r;
   r.machine.cpu_model = "test cpu";
+  r.machine.gpu_shader_write_bandwidth_gbs = 4.5;
   r.created = "2026-11-21T00:00:00Z";
   RunRow row;
   row.scheme = "osd-bfr";
@@ -48,6 +58,7 @@ TEST(Results, RoundTripAndRefuseUnknownSchema) {
   EXPECT_DOUBLE_EQ(back.runs[0].deviation.pos_max_pct, 0.25);
   ASSERT_TRUE(back.runs[0].gpu_time_ms.has_value());
   EXPECT_EQ(back.machine.cpu_model, "test cpu");
+  EXPECT_DOUBLE_EQ(back.machine.gpu_shader_write_bandwidth_gbs, 4.5);
 
   std::ofstream(p) << R"({"schema": 99, "runs": []})";
   try {

@@ -3,6 +3,7 @@
 
 #include "harness/gpu/device_info.h"
 #include "harness/gpu/gpu.h"
+#include "sdb_gpu_shaders.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <new>
 #include <string>
@@ -143,7 +145,10 @@ void add_bandwidth_probes(MachineInfo& m) {
   const CpuWriteBandwidth cpu = measure_write_bandwidth(std::max(1, m.cores));
   m.write_bandwidth_gbs = cpu.one_thread_gbs;
   m.write_bandwidth_mt_gbs = cpu.all_threads_gbs;
-  if (!m.vulkan_device.empty()) m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
+  if (!m.vulkan_device.empty()) {
+    m.gpu_write_bandwidth_gbs = measure_gpu_write_bandwidth();
+    m.gpu_shader_write_bandwidth_gbs = measure_gpu_shader_write_bandwidth();
+  }
 }
 
 MachineInfo describe_machine_with_probes() {
@@ -152,26 +157,61 @@ MachineInfo describe_machine_with_probes() {
   return m;
 }
 
+namespace {
+
+// GB/s of `bytes` written by what `record` records (given the pass's index, 0..4), the best of
+// five submissions timed by timestamp queries; 0 where the queue has no timestamps.
+double best_gpu_write_gbs(gpu::Context& ctx, uint64_t bytes, const std::function<void(gpu::Commands&, int)>& record) {
+  gpu::GpuTimer timer(ctx);
+  if (!timer.supported()) return 0;
+  double best_gbs = 0;
+  for (int pass = 0; pass < 5; ++pass) {
+    ctx.run([&](gpu::Commands& cmd) {
+      timer.reset(cmd);
+      timer.begin(cmd, gpu::PassKind::Kernel, "write probe");
+      record(cmd, pass);
+      timer.end(cmd);
+    });
+    if (auto t = timer.read(); t && t->kernel_ms > 0) best_gbs = std::max(best_gbs, bytes / (t->kernel_ms * 1e-3) / 1e9);
+  }
+  return best_gbs;
+}
+
+}  // namespace
+
 double measure_gpu_write_bandwidth() {
   try {
     auto ctx = gpu::shared_context();
     const uint64_t bytes = std::min<uint64_t>(uint64_t(256) << 20, ctx->limits().max_memory_allocation_size / 2);
     gpu::Buffer buffer = gpu::Buffer::device(*ctx, bytes, gpu::BufferUsage::Storage, "bandwidth probe");
-    gpu::GpuTimer timer(*ctx);
-    if (!timer.supported()) return 0;
-    double best_ms = 1e30;
-    for (int pass = 0; pass < 5; ++pass) {
-      ctx->run([&](gpu::Commands& cmd) {
-        timer.reset(cmd);
-        timer.begin(cmd, gpu::PassKind::Kernel, "fill");
-        cmd.fill(buffer, static_cast<uint32_t>(pass + 1));
-        timer.end(cmd);
-      });
-      if (auto t = timer.read(); t && t->kernel_ms > 0) best_ms = std::min(best_ms, t->kernel_ms);
-    }
-    return best_ms < 1e30 ? bytes / (best_ms * 1e-3) / 1e9 : 0;
+    return best_gpu_write_gbs(*ctx, bytes, [&](gpu::Commands& cmd, int pass) { cmd.fill(buffer, uint32_t(pass + 1)); });
   } catch (const std::exception&) {
     return 0;  // no device: vulkan rows have no bandwidth fraction
+  }
+}
+
+double measure_gpu_shader_write_bandwidth() {
+  try {
+    auto ctx = gpu::shared_context();
+    const gpu::DeviceLimits& limits = ctx->limits();
+    // One binding covers it (lavapipe: 128 MiB), several times any cache.
+    const uint64_t bytes = std::min({uint64_t(128) << 20, limits.max_storage_buffer_range & ~uint64_t(127),
+                                     limits.max_memory_allocation_size / 2});
+    gpu::Buffer buffer = gpu::Buffer::device(*ctx, bytes, gpu::BufferUsage::Storage, "shader store probe");
+    auto pipeline = gpu::shared_compute_pipeline(
+        *ctx, {sdb_gpu_shaders::get("store_probe.comp"), {gpu::Binding::StorageBuffer}, 2 * sizeof(uint32_t)});
+    gpu::DescriptorSet set(*pipeline, {buffer.range()});
+    return best_gpu_write_gbs(*ctx, bytes, [&](gpu::Commands& cmd, int pass) {
+      const struct {
+        uint32_t count;  // vec4s, 8 per invocation
+        float value;
+      } push{static_cast<uint32_t>(bytes / 16), float(pass + 1)};
+      cmd.bind(*pipeline, set);
+      cmd.push(push);
+      cmd.dispatch(gpu::groups_for(push.count / 8, 256, limits));
+    });
+  } catch (const std::exception&) {
+    return 0;
   }
 }
 

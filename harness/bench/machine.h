@@ -26,5 +26,10 @@ MachineInfo describe_machine_with_probes();
 
 // The same for the Vulkan device: a buffer fill timed by timestamp queries; 0 without a device.
 double measure_gpu_write_bandwidth();
+// What a compute shader writes there: 128 MiB of vec4s, 8 consecutive per invocation, nothing
+// computed (harness/gpu/shaders/store_probe.comp), timed by timestamp queries; 0 without a
+// device. On lavapipe a shader's stores go lane by lane, so this is a fraction of the fill's
+// memset, and it bounds the bandwidth fraction any row can reach (harness/bench/README.md).
+double measure_gpu_shader_write_bandwidth();
 
 }  // namespace sdb

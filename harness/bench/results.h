@@ -76,6 +76,7 @@ struct MachineInfo {
   double write_bandwidth_gbs = 0;     // one thread, streaming store
   double write_bandwidth_mt_gbs = 0;  // all threads
   double gpu_write_bandwidth_gbs = 0;  // the Vulkan device: a buffer fill timed by timestamps
+  double gpu_shader_write_bandwidth_gbs = 0;  // and a compute shader that only stores (vec4s)
 };
 
 // Which part of a sharded selection a file holds (`run --shard I/N`): the rows whose sorted

@@ -107,7 +107,9 @@ int validate(const RunOptions& opts) {
 void print_machine(const MachineInfo& m, size_t runs) {
   std::printf("%zu runs; machine: %s, %d cores, write bandwidth %.1f GB/s (1 thread), %.1f GB/s (all)", runs,
               m.cpu_model.c_str(), m.cores, m.write_bandwidth_gbs, m.write_bandwidth_mt_gbs);
-  if (!m.vulkan_device.empty()) std::printf(", %s %.2f GB/s", m.vulkan_device.c_str(), m.gpu_write_bandwidth_gbs);
+  if (!m.vulkan_device.empty())
+    std::printf(", %s %.2f GB/s (buffer fill; a store-only shader %.2f)", m.vulkan_device.c_str(),
+                m.gpu_write_bandwidth_gbs, m.gpu_shader_write_bandwidth_gbs);
   if (!m.opengl_renderer.empty()) std::printf(", OpenGL: %s", m.opengl_renderer.c_str());
   std::printf("\n");
 }
