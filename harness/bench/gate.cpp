@@ -59,14 +59,6 @@ std::optional<Backend> own_normaliser(const RunRow& row, const GateConfig& confi
   return std::nullopt;
 }
 
-const RunRow* find_same_run(const RunRow& row, Backend backend, const ResultsFile& file) {
-  for (const RunRow& r : file.runs)
-    if (r.spec == row.spec && r.mesh == row.mesh && r.level == row.level && r.backend == backend &&
-        r.status == RunStatus::Ok && !timing(r).samples.empty())
-      return &r;
-  return nullptr;
-}
-
 // Each repetition's time in units of the same run's peer time on the same mesh and tessellation;
 // rows without a peer (the anchor, osd-bfr) in units of the calibration probe run beside them
 // (bench --rounds), or failing that of the machine's bandwidth probe. When the run went in
@@ -76,8 +68,8 @@ std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file, 
   const TimeStats& t = timing(row);
   const bool paired = file.rounds > 0;
   if (const auto backend = own_normaliser(row, config)) {
-    const RunRow* unit = find_same_run(row, *backend, file);
-    if (!unit) return std::nullopt;
+    const RunRow* unit = same_run_on(row, *backend, file.runs);
+    if (!unit || timing(*unit).samples.empty()) return std::nullopt;
     const std::string by = row.spec + "/" + std::string(to_string(*backend));
     return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
   }

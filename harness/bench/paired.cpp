@@ -33,14 +33,6 @@ const RunRow* peer_row(const RunRow& row, const std::vector<RunRow>& rows) {
   return best;
 }
 
-// The same scheme, as spelled, on cpu-mt at the row's mesh and level, or none.
-const RunRow* own_cpu_row(const RunRow& row, const std::vector<RunRow>& rows) {
-  for (const RunRow& r : rows)
-    if (usable(r) && r.mesh == row.mesh && spec_of(r) == spec_of(row) && r.backend == Backend::CpuMt && r.level == row.level)
-      return &r;
-  return nullptr;
-}
-
 const std::vector<double>& round_samples(const RunRow& r) {
   return r.gpu_time_ms ? r.gpu_time_ms->samples : r.time_ms.samples;
 }
@@ -68,7 +60,7 @@ std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows,
   for (const std::string& key : order) {
     const RunRow& row = *nearest[key];
     if (!is_gpu(row.backend)) continue;
-    if (const RunRow* cpu = own_cpu_row(row, rows)) cells.push_back({row, *cpu});
+    if (const RunRow* cpu = same_run_on(row, Backend::CpuMt, rows); cpu && usable(*cpu)) cells.push_back({row, *cpu});
   }
   return cells;
 }

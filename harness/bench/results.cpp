@@ -325,4 +325,13 @@ ResultsFile read_results(const std::string& path) {
   return r;
 }
 
+const RunRow* same_run_on(const RunRow& row, Backend backend, const std::vector<RunRow>& runs) {
+  auto spec = [](const RunRow& r) -> const std::string& { return r.spec.empty() ? r.scheme : r.spec; };
+  for (const RunRow& r : runs)
+    if (r.status == RunStatus::Ok && r.backend == backend && r.mesh == row.mesh && r.level == row.level &&
+        spec(r) == spec(row))
+      return &r;
+  return nullptr;
+}
+
 }  // namespace sdb

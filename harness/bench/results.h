@@ -117,6 +117,11 @@ struct ResultsFile {
   std::vector<PairedCell> paired;  // absent in the file when empty
 };
 
+// The row of `runs` that measured the same scheme as spelled, mesh and level as `row` on
+// `backend`, with status ok, or none: a GPU row's own cpu-mt row (paired.h's backend cells), a
+// gate normaliser's unit (gate.h).
+const RunRow* same_run_on(const RunRow& row, Backend backend, const std::vector<RunRow>& runs);
+
 std::string row_json(const RunRow& row, int indent = 2);  // indent < 0: one line
 void write_results(const ResultsFile& results, const std::string& path);
 // Creates `dir` if needed and checks it can be written, so a bad --out fails before any measuring.
