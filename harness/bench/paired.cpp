@@ -16,15 +16,13 @@ double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a
 
 bool usable(const RunRow& r) { return r.status == RunStatus::Ok && r.triangles > 0; }
 
-std::string spec_of(const RunRow& r) { return r.spec.empty() ? r.scheme : r.spec; }
-
 // The peer's row for `row`: same mesh, the peer scheme on the row's peer backend, nearest in
 // triangles; a row spelled without parameters before one with them.
 const RunRow* peer_row(const RunRow& row, const std::vector<RunRow>& rows) {
   const RunRow* best = nullptr;
   auto better = [&](const RunRow& r) {
     if (!best) return true;
-    const bool plain = spec_of(r) == r.scheme, best_plain = spec_of(*best) == best->scheme;
+    const bool plain = r.spelled() == r.scheme, best_plain = best->spelled() == best->scheme;
     if (plain != best_plain) return plain;
     return log_distance(r.triangles, row.triangles) < log_distance(best->triangles, row.triangles);
   };
@@ -37,7 +35,7 @@ const std::vector<double>& round_samples(const RunRow& r) {
   return r.gpu_time_ms ? r.gpu_time_ms->samples : r.time_ms.samples;
 }
 
-RunSpec spec_for(const RunRow& r) { return {spec_of(r), r.mesh, r.backend, r.level}; }
+RunSpec spec_for(const RunRow& r) { return {r.spelled(), r.mesh, r.backend, r.level}; }
 
 }  // namespace
 
@@ -47,7 +45,7 @@ std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows,
   std::map<std::string, const RunRow*> nearest;
   for (const RunRow& r : rows) {
     if (!usable(r) || r.peer.empty() || !r.peer_backend) continue;
-    const std::string key = r.mesh + "|" + spec_of(r) + "|" + std::string(to_string(r.backend));
+    const std::string key = r.mesh + "|" + r.spelled() + "|" + std::string(to_string(r.backend));
     auto [it, fresh] = nearest.emplace(key, &r);
     if (fresh) order.push_back(key);
     else if (log_distance(r.triangles, target) < log_distance(it->second->triangles, target)) it->second = &r;
@@ -66,13 +64,13 @@ std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows,
 }
 
 bool is_backend_cell(const PairedCell& c) { return c.peer.scheme == c.row.scheme && c.peer.backend != c.row.backend; }
-bool is_backend_cell(const PairedPlanCell& c) { return spec_of(c.peer) == spec_of(c.row) && c.peer.backend != c.row.backend; }
+bool is_backend_cell(const PairedPlanCell& c) { return c.peer.spelled() == c.row.spelled() && c.peer.backend != c.row.backend; }
 
 PairedCell pair_rounds(const std::string& mesh, const RunRow& row, const RunRow& peer) {
   PairedCell c;
   c.mesh = mesh;
-  c.row = {spec_of(row), row.backend, row.level, row.triangles};
-  c.peer = {spec_of(peer), peer.backend, peer.level, peer.triangles};
+  c.row = {row.spelled(), row.backend, row.level, row.triangles};
+  c.peer = {peer.spelled(), peer.backend, peer.level, peer.triangles};
   const std::vector<double>& t = round_samples(row);
   const std::vector<double>& tp = round_samples(peer);
   c.rounds = static_cast<int>(std::min(t.size(), tp.size()));

@@ -80,11 +80,11 @@ RunStatus status_from(const json& j) {
 
 }  // namespace
 
-std::string RunRow::name() const { return run_name(spec.empty() ? scheme : spec, backend, mesh, level); }
+std::string RunRow::name() const { return run_name(spelled(), backend, mesh, level); }
 
 void to_json(json& j, const RunRow& r) {
   j = {{"scheme", r.scheme},
-       {"spec", r.spec.empty() ? r.scheme : r.spec},
+       {"spec", r.spelled()},
        {"role", r.role},
        {"backend", to_string(r.backend)},
        {"params", r.params},
@@ -326,10 +326,9 @@ ResultsFile read_results(const std::string& path) {
 }
 
 const RunRow* same_run_on(const RunRow& row, Backend backend, const std::vector<RunRow>& runs) {
-  auto spec = [](const RunRow& r) -> const std::string& { return r.spec.empty() ? r.scheme : r.spec; };
   for (const RunRow& r : runs)
     if (r.status == RunStatus::Ok && r.backend == backend && r.mesh == row.mesh && r.level == row.level &&
-        spec(r) == spec(row))
+        r.spelled() == row.spelled())
       return &r;
   return nullptr;
 }

@@ -64,6 +64,8 @@ struct RunRow {
   RunStatus status = RunStatus::Ok;
   std::string message;
   std::string name() const;  // spec/backend/mesh/level (run_spec.h)
+  // The scheme as spelled: spec, or the registered name where a row (an older file) has none.
+  const std::string& spelled() const { return spec.empty() ? scheme : spec; }
 };
 
 struct MachineInfo {
