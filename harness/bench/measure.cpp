@@ -231,10 +231,19 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
     return;
   }
   if (!t.coords.empty()) {
-    const DeviationReport d = measure_deviation(t, *reference);
+    DeviationReport d;
+    try {
+      d = measure_deviation(t, *reference);
+    } catch (const Unsupported& e) {  // a point the yardstick's local refinement cannot reach
+      row.message += std::string(row.message.empty() ? "" : "; ") + "no deviation measured: " + e.what();
+      return;
+    }
     if (!o.deviation_ply.empty()) write_deviation_ply(t, d, o.deviation_ply);
     row.deviation = {true,  d.pos_max_pct,    d.pos_mean_pct,   d.pos_rms_pct, d.pos_p95_pct, d.pos_max_rel_diag,
-                     d.normal_max_deg, d.normal_mean_deg, -1};
+                     d.normal_max_deg, d.normal_mean_deg, -1, d.normal_undefined};
+    if (d.normal_undefined > 0)
+      row.message += std::string(row.message.empty() ? "" : "; ") + std::to_string(d.normal_undefined) + " of " +
+                     std::to_string(d.vertices) + " vertices where the limit has no normal: their normals not compared";
     judge_deviation(row);
   } else {
     row.message += std::string(row.message.empty() ? "" : "; ") +

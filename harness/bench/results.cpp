@@ -126,6 +126,7 @@ void to_json(json& j, const RunRow& r) {
                       {"pos_rms_pct", d.pos_rms_pct},       {"pos_p95_pct", d.pos_p95_pct},
                       {"pos_max_rel_diag", d.pos_max_rel_diag}, {"normal_max_deg", d.normal_max_deg},
                       {"normal_mean_deg", d.normal_mean_deg},   {"hausdorff_rel", d.hausdorff_rel}};
+    if (d.normals_undefined > 0) j["deviation"]["normals_undefined"] = d.normals_undefined;
   } else if (d.hausdorff_rel >= 0) {
     // No SurfaceCoords: the distance to the limit at the same point is not defined, Hausdorff is.
     j["deviation"] = {{"pos_max_pct", nullptr},  {"pos_mean_pct", nullptr},   {"pos_rms_pct", nullptr},
@@ -179,6 +180,7 @@ void from_json(const json& j, RunRow& r) {
       r.deviation.pos_max_rel_diag = number(d, "pos_max_rel_diag", 0.0);
       r.deviation.normal_max_deg = number(d, "normal_max_deg", 0.0);
       r.deviation.normal_mean_deg = number(d, "normal_mean_deg", 0.0);
+      r.deviation.normals_undefined = whole(d, "normals_undefined", 0L);
     }
   }
   r.status = status_from(j), r.message = j.value("message", "");

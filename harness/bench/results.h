@@ -34,6 +34,9 @@ struct DeviationFigures {
   double pos_max_rel_diag = 0;
   double normal_max_deg = 0, normal_mean_deg = 0;
   double hausdorff_rel = -1;  // -1: not measured
+  // Vertices whose normal was not compared: the limit has none there (the yardstick says so: a
+  // valence-2 vertex, a ring that turns over, a face degenerate to a curve); counted, not hidden.
+  long normals_undefined = 0;
 };
 
 struct RunRow {

@@ -89,9 +89,10 @@ std::vector<char> sharp_vertices(const ControlMesh& m, const Adjacency& a) {
 
 }  // namespace
 
-std::optional<std::string> bfr_overlapping_patch_defect(const ControlMesh& m) {
+std::vector<char> bfr_defect_faces(const ControlMesh& m) {
   const Adjacency a = adjacency_of(m);
   const std::vector<char> sharp = sharp_vertices(m, a);
+  std::vector<char> defect(num_faces(m), 0);
   for (int f = 0; f < num_faces(m); ++f) {
     bool two_face_closed = false, open = false, sharp_corner = false;
     for (int i = a.offsets[f]; i < a.offsets[f + 1]; ++i) {
@@ -100,7 +101,15 @@ std::optional<std::string> bfr_overlapping_patch_defect(const ControlMesh& m) {
       open |= !fan.closed;
       sharp_corner |= sharp[m.face_vertices[i]] != 0;
     }
-    if (two_face_closed && open && sharp_corner)
+    defect[f] = two_face_closed && open && sharp_corner;
+  }
+  return defect;
+}
+
+std::optional<std::string> bfr_overlapping_patch_defect(const ControlMesh& m) {
+  const std::vector<char> defect = bfr_defect_faces(m);
+  for (int f = 0; f < num_faces(m); ++f) {
+    if (defect[f])
       return face_location(m, f) +
              ": OpenSubdiv 3.5.0's Bfr builds this face's patch from uninitialised memory (a corner closed by two "
              "faces beside a boundary and a sharp edge; fixed in OpenSubdiv 3.5.1)";

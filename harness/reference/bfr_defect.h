@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "harness/core/control_mesh.h"
 
@@ -21,5 +22,8 @@ namespace sdb {
 // fan is open, and a sharp edge (creased, or with more than two faces) at one of its corners. The
 // test errs on the side of refusing. Returns a message naming the face's line, or nothing.
 std::optional<std::string> bfr_overlapping_patch_defect(const ControlMesh& mesh);
+
+// The same test per face: 1 where Bfr would build the face from uninitialised memory.
+std::vector<char> bfr_defect_faces(const ControlMesh& mesh);
 
 }  // namespace sdb

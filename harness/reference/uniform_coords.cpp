@@ -89,6 +89,13 @@ FaceCorners refine_corners(const Far::TopologyRefiner& r, int level, const FaceC
   return out;
 }
 
+FaceCorners corners_at(const Far::TopologyRefiner& r, SubdivisionRule rule, int level) {
+  FaceCorners corners = base_corners(r, rule);
+  const bool catmark = rule == SubdivisionRule::CatmullClark;
+  for (int l = 1; l <= level; ++l) corners = refine_corners(r, l, corners, l == 1 && catmark, catmark);
+  return corners;
+}
+
 }  // namespace
 
 std::vector<uint32_t> uniform_triangles(const Far::TopologyRefiner& r, int level) {
@@ -103,10 +110,14 @@ std::vector<uint32_t> uniform_triangles(const Far::TopologyRefiner& r, int level
   return triangles;
 }
 
+std::vector<SurfaceCoord> uniform_face_corner_coords(const Far::TopologyRefiner& r, SubdivisionRule rule, int level) {
+  std::vector<SurfaceCoord> out;
+  for (const UV& c : corners_at(r, rule, level)) out.push_back({c.face, c.u, c.v});
+  return out;
+}
+
 std::vector<SurfaceCoord> uniform_vertex_coords(const Far::TopologyRefiner& r, SubdivisionRule rule, int level) {
-  FaceCorners corners = base_corners(r, rule);
-  const bool catmark = rule == SubdivisionRule::CatmullClark;
-  for (int l = 1; l <= level; ++l) corners = refine_corners(r, l, corners, l == 1 && catmark, catmark);
+  const FaceCorners corners = corners_at(r, rule, level);
   const Far::TopologyLevel& lv = r.GetLevel(level);
   std::vector<SurfaceCoord> coords(lv.GetNumVertices());
   std::vector<char> seen(lv.GetNumVertices(), 0);

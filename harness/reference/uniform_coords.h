@@ -17,6 +17,12 @@ namespace sdb {
 std::vector<SurfaceCoord> uniform_vertex_coords(const OpenSubdiv::Far::TopologyRefiner& refiner,
                                                 SubdivisionRule rule, int level);
 
+// One SurfaceCoord per corner of every face of level `level`, in face-vertex order (face f's
+// corners start at the sum of the earlier faces' sizes): a vertex on a ptex border has one per
+// face around it, in that face's parametrization (its side).
+std::vector<SurfaceCoord> uniform_face_corner_coords(const OpenSubdiv::Far::TopologyRefiner& refiner,
+                                                     SubdivisionRule rule, int level);
+
 // The triangles of level `level`: every face fanned from its first vertex, holes left out.
 std::vector<uint32_t> uniform_triangles(const OpenSubdiv::Far::TopologyRefiner& refiner, int level);
 

@@ -18,8 +18,8 @@ struct DeviationReport {
   // Angle between output normal and limit normal, in degrees.
   double normal_max_deg = 0, normal_mean_deg = 0, normal_rms_deg = 0, normal_p95_deg = 0;
   long vertices = 0;
-  // Vertices where the reference has no normal (du x dv = 0: OpenSubdiv at a valence-2 vertex,
-  // say); left out of the normal statistics.
+  // Vertices where the limit has no normal (the reference says so: a valence-2 vertex, a ring
+  // folded flat, harness/reference/README.md); left out of the normal statistics, counted.
   long normal_undefined = 0;
   std::vector<float> vertex_pct, vertex_deg;  // per output vertex, for heat maps
 };

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "schemes/fragments/ring_limit.h"
+#include "harness/reference/ring_limit.h"
 #include "schemes/fragments/table_builder.h"
 
 namespace sdb::fragments::detail {

@@ -17,13 +17,14 @@
 
 #include "harness/core/errors.h"
 #include "harness/mesh/osd_topology.h"
-#include "schemes/fragments/sdc_masks.h"
+#include "harness/reference/sdc_hoods.h"
 #include "schemes/fragments/tables.h"
 
 namespace sdb::fragments::detail {
 
 namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
+using Mask = SdcMask;
 
 // The kernel's ring sums take at most this many terms.
 constexpr int kMaxValence = 1024;

@@ -13,8 +13,10 @@
 
 #include "harness/core/errors.h"
 #include "harness/mesh/osd_topology.h"
-#include "schemes/fragments/ring_limit.h"
+#include "harness/reference/ring_limit.h"
+#include "datasets/manifest.h"
 #include "harness/conformance/sweep_corpus.h"
+#include "harness/mesh/facts.h"
 
 using namespace sdb;
 
@@ -23,9 +25,6 @@ namespace {
 namespace Far = OpenSubdiv::Far;
 using Vec = std::array<double, 3>;
 using DoublePoint = PrimvarPointT<double>;
-using fragments::ring_limit_tangents;
-using fragments::ring_subdivision_matrix;
-using fragments::RingTangents;
 
 Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec cross(const Vec& a, const Vec& b) {
@@ -187,10 +186,12 @@ void judge_corpus(SubdivisionRule rule) {
   for (const std::string& name : shapes) {
     ControlMesh m;
     try {
-      m = conformance::sweep_mesh(name, rule, rule == SubdivisionRule::Loop ? "fragments-loop" : "fragments-cc");
+      m = load_mesh(name);
+      make_refiner(m, rule);
     } catch (const InputError&) {
-      continue;  // refused by the scheme (fragments_test lists why)
+      continue;  // refused by OpenSubdiv (or triangles wanted for Loop)
     }
+    if (!compute_facts(m).manifold()) continue;  // Far makes a non-manifold vertex a corner; no ring
     if (num_faces(m) > 20000) continue;  // the real meshes: no special vertex, and large
     // Level 3: sharpness up to 3 has run out, so the rules repeat (the fragments' extra levels).
     SpecialVertices(m, rule == SubdivisionRule::Loop, 3).judge(name, j);

@@ -1,4 +1,5 @@
-// The neighbourhoods Sdc's mask queries read, on Far's public TopologyLevel: what Far's own
+// The neighbourhoods Sdc's mask queries read (a ring's subdivision matrix, ring_limit.h; the fragments'
+// tables), on Far's public TopologyLevel: what Far's own
 // Vtr::internal::EdgeInterface and VertexInterface give PrimvarRefiner, so the masks are its.
 #pragma once
 
@@ -9,7 +10,7 @@
 
 #include "harness/mesh/sdc_mask.h"
 
-namespace sdb::fragments {
+namespace sdb {
 
 namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
@@ -57,7 +58,4 @@ class VertexHood {
   int vertex_, child_vertex_, start_;
 };
 
-// Sdc's masks, filled for the tables (harness/mesh/sdc_mask.h).
-using Mask = SdcMask;
-
-}  // namespace sdb::fragments
+}  // namespace sdb

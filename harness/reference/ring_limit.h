@@ -9,7 +9,7 @@
 
 #include <vector>
 
-namespace sdb::fragments {
+namespace sdb {
 
 // Weights on the ring of vertex v of `level`: v, the other ends of its edges, then (Catmull-Clark)
 // the vertex opposite v in each face, in Far's order rotated to start at edge and face `start`.
@@ -36,4 +36,4 @@ RingTangents ring_limit_tangents(const OpenSubdiv::Far::TopologyLevel& level, co
 std::vector<double> ring_subdivision_matrix(const OpenSubdiv::Far::TopologyLevel& level,
                                             const OpenSubdiv::Sdc::Options& options, bool catmark, int v);
 
-}  // namespace sdb::fragments
+}  // namespace sdb

@@ -1,4 +1,4 @@
-#include "schemes/fragments/ring_limit.h"
+#include "harness/reference/ring_limit.h"
 
 #include <opensubdiv/sdc/catmarkScheme.h>
 #include <opensubdiv/sdc/loopScheme.h>
@@ -13,9 +13,9 @@
 #include <optional>
 #include <unordered_map>
 
-#include "schemes/fragments/sdc_masks.h"
+#include "harness/reference/sdc_hoods.h"
 
-namespace sdb::fragments {
+namespace sdb {
 namespace {
 
 // One level of Sdc's rules on v's ring, which they map to the next level's ring: the vertex
@@ -82,7 +82,7 @@ class RingMatrix {
 
   void vertex_row() {
     Far::ConstIndexArray ve = l_.GetVertexEdges(v_), vf = l_.GetVertexFaces(v_);
-    Mask mask(std::max(ne_, static_cast<int>(vf.size())) + 1);
+    SdcMask mask(std::max(ne_, static_cast<int>(vf.size())) + 1);
     const Sdc::Crease::Rule rule = l_.GetVertexRule(v_);
     scheme_.ComputeVertexVertexMask(VertexHood(l_, l_, v_, v_), mask, rule, rule);
     at(0, v_) += mask.VertexWeight(0);
@@ -96,7 +96,7 @@ class RingMatrix {
   void edge_row(int k) {
     const int e = l_.GetVertexEdges(v_)[(k + start_) % ne_];
     Far::ConstIndexArray ev = l_.GetEdgeVertices(e), ef = l_.GetEdgeFaces(e);
-    Mask mask(std::max(2, ef.size()));
+    SdcMask mask(std::max(2, ef.size()));
     const Sdc::Crease::Rule rule = l_.GetEdgeSharpness(e) > 0 ? Sdc::Crease::RULE_CREASE : Sdc::Crease::RULE_SMOOTH;
     scheme_.ComputeEdgeVertexMask(EdgeHood(l_, e), mask, rule, rule);
     at(1 + k, ev[0]) += mask.VertexWeight(0);
@@ -281,4 +281,4 @@ std::vector<double> ring_subdivision_matrix(const Far::TopologyLevel& level, con
   return catmark ? matrix_of<Sdc::SCHEME_CATMARK>(level, options, v) : matrix_of<Sdc::SCHEME_LOOP>(level, options, v);
 }
 
-}  // namespace sdb::fragments
+}  // namespace sdb
