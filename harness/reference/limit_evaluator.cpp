@@ -67,7 +67,7 @@ struct LimitEvaluator::Impl {
                                         const std::vector<char>& marks, int face, std::vector<UV> corner_uv,
                                         int level) const;
   bool face_trusted(const Far::TopologyLevel& l, int f, const std::vector<char>& marks) const;
-  std::vector<char> marks;  // per base vertex: non-manifold, or at a non-manifold edge
+  std::vector<char> marks;  // per base vertex: non-manifold, at a non-manifold edge, or of valence 2
 };
 
 namespace {
@@ -192,7 +192,8 @@ std::optional<std::string> folded_faces(const ControlMesh& mesh, SubdivisionRule
 
 // Bfr (OpenSubdiv 3.5.0) is the limit everywhere but where the probes against Far's refinement
 // found it off (limit_evaluator.h): next to a non-manifold corner or edge (up to 2% of the
-// diagonal, catmark_nonman_edges), next to a corner whose Chaikin creases are still semi-sharp
+// diagonal, catmark_nonman_edges), next to an interior vertex of valence 2 (0.92%, the
+// quadrangulated catmark_val2_foldover), next to a corner whose Chaikin creases are still semi-sharp
 // (0.067% and 6.7 degrees, loop_chaikin1), and the faces it builds from uninitialised memory
 // (bfr_defect.h). A face is trusted when none of its corners has such a neighbourhood.
 bool LimitEvaluator::Impl::face_trusted(const Far::TopologyLevel& l, int f, const std::vector<char>& marks) const {
@@ -438,6 +439,7 @@ LimitEvaluator::LimitEvaluator(const ControlMesh& mesh, SubdivisionRule rule, Li
   d.marks.assign(mesh.positions.size(), 0);
   for (int v = 0; v < l0.GetNumVertices(); ++v) {
     d.marks[v] |= l0.IsVertexNonManifold(v);
+    d.marks[v] |= !l0.IsVertexBoundary(v) && l0.GetVertexEdges(v).size() == 2;  // an interior valence 2
     for (int e : l0.GetVertexEdges(v)) d.marks[v] |= l0.IsEdgeNonManifold(e) || l0.GetEdgeFaces(e).size() > 2;
   }
   for (int f = 0; f < nf; ++f) {
