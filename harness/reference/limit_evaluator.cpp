@@ -101,29 +101,19 @@ Point3d cross3(const Point3d& a, const Point3d& b) {
 }
 double norm3(const Point3d& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
-// du x dv has no direction where the parametrization degenerates (a derivative vanishes: a
-// face folded onto an edge of valence 2, say); the one-sided normal there is the limit of the
-// normals inside the face, taken a step of 1e-7 towards its centre; none where that degenerates
-// too (a face folded flat onto itself: catmark_val2_back2back's sub-face borders).
+// du x dv has no direction where the parametrization degenerates (a derivative vanishes): along
+// the fold of a face folded over onto its neighbour (catmark_val2_back2back), where the surface
+// is no regular surface and the normals from its two sheets point opposite ways. No normal there.
 bool degenerate(const Point3d& du, const Point3d& dv) {
   const double scale = std::max(norm3(du), norm3(dv));
   return !(norm3(cross3(du, dv)) > 1e-10 * scale * scale);
 }
 
-// Bfr at (u, v) of its face's parametrization, the normal one-sided where it degenerates.
-void evaluate_surface(const Bfr::Surface<double>& s, const double* patch, UV uv, UV centre, Point3d& p, Point3d& du,
-                      Point3d& dv, Point3d& n) {
+// Bfr at (u, v) of its face's parametrization; the normal zero where it degenerates.
+void evaluate_surface(const Bfr::Surface<double>& s, const double* patch, UV uv, Point3d& p, Point3d& du, Point3d& dv,
+                      Point3d& n) {
   s.Evaluate(uv.data(), patch, 3, p.data(), du.data(), dv.data());
-  n = cross3(du, dv);
-  if (!degenerate(du, dv)) return;
-  for (const double step : {1e-7}) {
-    const UV inside = {uv[0] + step * (centre[0] - uv[0]), uv[1] + step * (centre[1] - uv[1])};
-    Point3d q, a, b;
-    s.Evaluate(inside.data(), patch, 3, q.data(), a.data(), b.data());
-    n = cross3(a, b);
-    if (!degenerate(a, b)) return;
-  }
-  n = {0, 0, 0};
+  n = degenerate(du, dv) ? Point3d{0, 0, 0} : cross3(du, dv);
 }
 
 Point3d unit3(const Point3d& n) {
@@ -237,18 +227,17 @@ std::shared_ptr<const Node> LimitEvaluator::Impl::make_node(const Far::TopologyL
                         "to a face Bfr does not evaluate exactly: no local refinement there");
   }
   node->trusted = face_trusted(r->GetLevel(0), 0, node->mesh.marks);
-  if (node->trusted) {
-    ControlMesh cut;  // for the defect test, which reads a ControlMesh
-    cut.face_sizes = node->mesh.face_sizes, cut.face_vertices = node->mesh.face_vertices;
-    cut.positions.resize(node->mesh.points.size());
-    for (size_t i = 0; i + 1 < node->mesh.crease_pairs.size(); i += 2)
-      cut.creases.push_back({node->mesh.crease_pairs[i], node->mesh.crease_pairs[i + 1], node->mesh.crease_weights[i / 2]});
-    node->trusted = !bfr_defect_faces(cut)[0];
-  }
-  if (node->trusted) {
+  ControlMesh cut;  // for the defect test, which reads a ControlMesh
+  cut.face_sizes = node->mesh.face_sizes, cut.face_vertices = node->mesh.face_vertices;
+  cut.positions.resize(node->mesh.points.size());
+  for (size_t i = 0; i + 1 < node->mesh.crease_pairs.size(); i += 2)
+    cut.creases.push_back({node->mesh.crease_pairs[i], node->mesh.crease_pairs[i + 1], node->mesh.crease_weights[i / 2]});
+  const bool defect = bfr_defect_faces(cut)[0];
+  node->trusted = node->trusted && !defect;
+  if (!defect && (node->trusted || level >= 12)) {
     const Bfr::RefinerSurfaceFactory<> factory(*r, bfr_options(accuracy));
-    node->trusted = factory.InitVertexSurface(0, &node->surface);
-    if (node->trusted) node->patch_points = prepared_patch(node->surface, node->mesh.points);
+    if (factory.InitVertexSurface(0, &node->surface)) node->patch_points = prepared_patch(node->surface, node->mesh.points);
+    node->trusted = node->trusted && node->surface.IsValid();
   }
   return node;
 }
@@ -375,12 +364,13 @@ LimitSample LimitEvaluator::Impl::descend(int f, int sub, UV uv) const {
       return out;
     }
     if (at.trusted || at.level >= kMaxLevel) {
+      // 12 levels in, a point no child has at a corner takes Bfr on the child even where Bfr is
+      // off: its error shrinks with the child, 2^-12 of the face.
       UV ds, dt;
       const UV st = local_uv(at.corner_uv, uv, ds, dt);
-      const UV centre = at.corner_uv.size() == 3 ? UV{1.0 / 3, 1.0 / 3} : UV{0.5, 0.5};
       Point3d a, b, n;
-      if (!at.trusted) throw Unsupported("LimitEvaluator: no exact limit 12 levels into face " + std::to_string(f));
-      evaluate_surface(at.surface, at.patch_points.data(), st, centre, out.position, a, b, n);
+      if (!at.surface.IsValid()) throw Unsupported("LimitEvaluator: no limit surface 12 levels into face " + std::to_string(f));
+      evaluate_surface(at.surface, at.patch_points.data(), st, out.position, a, b, n);
       // d/du and d/dv from d/ds and d/dt: (s, t) = A^-1 (u, v) with A's columns ds, dt.
       const double det = ds[0] * dt[1] - ds[1] * dt[0];
       for (int k = 0; k < 3; ++k) {
@@ -475,19 +465,18 @@ LimitSample LimitEvaluator::evaluate(SurfaceCoord c) const {
     out = d.descend(f, sub, {c.u, c.v});
   } else {
     const Bfr::Surface<double>& s = d.surfaces[f];
-    UV uv = {c.u, c.v}, centre = {d.rule == SubdivisionRule::Loop ? 1.0 / 3 : 0.5, d.rule == SubdivisionRule::Loop ? 1.0 / 3 : 0.5};
+    UV uv = {c.u, c.v};
     const Bfr::Parameterization param = s.GetParameterization();
     double scale = 1.0;  // d(face coord) / d(ptex coord)
     if (param.HasSubFaces()) {
       // Normalized sub-face coordinates are Ptex coordinates (Bfr::Parameterization docs); a
       // sub-face spans half a unit of the face's tiled (u,v), hence the derivative scale.
-      const double sub_uv[2] = {c.u, c.v}, mid_uv[2] = {0.5, 0.5};
+      const double sub_uv[2] = {c.u, c.v};
       param.ConvertNormalizedSubFaceToCoord(sub, sub_uv, uv.data());
-      param.ConvertNormalizedSubFaceToCoord(sub, mid_uv, centre.data());
       scale = 0.5;
     }
     Point3d du, dv, n;
-    evaluate_surface(s, d.patch_points[f].data(), uv, centre, out.position, du, dv, n);
+    evaluate_surface(s, d.patch_points[f].data(), uv, out.position, du, dv, n);
     for (int k = 0; k < 3; ++k) out.du[k] = du[k] * scale, out.dv[k] = dv[k] * scale;
     out.normal = unit3(n);
   }
@@ -497,6 +486,16 @@ LimitSample LimitEvaluator::evaluate(SurfaceCoord c) const {
     const int slot = static_cast<int>(std::find(vf.begin(), vf.end(), f) - vf.begin());
     out.position = limit.position;
     if (slot < vf.size()) out.normal = limit.normal[slot];  // zero where the surface has none
+    if (norm3(out.normal) > 0.5) {
+      // The normals inside the face, 1e-3 towards its centre, must lead to it: where they point
+      // the other way (a face folded over its neighbour: catmark_val2_back2back quadrangulated)
+      // the corner has no one-sided normal.
+      const double step = 1e-3, mid = d.rule == SubdivisionRule::Loop ? 1.0 / 3 : 0.5;
+      const LimitSample inside =
+          evaluate({c.face, float(c.u + step * (mid - c.u)), float(c.v + step * (mid - c.v))});
+      const double agree = out.normal[0] * inside.normal[0] + out.normal[1] * inside.normal[1] + out.normal[2] * inside.normal[2];
+      if (agree < 0) out.normal = {0, 0, 0};
+    }
   }
   return out;
 }

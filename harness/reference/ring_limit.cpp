@@ -267,6 +267,23 @@ RingTangents ring_limit_tangents(const Far::TopologyLevel& level, const Sdc::Opt
   return tangents<Sdc::SCHEME_LOOP>(level, options, v, face);
 }
 
+std::vector<int> ring_limit_vertices(const Far::TopologyLevel& l, int v, bool catmark, int start) {
+  std::vector<int> out = {v};
+  Far::ConstIndexArray ve = l.GetVertexEdges(v), vf = l.GetVertexFaces(v);
+  for (int k = 0; k < ve.size(); ++k) {
+    Far::ConstIndexArray ends = l.GetEdgeVertices(ve[(k + start) % ve.size()]);
+    out.push_back(ends[0] == v ? ends[1] : ends[0]);
+  }
+  if (!catmark) return out;
+  Far::ConstLocalIndexArray in = l.GetVertexFaceLocalIndices(v);
+  for (int k = 0; k < vf.size(); ++k) {
+    const int f = (k + start) % vf.size();
+    Far::ConstIndexArray fv = l.GetFaceVertices(vf[f]);
+    out.push_back(fv[(in[f] + 2) % fv.size()]);
+  }
+  return out;
+}
+
 template <Sdc::SchemeType S>
 std::vector<double> matrix_of(const Far::TopologyLevel& level, const Sdc::Options& options, int v) {
   const RingMatrix<S> ring(level, options, v, 0);

@@ -30,6 +30,10 @@ struct RingTangents {
 RingTangents ring_limit_tangents(const OpenSubdiv::Far::TopologyLevel& level, const OpenSubdiv::Sdc::Options& options,
                                  bool catmark, int v, int face);
 
+// The vertices the weights above refer to, in their order: v, the other ends of its edges, then
+// (Catmull-Clark) the vertex opposite v in each face, rotated to start at edge and face `start`.
+std::vector<int> ring_limit_vertices(const OpenSubdiv::Far::TopologyLevel& level, int v, bool catmark, int start);
+
 // The ring's subdivision matrix itself (size x size, row-major, rows the next level's ring in the
 // same order, start 0), for the tests' oracle: refining the ring by it a few hundred times shows
 // the limit's tangent plane without any eigen-analysis.

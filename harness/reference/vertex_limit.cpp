@@ -54,25 +54,6 @@ Point3d unit(const Point3d& n) {
   return {n[0] / len, n[1] / len, n[2] / len};
 }
 
-// The ring's points in ring_limit.h's order: v, the other ends of its edges, then (Catmull-Clark)
-// the vertex opposite v in each face.
-std::vector<int> ring_order(const Far::TopologyLevel& l, int v, bool catmark, int start) {
-  std::vector<int> out = {v};
-  Far::ConstIndexArray ve = l.GetVertexEdges(v), vf = l.GetVertexFaces(v);
-  for (int k = 0; k < ve.size(); ++k) {
-    Far::ConstIndexArray ends = l.GetEdgeVertices(ve[(k + start) % ve.size()]);
-    out.push_back(ends[0] == v ? ends[1] : ends[0]);
-  }
-  if (!catmark) return out;
-  Far::ConstLocalIndexArray in = l.GetVertexFaceLocalIndices(v);
-  for (int k = 0; k < vf.size(); ++k) {
-    const int f = (k + start) % vf.size();
-    Far::ConstIndexArray fv = l.GetFaceVertices(vf[f]);
-    out.push_back(fv[(in[f] + 2) % fv.size()]);
-  }
-  return out;
-}
-
 Point3d apply(const std::vector<double>& w, const std::vector<int>& ring, const std::vector<Point3d>& points) {
   Point3d s{0, 0, 0};
   for (size_t i = 0; i < w.size(); ++i)
@@ -168,7 +149,7 @@ VertexLimit limit_of(const Ring& ring, const Far::TopologyRefiner& r, Subdivisio
   const bool valence2 = vertex_rule == Sdc::Crease::RULE_SMOOTH && !l.IsVertexBoundary(c) && ve.size() == 2;
   if ((dart || valence2) && manifold) {
     const int start = dart ? sharp : 0;
-    out.position = apply(ring_limit_weights(l, options, catmark, c, start), ring_order(l, c, catmark, start), points);
+    out.position = apply(ring_limit_weights(l, options, catmark, c, start), ring_limit_vertices(l, c, catmark, start), points);
   }
   // No normal at a smooth vertex of valence 2: the surface has no tangent plane there. Its
   // subdominant eigenvalues come in a pair of opposite signs, the refined ring turns over at
@@ -187,7 +168,18 @@ VertexLimit limit_of(const Ring& ring, const Far::TopologyRefiner& r, Subdivisio
     // corners point either way: no tangent plane.
     return out;
   }
-  const std::vector<int> order = ring_order(l, c, catmark, 0);
+  // One side only (a boundary or a corner of one face, no sharp edge between its faces) where
+  // Far's masks are the limit: theirs (oriented as the limit's du x dv, not as the control
+  // polygon, which a fold turns over: catmark_val2_foldover).
+  int inner_sharp = 0;
+  for (int e : ve) inner_sharp += l.GetEdgeSharpness(e) > 0 && l.GetEdgeFaces(e).size() == 2;
+  if (manifold && inner_sharp == 0 && (vf.size() == 1 || l.GetVertexSharpness(c) <= 0) &&
+      far_tangent_masks_exact(l, c, rule)) {
+    const Point3d n = unit(cross({t1[c].p[0], t1[c].p[1], t1[c].p[2]}, {t2[c].p[0], t2[c].p[1], t2[c].p[2]}));
+    for (int k = 0; k < vf.size(); ++k) out.normal[ring.side[vf[k]]] = n;
+    return out;
+  }
+  const std::vector<int> order = ring_limit_vertices(l, c, catmark, 0);
   for (int k = 0; k < vf.size(); ++k) {
     Point3d n{0, 0, 0};
     if (manifold) {
@@ -250,7 +242,7 @@ VertexLimit vertex_limit(const Far::TopologyLevel& level, const Sdc::Options& op
     const Far::TopologyLevel& l0 = r->GetLevel(0);
     // Sdc's ring matrix reads quads (Catmull-Clark), and each point of the ring once: an n-gon's
     // vertex, or one whose faces meet again beyond it (a valence-2 neighbour), is refined first.
-    std::vector<int> order = ring_order(l0, ring.centre, catmark, 0);
+    std::vector<int> order = ring_limit_vertices(l0, ring.centre, catmark, 0);
     std::sort(order.begin(), order.end());
     const bool repeats = std::adjacent_find(order.begin(), order.end()) != order.end();
     const bool decays =
