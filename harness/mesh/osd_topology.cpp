@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <vector>
 
@@ -140,13 +141,32 @@ bool far_tangent_masks_exact(const Far::TopologyLevel& l, int v, SubdivisionRule
   return sharp.empty() && edges >= 3;  // smooth; a dart (one sharp edge) is not
 }
 
-int limit_depth_for(const ControlMesh& mesh, int depth, int max_extra) {
+namespace {
+
+float finite_sharpness(const ControlMesh& mesh) {
   float s = 0;
   for (const EdgeCrease& c : mesh.creases)
     if (c.sharpness < 10) s = std::max(s, c.sharpness);  // Far's infinitely sharp is 10
   for (const VertexCorner& c : mesh.corners)
     if (c.sharpness < 10) s = std::max(s, c.sharpness);
-  return std::clamp(static_cast<int>(std::ceil(s)), depth, depth + max_extra);
+  return s;
+}
+
+}  // namespace
+
+int limit_depth_for(const ControlMesh& mesh, int depth) {
+  return std::max(depth, static_cast<int>(std::ceil(finite_sharpness(mesh))));
+}
+
+std::optional<std::string> limit_depth_refusal(const ControlMesh& mesh, int depth, double faces, double budget) {
+  const int level = limit_depth_for(mesh, depth);
+  if (level == depth || faces * std::ldexp(1.0, 2 * level) <= budget) return std::nullopt;
+  char why[240];
+  std::snprintf(why, sizeof why,
+                "semi-sharp creases of sharpness %.3g outlast depth %d: the exact limit is projected from level %d, "
+                "%.3g faces, past this scheme's %.3g",
+                finite_sharpness(mesh), depth, level, faces * std::ldexp(1.0, 2 * level), budget);
+  return mesh.source + ": " + why;
 }
 
 }  // namespace sdb

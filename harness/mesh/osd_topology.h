@@ -5,6 +5,8 @@
 #include <opensubdiv/far/topologyRefiner.h>
 
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "harness/core/control_mesh.h"
 
@@ -45,9 +47,14 @@ ControlMesh refined_level(const OpenSubdiv::Far::TopologyRefiner& refiner, const
 
 // The level to take limit masks at for output at `depth`: deep enough that no semi-sharp crease
 // or corner is left (Far's masks take any sharpness left as infinite, and a limit projected
-// there is not the limit), at most `max_extra` levels deeper. Recursive schemes refine this far
-// and sample `depth`'s grid.
-constexpr int kMaxExtraLimitDepth = 3;
-int limit_depth_for(const ControlMesh& mesh, int depth, int max_extra = kMaxExtraLimitDepth);
+// there is not the limit: 6.1e-3 of the diagonal and 87 degrees on catmark_cube_creases1 at
+// depth 1 from 3 levels deeper). Sharpness s decays by at least one a level (Chaikin's too), so
+// ceil(s) levels spend it. Recursive schemes refine this far and sample `depth`'s grid.
+int limit_depth_for(const ControlMesh& mesh, int depth);
+
+// Where refining `faces` faces to limit_depth_for would pass `budget` faces at that level, the
+// refusal a recursive scheme gives up front (its tables or levels would not fit), naming the
+// sharpness that asks for it; nothing otherwise.
+std::optional<std::string> limit_depth_refusal(const ControlMesh& mesh, int depth, double faces, double budget);
 
 }  // namespace sdb

@@ -1,5 +1,6 @@
 #include "schemes/fragments/surface.h"
 
+#include "harness/core/errors.h"
 #include "harness/mesh/osd_topology.h"
 #include "schemes/fragments/kernel.h"
 
@@ -12,13 +13,19 @@ size_t output_vertices(const ControlMesh& mesh, SubdivisionRule rule, int depth)
   return (mesh.face_sizes.size() - mesh.holes.size()) * static_cast<size_t>(block_size(rule, depth));
 }
 
-// Sharpness s decays by at least one a level (Uniform: exactly; Chaikin averages it with its
-// neighbours' first), so ceil(s) levels exhaust it. The same for every fragment: a point shared by
-// two fragments must come from the same level in both to be bit-identical.
-int inner_depth_for(const ControlMesh& mesh, int depth) { return limit_depth_for(mesh, depth, kExtraDepth); }
+// The same for every fragment: a point shared by two fragments must come from the same level in
+// both to be bit-identical.
+int inner_depth_for(const ControlMesh& mesh, int depth) { return limit_depth_for(mesh, depth); }
 
 FragmentSurface::FragmentSurface(const ControlMesh& mesh, SubdivisionRule r, int d, int inner)
     : rule(r), depth(d), inner_depth(inner), partition(partition_mesh(mesh, r)) {
+  if (inner > d) {
+    // Each shape's tables hold every level of its net down to the inner depth: refused up front
+    // where they would not fit (catmark_gregory_test7's sharpness 9 at depth 1: 1 GB).
+    double faces = 0;
+    for (const LocalNet& net : partition.shapes) faces += static_cast<double>(num_faces(net.mesh));
+    if (auto why = limit_depth_refusal(mesh, d, faces, kMaxInnerFaces)) throw Unsupported(*why);
+  }
   for (const LocalNet& net : partition.shapes) {
     tables.push_back(build_tables(net, rule, inner_depth, depth));
     max_slots = std::max(max_slots, tables.back().max_slots);

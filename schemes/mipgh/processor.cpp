@@ -300,6 +300,7 @@ void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& d
   const int begin = atlas_.ring_offsets[v], faces = atlas_.ring_offsets[v + 1] - begin;
   const bool boundary = atlas_.vertex_boundary[v];
   disk.resize(faces + boundary, faces);
+  disk.sided = true;
   disk.c = src[v];
   const int last = (1 << sigma) - 1;
   const bool child = sigma < lod_.depth() && tags_.any;

@@ -4,6 +4,7 @@
 
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/mesh/osd_topology.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/cpu.h"
 #include "schemes/mipgh/lod.h"
@@ -141,6 +142,9 @@ std::unique_ptr<Evaluation> make_evaluation(const ControlMesh& mesh, MeshRule ru
                   r.level, bytes / 1e9, kMaxBytes / 1e9);
     throw Unsupported(why);
   }
+  // Every level down to the inner depth is refined whole: 2^22 faces there at most.
+  if (project_to_limit)
+    if (auto why = limit_depth_refusal(mesh, r.level, atlas.num_facets(), double(1 << 22))) throw Unsupported(*why);
   if (r.backend == Backend::Vulkan)
     return make_vulkan_evaluation(mesh, rule, std::move(atlas), r.level, project_to_limit, criterion);
   return std::make_unique<CpuMipghEvaluation>(mesh, rule, std::move(atlas), r.level, r.backend == Backend::CpuMt,

@@ -77,6 +77,9 @@ struct VertexDisk {
   std::vector<uint8_t> face_size;  // 4 or 3 per face (a triangle's d is the centre)
   float sharpness = 0, child_sharpness = 0;
   std::vector<float> edge_sharpness, child_edge_sharpness;
+  // A D-vertex's disk: its first face is the D-facet that names the node's SurfaceCoord, so a
+  // limit with a normal per side (a crease, a corner, a boundary) takes that face's (resize clears it).
+  bool sided = false;
   void resize(int num_edges, int num_faces);
   bool smooth() const;  // no tag at all: the valence-n stencil of the paper's code
 };
