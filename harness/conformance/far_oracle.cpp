@@ -32,7 +32,7 @@ bool far_limit_is_exact(const Far::TopologyLevel& l, int v, SubdivisionRule rule
 // float fragments are held to (on a valence-360 pole a float oracle alone is off by 1e-6).
 using DoublePoint = PrimvarPointT<double>;
 
-FarLevel far_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit, const InexactAt& scheme_inexact) {
+FarLevel far_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit) {
   auto r = make_refiner(m, rule);
   Far::TopologyRefiner::UniformOptions options(depth);
   options.fullTopologyInLastLevel = true;
@@ -67,7 +67,6 @@ FarLevel far_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool l
     out.on_hole.push_back(coords[v].face < hole.size() && hole[coords[v].face]);
     out.faceless.push_back(last.GetVertexFaces(static_cast<int>(v)).size() == 0);
     out.special.push_back(!far_limit_is_exact(last, static_cast<int>(v), rule));
-    out.scheme_inexact.push_back(scheme_inexact ? scheme_inexact(last, static_cast<int>(v)) : out.special.back());
   }
   return out;
 }
@@ -78,8 +77,7 @@ double distance(const Point3& a, const Point3& b) {
 }
 
 
-Match compare(const Tessellation& t, const FarLevel& osd, int depth, double diagonal, bool normals,
-              bool skip_special) {
+Match compare(const Tessellation& t, const FarLevel& osd, int depth, double diagonal, bool normals) {
   Match m;
   std::vector<char> covered(osd.points.size(), 0);
   for (size_t i = 0; i < t.positions.size(); ++i) {
@@ -88,7 +86,6 @@ Match compare(const Tessellation& t, const FarLevel& osd, int depth, double diag
       ++m.unmatched;
       continue;
     }
-    if (skip_special && osd.special[it->second]) continue;
     covered[it->second] = 1;
     m.max_rel = std::max(m.max_rel, distance(t.positions[i], osd.points[it->second]) / diagonal);
     if (normals) {

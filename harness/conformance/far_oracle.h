@@ -29,8 +29,7 @@ struct FarLevel {
   std::map<GridKey, int> at;
   std::vector<char> on_hole;  // the vertex's coord lies in a hole (no scheme output there)
   std::vector<char> faceless;
-  std::vector<char> special;         // where Far's limit masks are not the exact limit (far_limit_is_exact)
-  std::vector<char> scheme_inexact;  // where the scheme's own limit is not exact either (the predicate)
+  std::vector<char> special;  // where Far's limit masks are not the exact limit (far_limit_is_exact)
   bool has_coord(size_t v) const { return !faceless[v]; }
 };
 
@@ -38,10 +37,7 @@ struct FarLevel {
 // regular creases and at a boundary corner of one face, and nowhere sharpness is left.
 bool far_limit_is_exact(const OpenSubdiv::Far::TopologyLevel& l, int v, SubdivisionRule rule);
 
-// `scheme_inexact(level, v)`: where the scheme under test does not take the limit exactly
-// (default: where Far does not).
-using InexactAt = std::function<bool(const OpenSubdiv::Far::TopologyLevel&, int)>;
-FarLevel far_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit, const InexactAt& scheme_inexact = {});
+FarLevel far_level(const ControlMesh& m, SubdivisionRule rule, int depth, bool limit);
 
 double distance(const Point3& a, const Point3& b);
 
@@ -52,9 +48,8 @@ struct Match {
   long unmatched = 0;  // output vertices at a grid point Far has no coord for (ptex borders)
 };
 
-// Every output vertex against Far's vertex at its grid point. skip_special: leave out the vertices
-// where Far's limit masks approximate.
-Match compare(const Tessellation& t, const FarLevel& far, int depth, double diagonal, bool normals,
-              bool skip_special = false);
+// Every output vertex against Far's vertex at its grid point (Far's limit masks approximate
+// where `special` says: a scheme's limit is judged against the yardstick, limit_judge.h).
+Match compare(const Tessellation& t, const FarLevel& far, int depth, double diagonal, bool normals);
 
 }  // namespace sdb::conformance
