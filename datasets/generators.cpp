@@ -178,6 +178,26 @@ ControlMesh open_patch(int m, int n) {
   return p;
 }
 
+ControlMesh split_quads(const ControlMesh& mesh) {
+  ControlMesh out = mesh;
+  out.name = mesh.name + "-triangles";
+  out.face_sizes.clear(), out.face_vertices.clear(), out.face_lines.clear();
+  const std::vector<int> off = face_offsets(mesh);
+  for (int f = 0; f < num_faces(mesh); ++f) {
+    const int* v = mesh.face_vertices.data() + off[f];
+    if (mesh.face_sizes[f] != 4) {
+      out.face_sizes.push_back(mesh.face_sizes[f]);
+      out.face_vertices.insert(out.face_vertices.end(), v, v + mesh.face_sizes[f]);
+      continue;
+    }
+    const int k = f % 3 == 0 ? 1 : 0;  // the diagonal's first corner
+    out.face_sizes.insert(out.face_sizes.end(), {3, 3});
+    out.face_vertices.insert(out.face_vertices.end(), {v[k], v[k + 1], v[k + 2], v[k], v[k + 2], v[(k + 3) % 4]});
+  }
+  out.holes.clear();
+  return out;
+}
+
 ControlMesh party(const ControlMesh& mesh, int copies) {
   ControlMesh out = mesh;
   out.name = mesh.name + "-party" + std::to_string(copies);

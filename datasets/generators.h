@@ -18,6 +18,9 @@ ControlMesh open_patch(int m, int n);                  // m x n quads with bound
 // A closed quad mesh with `quads` quads whose share of extraordinary quads is close to
 // `extraordinary_share`: a torus grid whose connectivity is changed by random quad edge rotations.
 ControlMesh random_quads(int quads, double extraordinary_share, uint64_t seed = 1);
+// Each quad of a mesh split into two triangles, along the diagonal from its second corner in every
+// third face and its first in the others: a random quad mesh gives triangle valences of 3 to 11.
+ControlMesh split_quads(const ControlMesh& mesh);
 // `copies` copies of a mesh side by side in a row of a grid (the c-patch paper's frog party).
 ControlMesh party(const ControlMesh& mesh, int copies);
 

@@ -50,6 +50,8 @@ const std::vector<Builtin>& builtins() {
        [] { return gen::random_quads(1292, 0.59, 1); }},
       {"frog-party", "nine frog stand-ins (the paper's Frog Party)",
        [] { return gen::party(gen::random_quads(1292, 0.59, 1), 9); }},
+      {"frog-party-triangles", "the frog party's quads split in two: 23,256 triangles of valence 3 to 11",
+       [] { return gen::split_quads(gen::party(gen::random_quads(1292, 0.59, 1), 9)); }},
   };
   return list;
 }
