@@ -243,7 +243,9 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
                      d.normal_max_deg, d.normal_mean_deg, -1, d.normal_undefined};
     if (d.normal_undefined > 0)
       row.message += std::string(row.message.empty() ? "" : "; ") + std::to_string(d.normal_undefined) + " of " +
-                     std::to_string(d.vertices) + " vertices where the limit has no normal: their normals not compared";
+                     std::to_string(d.vertices) + " vertices without a normal to compare (" +
+                     std::to_string(d.normal_undefined - d.normal_declared) + " where the limit has none, " +
+                     std::to_string(d.normal_declared) + " where the scheme gives none)";
     judge_deviation(row);
   } else {
     row.message += std::string(row.message.empty() ? "" : "; ") +

@@ -14,7 +14,7 @@ LimitJudgement judge_against_limit(const Tessellation& t, const LimitEvaluator& 
   for (uint32_t i : t.triangles) used[i] = 1;
   auto join = [](LimitJudgement a, const LimitJudgement& b) {
     a.max_rel = std::max(a.max_rel, b.max_rel), a.max_deg = std::max(a.max_deg, b.max_deg);
-    a.vertices += b.vertices, a.no_normal += b.no_normal, a.no_surface += b.no_surface;
+    a.vertices += b.vertices, a.no_normal += b.no_normal, a.no_surface += b.no_surface, a.declared += b.declared;
     return a;
   };
   return tbb::parallel_reduce(
@@ -37,6 +37,10 @@ LimitJudgement judge_against_limit(const Tessellation& t, const LimitEvaluator& 
             continue;
           }
           const Point3& a = t.normals[i];
+          if (a[0] * a[0] + a[1] * a[1] + a[2] * a[2] < 0.25f) {
+            ++j.declared;
+            continue;
+          }
           // atan2 of |a x n| and a . n: acos of a dot this close to 1 cannot resolve 0.01 degrees.
           const double c[3] = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
           const double dot = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];

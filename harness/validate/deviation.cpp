@@ -45,6 +45,7 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
   r.vertex_deg.assign(n, 0.0f);
   const std::vector<char> used = referenced(t);
   std::vector<double> dist(n, 0.0), abs_dist(n, 0.0);
+  std::vector<char> declared(n, 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) {
       if (!used[i]) continue;
@@ -62,8 +63,10 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
       const double ref_len = std::sqrt(s.normal[0] * s.normal[0] + s.normal[1] * s.normal[1] + s.normal[2] * s.normal[2]);
       const double cosine = nn > 0 ? std::clamp(dot / std::sqrt(nn), -1.0, 1.0) : -1.0;
       r.vertex_pct[i] = static_cast<float>(dist[i]);
-      // No reference normal: NaN marks it, and the statistics leave it out.
-      r.vertex_deg[i] = ref_len > 0.5 ? static_cast<float>(std::acos(cosine) * 180.0 / M_PI) : NAN;
+      // No reference normal, or none in the output (a scheme's zero normal: it declares it has
+      // none there): NaN marks it, and the statistics leave it out and count it.
+      r.vertex_deg[i] = ref_len > 0.5 && nn > 0.25 ? static_cast<float>(std::acos(cosine) * 180.0 / M_PI) : NAN;
+      if (ref_len > 0.5 && !(nn > 0.25)) declared[i] = 1;
     }
   });
   std::vector<double> pct, deg;
@@ -72,6 +75,7 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
     if (!used[i]) continue;
     pct.push_back(dist[i]);
     max_abs = std::max(max_abs, abs_dist[i]);
+    if (declared[i]) ++r.normal_declared;
     if (std::isnan(r.vertex_deg[i])) ++r.normal_undefined;
     else deg.push_back(r.vertex_deg[i]);
   }

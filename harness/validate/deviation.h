@@ -21,6 +21,9 @@ struct DeviationReport {
   // Vertices where the limit has no normal (the reference says so: a valence-2 vertex, a ring
   // folded flat, harness/reference/README.md); left out of the normal statistics, counted.
   long normal_undefined = 0;
+  // Of them, vertices where the limit has a normal and the output none (a zero normal: the scheme
+  // declares it has none there, its tangents vanishing on a face folded flat over its neighbour).
+  long normal_declared = 0;
   std::vector<float> vertex_pct, vertex_deg;  // per output vertex, for heat maps
 };
 

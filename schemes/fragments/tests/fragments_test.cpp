@@ -172,7 +172,7 @@ void sweep(SubdivisionRule rule) {
       std::printf("  no yardstick for %s: %s\n", name.c_str(), e.what());  // faces folded onto each other
     }
     long rays = 0, crack_count = 0;
-    size_t judged = 0, no_normal = 0, no_surface = 0;
+    size_t judged = 0, no_normal = 0, no_surface = 0, declared = 0;
     const bool closed = compute_facts(accepted).closed && accepted.holes.empty();
     Match worst;
     conformance::LimitJudgement limit;
@@ -200,7 +200,7 @@ void sweep(SubdivisionRule rule) {
         EXPECT_LE(j.max_rel, 1e-5) << name << " depth " << depth << " (against the limit)";
         EXPECT_LE(j.max_deg, 0.01) << name << " depth " << depth << " (normal against the limit)";
         limit.max_rel = std::max(limit.max_rel, j.max_rel), limit.max_deg = std::max(limit.max_deg, j.max_deg);
-        judged += j.vertices, no_normal += j.no_normal, no_surface += j.no_surface;
+        judged += j.vertices, no_normal += j.no_normal, no_surface += j.no_surface, declared += j.declared;
       }
       EXPECT_EQ(count_open_edges(t), boundary_edges(accepted) << depth) << name << " depth " << depth;
       if (closed) {
@@ -210,8 +210,8 @@ void sweep(SubdivisionRule rule) {
       }
     }
     std::printf("  %-44s depths 1..%d  refined %.2g  limit %.2g, normal %.2g deg at %zu vertices (%zu where the limit "
-                "has no normal, %zu on faces with no limit surface)  %ld rays, %ld cracks\n", name.c_str(), depth - 1, worst.max_rel, limit.max_rel,
-                limit.max_deg, judged, no_normal, no_surface, rays, crack_count);
+                "has no normal, %zu where the scheme gives none, %zu on faces with no limit surface)  %ld rays, %ld cracks\n", name.c_str(), depth - 1, worst.max_rel, limit.max_rel,
+                limit.max_deg, judged, no_normal, declared, no_surface, rays, crack_count);
     exact += worst.max_rel <= 1e-6;
   }
   std::printf("%s: %d shapes exact, %d refused\n", info.name.c_str(), exact, refused);

@@ -255,7 +255,7 @@ void sweep(SubdivisionRule rule) {
     } catch (const Unsupported& e) {
       std::printf("  no yardstick for %s: %s\n", name.c_str(), e.what());  // faces folded onto each other
     }
-    size_t judged = 0, no_normal = 0, no_surface = 0;
+    size_t judged = 0, no_normal = 0, no_surface = 0, declared = 0;
     const bool closed = compute_facts(m).closed && m.holes.empty();
     const long open_edges = conformance::boundary_edges(with_far_holes(m, rule));
     const long per_face = rule == SubdivisionRule::Loop ? 1 : 2;
@@ -286,7 +286,7 @@ void sweep(SubdivisionRule rule) {
         EXPECT_LE(j.max_rel, 1e-5) << name << " depth " << depth << " (against the limit)";
         EXPECT_LE(j.max_deg, 0.01) << name << " depth " << depth << " (normal against the limit)";
         worst_ref = std::max(worst_ref, j.max_rel), worst_deg = std::max(worst_deg, j.max_deg);
-        judged += j.vertices, no_normal += j.no_normal, no_surface += j.no_surface;
+        judged += j.vertices, no_normal += j.no_normal, no_surface += j.no_surface, declared += j.declared;
       }
       if (closed) {
         const RayCrackReport c = ray_crack_check(lt, {50000, 50000, 1});
@@ -295,8 +295,8 @@ void sweep(SubdivisionRule rule) {
       }
     }
     std::printf("  %-44s depths 1..%d  refined %.2g  limit %.2g, normal %.2g deg at %zu vertices (%zu where the limit "
-                "has no normal, %zu on faces with no limit surface)  %ld rays, %ld cracks\n", name.c_str(), depth - 1, worst, worst_ref, worst_deg, judged,
-                no_normal, no_surface, rays, cracks);
+                "has no normal, %zu where the scheme gives none, %zu on faces with no limit surface)  %ld rays, %ld cracks\n", name.c_str(), depth - 1, worst, worst_ref, worst_deg, judged,
+                no_normal, declared, no_surface, rays, cracks);
     exact += worst <= 1e-6;
   }
   std::printf("%s: %zu shapes, %d exact, %d refused\n", scheme_name(rule), shapes.size(), exact, refused);
