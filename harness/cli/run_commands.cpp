@@ -1,4 +1,5 @@
 // validate and run: one checked run, or a selection measured and written with its report.
+#include <cmath>
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -69,9 +70,15 @@ std::string row_figures(const RunRow& r) {
   if (r.watertight.ray_cracks >= 0)
     line += " cracks " + std::to_string(r.watertight.ray_cracks) + "/" + std::to_string(r.watertight.rays);
   if (r.deviation.measured) {
-    std::snprintf(buf, sizeof buf, "  dev max %.3g%% p95 %.3g%% %.3gdeg", r.deviation.pos_max_pct, r.deviation.pos_p95_pct,
-                  r.deviation.normal_max_deg);
+    std::snprintf(buf, sizeof buf, "  dev max %.3g%% p95 %.3g%%", r.deviation.pos_max_pct, r.deviation.pos_p95_pct);
     line += buf;
+    // NaN: no normal compared (a scheme that outputs none, mipgh-quadtri's nodes).
+    if (std::isnan(r.deviation.normal_max_deg)) {
+      line += " no normals";
+    } else {
+      std::snprintf(buf, sizeof buf, " %.3gdeg", r.deviation.normal_max_deg);
+      line += buf;
+    }
     if (r.limit == "approximates") {
       std::snprintf(buf, sizeof buf, "  approximates%s: max %.2g p95 %.2g of the diagonal",
                     r.deviation.measured_by == "nearest-point" ? " (nearest points)" : "", r.deviation.pos_max_rel_diag,
