@@ -17,14 +17,15 @@ import report_html as H
 from report_data import Results, load_results, fmt, spec_of
 from report_history import History, read_gate_config, verdict_lines
 from report_plots import cost_growth, deviation_distributions, history_plot, rate_grid
-from report_summary import fastest, fastest_lines, gpu_lines, matrix, scheme_lines, validation_grid, validation_sentence
+from report_summary import (fastest, fastest_lines, gpu_lines, limit_table, matrix, scheme_lines, validation_grid,
+                            validation_sentence)
 
 READING = ("Each cell is the run at the level nearest 1 M output triangles (the paired level where the run paired "
            "it): triangle rate in M triangles/s; its ratio to the scheme's peer (above 1: faster than the peer), "
            "the median of paired rounds with their range and count where the run paired it, else marked single "
            "pass (each row measured once with other work around it: read it as a hint, not a figure); "
            "the rate is the paired rounds' median where the run paired the cell; &#10003; closed = no open edge and no ray crack; p95 = the 95th percentile of the distance from the "
-           "limit surface in % of the local face size. The fastest per mesh and backend is outlined.")
+           "input's limit surface in % of the local face size. The fastest per mesh and backend is outlined.")
 
 
 def comparison(args, plot_dir):
@@ -67,7 +68,9 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
         "scheme's deviation bound on every backend; <span class='chip bad'>bad</span> an open edge, a crack, the bound "
         "exceeded or a failure on some backend; <span class='chip grey'>?</span> not checked; "
         "<span class='chip na'>n/a</span> not run (unsupported). Hover a chip for the figures.</p>",
-        H.validation_matrix(grid, results.meshes(), results.schemes), "</section>",
+        H.validation_matrix(grid, results.meshes(), results.schemes),
+        "<h3>Against the input's limit surface</h3>", H.limit_matrix(limit_table(results), results.meshes(), results.schemes),
+        "</section>",
         "<section id='plots'><h2>Plots</h2>", *[H.figure(p) for p in plots], "</section>",
         "<section id='pictures'><h2>Pictures</h2>", H.pictures_section(manifest, manifest_path), "</section>",
         "<section id='papers'><h2>Paper tables</h2>", H.paper_section(papers, results.machine), "</section>",
@@ -126,6 +129,11 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
             best = fastest(cells)
             out.append(f"| {mesh} | " + " | ".join(
                 (f"**{md_cell(cells[s])}**" if s == best else md_cell(cells[s])) if s in cells else "" for s in specs) + " |")
+    out += ["", "## Against the input's limit surface", "", H.LIMIT_READING, ""]
+    limits = limit_table(results)
+    meshes = sorted({m for per_mesh in limits.values() for m in per_mesh})
+    out += ["| scheme | " + " | ".join(meshes) + " |", "|---" * (len(meshes) + 1) + "|"]
+    out += [f"| {spec} | " + " | ".join(per_mesh.get(m, "") for m in meshes) + " |" for spec, per_mesh in limits.items()]
     out += ["", "## Plots", ""] + [f"![{p.title}](plots/{p.name})\n\n{p.caption}\n" for p in plots]
     out += ["## Pictures", ""]
     if manifest and manifest.get("available"):

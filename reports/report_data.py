@@ -40,7 +40,7 @@ def nan_for_null(row):
         if isinstance(v, list):
             return [fix(x) for x in v]
         return float("nan") if v is None else v
-    keep_null = {"deviation", "gpu_time_ms", "peer_backend", "deviation_bound"}
+    keep_null = {"deviation", "gpu_time_ms", "peer_backend", "deviation_bound", "own_deviation_bound"}
     return {k: (v if v is None and k in keep_null else fix(v)) for k, v in row.items()}
 
 
@@ -230,9 +230,22 @@ def watertight_state(r):
 
 
 def bound_state(r):
-    """('kept' | 'past' | 'none' | 'unmeasured', words): the deviation against the scheme's bound."""
-    bound = r.get("deviation_bound") or {}
+    """('kept' | 'past' | 'none' | 'unmeasured', words): the deviation from the input's limit against
+    the row's bound, and the scheme's distance from its own control mesh's limit (a fitted image's
+    g0, the deviation's own_reference) against its own bound."""
     dev = r.get("deviation") or {}
+    judged = [one_bound_state(r.get("deviation_bound"), dev, "")]
+    if r.get("own_deviation_bound"):
+        judged.append(one_bound_state(r["own_deviation_bound"], dev.get("own_reference") or {}, " of its own g0's limit"))
+    for state in ("past", "kept", "unmeasured"):
+        said = [words for s, words in judged if s == state]
+        if said:
+            return state, "; ".join(said)
+    return "none", "no bound declared"
+
+
+def one_bound_state(bound, dev, against):
+    bound = bound or {}
     pos_bound, normal_bound = bound.get("pos_rel_diag", -1), bound.get("normal_deg", -1)
     if (not finite(pos_bound) or pos_bound < 0) and (not finite(normal_bound) or normal_bound < 0):
         return "none", "no bound declared"
@@ -245,8 +258,35 @@ def bound_state(r):
     if finite(normal_bound) and normal_bound >= 0 and finite(normal) and normal > normal_bound:
         past.append(f"normal {normal:.3g} deg > {normal_bound:.3g}")
     if past:
-        return "past", "past the bound: " + "; ".join(past)
-    return "kept", f"within the bound (position {fmt(pos)} <= {fmt(pos_bound)} of the diagonal)"
+        return "past", f"past the bound{against}: " + "; ".join(past)
+    return "kept", f"within the bound{against} (position {fmt(pos)} <= {fmt(pos_bound)} of the diagonal)"
+
+
+def percent_of_diagonal(x):
+    return f"{100 * x:.2g}%" if finite(x) else "–"
+
+
+def limit_words(rows):
+    """What a scheme's rows on one mesh say of the input's limit surface: 'reproduces' where every
+    measured row does, else 'approximates: max M, p95 P' (the largest of the approximating rows'
+    figures, % of the diagonal), naming the levels when only some approximate; None when no row
+    recorded it (files written before rows said)."""
+    said = [r for r in rows if r.get("limit") in ("reproduces", "approximates") and (r.get("deviation") or {})]
+    if not said:
+        return None
+    approximating = [r for r in said if r["limit"] == "approximates"]
+    if not approximating:
+        return "reproduces"
+    dev = [r["deviation"] for r in approximating]
+    worst_max = max((d.get("pos_max_rel_diag") for d in dev if finite(d.get("pos_max_rel_diag"))), default=None)
+    worst_p95 = max((d.get("pos_p95_rel_diag") for d in dev if finite(d.get("pos_p95_rel_diag"))), default=None)
+    text = f"approximates: max {percent_of_diagonal(worst_max)}, p95 {percent_of_diagonal(worst_p95)}"
+    if len(approximating) < len(said):
+        levels = sorted({r["level"] for r in approximating})
+        text += f" (at level{'s' if len(levels) > 1 else ''} {', '.join(map(str, levels))}; reproduces at the others)"
+    if any((r["deviation"].get("measured_by") == "nearest-point") for r in approximating):
+        text += ", by nearest points"
+    return text
 
 
 def validation_state(r):

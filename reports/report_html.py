@@ -178,6 +178,27 @@ def validation_matrix(grid, meshes, schemes):
     return "\n".join(out)
 
 
+LIMIT_READING = ("Every deviation is measured against the limit surface of the mesh the run was given (Catmull-Clark "
+                 "for quad schemes, Loop for triangle ones, Catmull-Clark for mipgh-quadtri): at each vertex's surface coordinate, or, for a scheme whose "
+                 "vertices have none on the input (a geometry image fitted to it, a refined control mesh), from each "
+                 "vertex to the nearest point of that surface. A scheme reproduces the surface, or approximates it by "
+                 "the largest distance and 95th percentile over its rows, in % of the bounding-box diagonal.")
+
+
+def limit_matrix(table, meshes, schemes):
+    """Scheme x mesh: 'reproduces' or 'approximates: max, p95' against the input's limit surface."""
+    out = [f"<p class='reading'>{e(LIMIT_READING)}</p>",
+           "<div class='scroll'><table class='validation' id='limit-matrix'><thead><tr><th>scheme</th>"]
+    out += [f"<th>{e(m)}</th>" for m in meshes]
+    out.append("</tr></thead><tbody>")
+    for spec, per_mesh in table.items():
+        out.append(f"<tr><th style='text-align:left'>{swatch(schemes.colour_of(spec))}{e(spec)}</th>")
+        out += [f"<td>{e(per_mesh.get(m, ''))}</td>" for m in meshes]
+        out.append("</tr>")
+    out.append("</tbody></table></div>")
+    return "\n".join(out)
+
+
 def figure(plot):
     if plot is None:
         return ""
@@ -312,8 +333,9 @@ def paper_section(papers, machine):
 ROW_COLUMNS = [("scheme", "scheme", False), ("backend", "backend", False), ("mesh", "mesh", False), ("level", "", True),
                ("triangles", "", True), ("median ms", "", True), ("M tri/s", "", True), ("x peer (single pass)", "", True),
                ("peer", "", False), ("bw %", "", True), ("open edges", "", True), ("cracks / rays", "", True),
+               ("limit", "", False), ("dev max / diag", "", True), ("dev p95 / diag", "", True),
                ("dev max %", "", True), ("dev p95 %", "", True), ("normal max deg", "", True),
-               ("Hausdorff", "", True), ("status", "", False)]
+               ("Hausdorff", "", True), ("own mesh max / diag", "", True), ("status", "", False)]
 
 
 def rows_table(results):
@@ -331,6 +353,7 @@ def rows_table(results):
 
 def row_html(r, results):
     dev = r.get("deviation") or {}
+    own = dev.get("own_reference") or {}
     wt = r.get("watertight", {})
     peer = results.peer_row(r)
     ok = r["status"] == "ok"
@@ -344,9 +367,13 @@ def row_html(r, results):
         (fmt(100 * r.get("bandwidth_fraction", 0)), 100 * r.get("bandwidth_fraction", 0)),
         (fmt(wt.get("open_edges")) if finite(wt.get("open_edges")) and wt["open_edges"] >= 0 else "–", wt.get("open_edges")),
         (f"{int(cracks)} / {int(wt.get('rays', 0)):,}" if finite(cracks) and cracks >= 0 else "–", cracks),
+        ((r.get("limit") or "–") + (" (nearest points)" if dev.get("measured_by") == "nearest-point" else ""), None),
+        (fmt(dev.get("pos_max_rel_diag")), dev.get("pos_max_rel_diag")),
+        (fmt(dev.get("pos_p95_rel_diag")), dev.get("pos_p95_rel_diag")),
         (fmt(dev.get("pos_max_pct")), dev.get("pos_max_pct")), (fmt(dev.get("pos_p95_pct")), dev.get("pos_p95_pct")),
         (fmt(dev.get("normal_max_deg")), dev.get("normal_max_deg")),
         (fmt(dev.get("hausdorff_rel")) if finite(dev.get("hausdorff_rel")) and dev["hausdorff_rel"] >= 0 else "–", None),
+        (fmt(own.get("pos_max_rel_diag")), own.get("pos_max_rel_diag")),
         (r["status"] + (f": {r['message']}" if r.get("message") else ""), None)]
     cells = []
     for text, v in values:

@@ -156,7 +156,7 @@ def bandwidth_bounds(ax, rows, machine):
 
 def deviation_distributions(results, plot_dir):
     """Per paper scheme (peers left out: they are the reference's own library), the distribution
-    over its rows of the deviation from the OpenSubdiv limit: max and 95th percentile."""
+    over its rows of the deviation from the input's limit surface: max and 95th percentile."""
     rows = [r for r in results.rows if r["status"] in ("ok", "failed") and results.schemes.is_paper_scheme(spec_of(r))
             and r.get("deviation") and finite(r["deviation"].get("pos_max_pct"))]
     if not rows:
@@ -190,9 +190,10 @@ def deviation_distributions(results, plot_dir):
                for b in sorted(backends, key=lambda b: list(BACKEND_STYLE).index(b) if b in BACKEND_STYLE else 9)]
     outside_legend(fig, handles, "backend")
     fig.tight_layout()
-    return save(fig, plot_dir, "deviation.png", "Deviation from the OpenSubdiv limit (paper schemes)",
+    return save(fig, plot_dir, "deviation.png", "Deviation from the input's limit surface (paper schemes)",
                 "Per scheme, over all its rows (meshes, levels, backends): the distance from each output vertex to the "
-                "limit surface at the same surface coordinate; boxes span the middle half, dots are rows.")
+                "limit surface of the input at the same surface coordinate, or at the nearest point for a scheme whose "
+                "vertices have no coordinate on the input (geometry-image); boxes span the middle half, dots are rows.")
 
 
 def history_plot(history, plot_dir):

@@ -1,6 +1,6 @@
 """The summary a reader with a minute gets: per mesh the fastest scheme per backend with its ratio to
 its peer, per scheme where it wins and loses, and the validation in one sentence."""
-from report_data import fmt, group, spec_of, validation_state, watertight_state, bound_state
+from report_data import fmt, group, limit_words, spec_of, validation_state, watertight_state, bound_state
 
 
 def matrix(results):
@@ -124,11 +124,24 @@ def validation_grid(results):
     return {spec: grid[spec] for spec in sorted(grid, key=results.schemes.key)}
 
 
+def limit_table(results):
+    """{spec: {mesh: words}}: whether each scheme reproduces its input's limit surface on each mesh
+    or approximates it, and how closely (limit_words), in the registry's order."""
+    table = {}
+    for (spec, mesh), rows in group([r for r in results.rows if r["status"] != "unsupported"],
+                                    lambda r: (spec_of(r), r["mesh"])).items():
+        words = limit_words(rows)
+        if words:
+            table.setdefault(spec, {})[mesh] = words
+    return {spec: table[spec] for spec in sorted(table, key=results.schemes.key)}
+
+
 def dev_words(r):
     dev = r.get("deviation") or {}
     if dev.get("pos_p95_pct") is None:
         return ""
-    return f"; deviation p95 {fmt(dev.get('pos_p95_pct'))}%, max {fmt(dev.get('pos_max_pct'))}% of the local face size"
+    return (f"; deviation from the input's limit p95 {fmt(dev.get('pos_p95_pct'))}%, max {fmt(dev.get('pos_max_pct'))}% "
+            "of the local face size")
 
 
 def gpu_lines(results):

@@ -89,6 +89,28 @@ TEST(Report, ASchemeWhosePeerDidNotRunIsNotCalledTheAnchor) {
   EXPECT_NE(md.find("Mtri/s, no peer row"), std::string::npos) << md;
 }
 
+TEST(Report, SaysPerSchemeAndMeshWhetherItReproducesTheInputsLimitOrHowCloselyItApproximatesIt) {
+  // reports/testdata/limits: geometry-image approximating by nearest points, osd-uniform planted
+  // approximating at depth 2 only (a crease still active there), fragments-cc reproducing.
+  const fs::path out = fresh_folder("limits");
+  const auto r = run_cli(report_args({kData / "limits" / "results.json"}, out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html"), md = slurp(out / "report.md");
+  EXPECT_NE(html.find("id='limit-matrix'"), std::string::npos);
+  for (const std::string& text : {std::string("approximates: max 0.16%, p95 0.045%, by nearest points"),
+                                  std::string("approximates: max 0.024%, p95 0.011% (at level 2; reproduces at the others)"),
+                                  std::string("<td>reproduces</td>")}) {
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  }
+  EXPECT_NE(md.find("## Against the input's limit surface"), std::string::npos) << md;
+  EXPECT_NE(md.find("| fragments-cc | reproduces |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| geometry-image | approximates: max 0.16%, p95 0.045%, by nearest points |"), std::string::npos) << md;
+  // The approximating osd-uniform row has no bound to fail, and geometry-image's own bound (on its
+  // g0) is kept: no chip is red.
+  EXPECT_EQ(html.find("class='chip bad' title="), std::string::npos);
+  EXPECT_NE(html.find("class='chip good' title="), std::string::npos);
+}
+
 TEST(Report, SaysWhyThereAreNoPictures) {
   const fs::path out = fresh_folder("no-pictures");
   fs::create_directories(out / "pictures");

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <regex>
@@ -130,6 +131,12 @@ const ControlMesh& MeasureContext::mesh(const std::string& name) {
   return it->second;
 }
 
+std::shared_ptr<const ControlMesh> MeasureContext::input(const std::string& name) {
+  auto& slot = inputs_[name];
+  if (!slot) slot = std::make_shared<const ControlMesh>(mesh(name));
+  return slot;
+}
+
 std::shared_ptr<const ControlMesh> MeasureContext::accepted(const std::string& name, const Scheme& scheme) {
   const MeshRequirements& a = scheme.info().accepts;
   // Schemes with the same face requirement get the same accepted mesh (and reference surface).
@@ -186,31 +193,84 @@ const DenseLimit& MeasureContext::dense_reference(const std::shared_ptr<const Co
   return it->second;
 }
 
+const LimitProjector& MeasureContext::projector(const std::shared_ptr<const ControlMesh>& m, SubdivisionRule rule) {
+  auto& slot = projectors_[{content_key(*m), int(rule)}];
+  if (!slot) slot = std::make_unique<LimitProjector>(reference(m, rule));
+  return *slot;
+}
+
 namespace {
+
+// What is past `bound` of a position (fraction of the diagonal) and a normal figure, in words.
+std::string past_bound(const DeviationBound& bound, double position, double normal, const std::string& against) {
+  std::string past;
+  if (bound.pos_rel_diag >= 0 && position > bound.pos_rel_diag)
+    past = "position deviation from " + against + " " + std::to_string(position) + " of the diagonal, past the bound " +
+           std::to_string(bound.pos_rel_diag);
+  if (bound.normal_deg >= 0 && normal > bound.normal_deg)
+    past += (past.empty() ? "" : "; ") + std::string("normal deviation from ") + against + " " + std::to_string(normal) +
+            " degrees, past the bound " + std::to_string(bound.normal_deg);
+  return past;
+}
 
 // A row past its scheme's declared bound fails, like a crack: the scheme promised the bound.
 void judge_deviation(RunRow& row) {
   const DeviationFigures& d = row.deviation;
-  std::string past;
-  if (row.bound.pos_rel_diag >= 0 && d.pos_max_rel_diag > row.bound.pos_rel_diag)
-    past = "position deviation " + std::to_string(d.pos_max_rel_diag) + " of the diagonal, past the bound " +
-           std::to_string(row.bound.pos_rel_diag);
-  if (row.bound.normal_deg >= 0 && d.normal_max_deg > row.bound.normal_deg)
-    past += (past.empty() ? "" : "; ") + std::string("normal deviation ") + std::to_string(d.normal_max_deg) +
-            " degrees, past the bound " + std::to_string(row.bound.normal_deg);
+  std::string past = past_bound(row.bound, d.pos_max_rel_diag, d.normal_max_deg, "the input's limit");
+  if (d.own) {
+    const std::string own = past_bound(row.own_bound, d.own->pos_max_rel_diag, d.own->normal_max_deg,
+                                       "the limit of its own control mesh");
+    past += (past.empty() || own.empty() ? "" : "; ") + own;
+  }
   if (past.empty()) return;
   row.status = RunStatus::Failed;
   row.message += (row.message.empty() ? "" : "; ") + past;
 }
 
+// The scheme's coords are on a mesh of its own (a fitted image's g0), not on the accepted mesh.
+bool coords_on_own_mesh(const Tessellation& t, const ControlMesh& accepted) {
+  return t.reference && content_key(*t.reference) != content_key(accepted);
+}
+
+// The output's coords are on a mesh whose limit is the input's: the accepted mesh, unless its
+// polygons were split or the scheme's coords are on a mesh of its own.
+bool coords_on_input(const Tessellation& t, const JudgedSurfaces& s) {
+  return !t.coords.empty() && s.accepted_keeps_limit && !coords_on_own_mesh(t, *s.accepted);
+}
+
+// NaN where no normal was compared (the output or the reference has none anywhere).
+double normal_figure(const DeviationReport& d, double figure) {
+  return d.vertices > d.normal_undefined ? figure : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
-void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& ref_mesh,
-                   SubdivisionRule rule, const MeasureOptions& o, MeasureContext& ctx) {
-  const MeshFacts facts = compute_facts(*ref_mesh);
+bool accepted_keeps_limit(const ControlMesh& accepted) {
+  const auto& w = accepted.warnings;
+  return w.empty() || w.back().rfind("faces of more than four sides split", 0) != 0;
+}
+
+JudgedSurfaces judged_surfaces(const std::string& mesh, const Scheme& scheme, MeasureContext& ctx) {
+  JudgedSurfaces s;
+  s.accepted = ctx.accepted(mesh, scheme);
+  s.input = ctx.input(mesh);
+  s.accepted_keeps_limit = accepted_keeps_limit(*s.accepted);
+  s.rule = scheme.info().reference;
+  return s;
+}
+
+LimitDistance input_limit_distance(const Tessellation& t, const JudgedSurfaces& s, MeasureContext& ctx) {
+  if (coords_on_input(t, s)) return distance_at_coords(t, ctx.reference(s.accepted, s.rule));
+  return distance_by_nearest_point(t, ctx.projector(s.input, s.rule));
+}
+
+void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, const MeasureOptions& o,
+                   MeasureContext& ctx) {
+  const SubdivisionRule rule = s.rule;
+  const MeshFacts facts = compute_facts(*s.accepted);
   row.watertight.open_edges = count_open_edges(t);
   row.watertight.seed = o.seed;
-  const bool closed = facts.closed && ref_mesh->holes.empty();
+  const bool closed = facts.closed && s.accepted->holes.empty();
   if (closed) {
     const RayCrackReport r = ray_crack_check(t, {o.rays, o.rays, o.seed});
     row.watertight.rays = r.rays;
@@ -221,38 +281,42 @@ void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<con
                     std::to_string(r.cracks) + " ray cracks";
     }
   }
-  if (rule == SubdivisionRule::Loop && !facts.all_triangles) return;  // no Loop limit to compare with
-  const LimitEvaluator* reference = nullptr;
+  // The yardstick's mesh: the input's limit, reached through the accepted mesh where the coords are on it.
+  const bool own_coords = coords_on_own_mesh(t, *s.accepted);
+  const bool at_coords = coords_on_input(t, s);
+  const std::shared_ptr<const ControlMesh>& limit_mesh = at_coords ? s.accepted : s.input;
+  if (rule == SubdivisionRule::Loop && !compute_facts(*limit_mesh).all_triangles) return;  // no Loop limit to compare with
   try {
-    reference = &ctx.reference(ref_mesh, rule);
+    if (t.triangles.empty()) return;
+    const LimitDistance d = input_limit_distance(t, s, ctx);
+    const DeviationReport& r = d.report;
+    if (!o.deviation_ply.empty()) write_deviation_ply(t, r, o.deviation_ply);
+    row.deviation = {true, r.pos_max_pct, r.pos_mean_pct, r.pos_rms_pct, r.pos_p95_pct, r.pos_max_rel_diag,
+                     normal_figure(r, r.normal_max_deg), normal_figure(r, r.normal_mean_deg), -1, r.normal_undefined,
+                     d.pos_p95_rel_diag, d.nearest_point ? "nearest-point" : "surface-coords", std::nullopt};
+    if (r.normal_undefined > 0)
+      row.message += std::string(row.message.empty() ? "" : "; ") + std::to_string(r.normal_undefined) + " of " +
+                     std::to_string(r.vertices) + " vertices without a normal to compare (" +
+                     std::to_string(r.normal_undefined - r.normal_declared) + " where the limit has none, " +
+                     std::to_string(r.normal_declared) + " where the scheme gives none)";
+    // The scheme's exactness on its own control mesh, the second figure (the first one where that
+    // mesh is the input: an image's own g0 given as the mesh).
+    if (t.reference && !t.coords.empty()) {
+      const LimitDistance own = own_coords   ? distance_at_coords(t, ctx.reference(t.reference, rule))
+                                : at_coords ? d
+                                             : distance_at_coords(t, ctx.reference(s.accepted, rule));
+      const DeviationReport& o_r = own.report;
+      row.deviation.own = DeviationFigures::Own{o_r.pos_max_rel_diag, own.pos_p95_rel_diag, o_r.pos_max_pct,
+                                                o_r.pos_p95_pct, normal_figure(o_r, o_r.normal_max_deg)};
+    }
   } catch (const Unsupported& e) {
     // The yardstick cannot be built (OpenSubdiv's own limits): the row keeps its watertightness.
     row.message += std::string(row.message.empty() ? "" : "; ") + "no deviation measured: " + e.what();
     return;
   }
-  if (!t.coords.empty()) {
-    DeviationReport d;
-    try {
-      d = measure_deviation(t, *reference);
-    } catch (const Unsupported& e) {  // a point the yardstick's local refinement cannot reach
-      row.message += std::string(row.message.empty() ? "" : "; ") + "no deviation measured: " + e.what();
-      return;
-    }
-    if (!o.deviation_ply.empty()) write_deviation_ply(t, d, o.deviation_ply);
-    row.deviation = {true,  d.pos_max_pct,    d.pos_mean_pct,   d.pos_rms_pct, d.pos_p95_pct, d.pos_max_rel_diag,
-                     d.normal_max_deg, d.normal_mean_deg, -1, d.normal_undefined};
-    if (d.normal_undefined > 0)
-      row.message += std::string(row.message.empty() ? "" : "; ") + std::to_string(d.normal_undefined) + " of " +
-                     std::to_string(d.vertices) + " vertices without a normal to compare (" +
-                     std::to_string(d.normal_undefined - d.normal_declared) + " where the limit has none, " +
-                     std::to_string(d.normal_declared) + " where the scheme gives none)";
-    judge_deviation(row);
-  } else {
-    row.message += std::string(row.message.empty() ? "" : "; ") +
-                   "no SurfaceCoords (the scheme does not say where a vertex lies): Hausdorff distance only";
-  }
-  if (o.hausdorff && !(o.hausdorff_only_without_coords && !t.coords.empty())) {
-    const DenseLimit& dense = ctx.dense_reference(ref_mesh, rule);
+  judge_deviation(row);
+  if (o.hausdorff && !(o.hausdorff_only_without_coords && at_coords)) {
+    const DenseLimit& dense = ctx.dense_reference(limit_mesh, rule);
     row.deviation.hausdorff_rel = hausdorff(t, dense.surface, *dense.scene).max();
   }
 }
@@ -323,6 +387,7 @@ struct DescribedRun {
   const Scheme* scheme = nullptr;
   RunRequest request;
   std::shared_ptr<const ControlMesh> accepted;
+  JudgedSurfaces surfaces;
 };
 
 // Memory a run may use: the machine's, or less where the process's address space is limited.
@@ -361,6 +426,7 @@ RunRow policy_row(const RunSpec& spec, const ResolvedScheme& resolved, const Mac
   row.peer = info.peer;
   row.peer_backend = peer_backend_for(info, spec.backend);
   row.bound = info.bound;
+  row.own_bound = info.own_bound;
   row.device = spec.backend == Backend::Vulkan ? m.vulkan_device : spec.backend == Backend::OpenGl ? m.opengl_renderer : m.cpu_model;
   row.tessellation = segments_per_edge(info.level_kind, spec.level);
   return row;
@@ -378,7 +444,8 @@ DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureC
     row.message = *why;
     return d;
   }
-  d.accepted = ctx.accepted(spec.mesh, *d.scheme);
+  d.surfaces = judged_surfaces(spec.mesh, *d.scheme, ctx);
+  d.accepted = d.surfaces.accepted;
   if (auto why = too_large(*d.scheme, *d.accepted, d.request)) {
     row.status = RunStatus::Unsupported;
     row.message = *why;
@@ -390,8 +457,13 @@ DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureC
   row.extraordinary_fraction = facts.all_triangles ? facts.extraordinary_vertex_fraction : facts.extraordinary_quad_fraction;
   const auto& w = d.accepted->warnings;
   if (!w.empty() && w.back().rfind("quadrangulated", 0) == 0) row.message = "quadrangulated by one Catmull-Clark step";
-  if (!w.empty() && w.back().rfind("faces of more than four sides split", 0) == 0)
-    row.message = "faces of more than four sides split into quads and a triangle";
+  if (!d.surfaces.accepted_keeps_limit) row.message = "faces of more than four sides split into quads and a triangle";
+  // Where the row approximates a limit its scheme reproduces in other runs (a semi-sharp crease
+  // still active at this depth, limit projection off), the bound, that promise, does not apply.
+  const SchemeInfo& info = d.scheme->info();
+  const bool reproduces = reproduces_limit(info, d.request, *d.accepted);
+  row.limit = std::string(to_string(reproduces ? LimitClaim::Reproduces : LimitClaim::Approximates));
+  if (!reproduces && info.limit != LimitClaim::Approximates) row.bound = {};
   return d;
 }
 
@@ -465,7 +537,7 @@ RunRow measure_one(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   if (o.validate) {
     enter_stage(o, "validate", row);
     const Tessellation& out = eval->result();
-    validate_into(row, out, out.reference ? out.reference : d.accepted, d.scheme->info().reference, o, ctx);
+    validate_into(row, out, d.surfaces, o, ctx);
   }
   const bool gpu = is_gpu(spec.backend);
   if (!o.time) {

@@ -16,6 +16,8 @@
 #include "harness/core/scheme.h"
 #include "harness/reference/dense_limit.h"
 #include "harness/reference/limit_evaluator.h"
+#include "harness/validate/limit_distance.h"
+#include "harness/validate/limit_projector.h"
 
 namespace sdb {
 
@@ -45,9 +47,10 @@ struct MeasureOptions {
   bool time = true;          // false: record the one validated execution instead of benchmarking
   bool validate = true;
   bool hausdorff = true;
-  // With hausdorff: only on rows without SurfaceCoords, where it is the one deviation figure (the
-  // quick set: the per-vertex deviation is there, and the dense reference's queries cost more
-  // than the rest of a row's validation).
+  // With hausdorff: only on rows without SurfaceCoords on the input, measured by nearest points,
+  // where it adds the other direction (the input's surface to the output's: what a fitted surface
+  // rounds off). The quick set: elsewhere the per-vertex deviation is there, and the dense
+  // reference's queries cost more than the rest of a row's validation.
   bool hausdorff_only_without_coords = false;
   long rays = 100000;  // random lines; as many again aimed at base-face borders
   uint64_t seed = 1;
@@ -66,9 +69,14 @@ class MeasureContext {
  public:
   explicit MeasureContext(MachineInfo machine) : machine_(std::move(machine)) {}
   const ControlMesh& mesh(const std::string& name);
+  // The same mesh, shared: the input whose limit surface rows are judged against.
+  std::shared_ptr<const ControlMesh> input(const std::string& name);
   // The mesh as the scheme takes it (quadrangulated when it asks); throws InputError if refused.
   std::shared_ptr<const ControlMesh> accepted(const std::string& name, const Scheme& scheme);
   const LimitEvaluator& reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
+  // Closest points of the same limit, for outputs with no SurfaceCoords on the mesh; built once
+  // per mesh and rule.
+  const LimitProjector& projector(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
   // A dense tessellation of the same limit and its Embree scene, for Hausdorff distances; built
   // once per mesh and rule.
   const DenseLimit& dense_reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
@@ -79,12 +87,14 @@ class MeasureContext {
  private:
   MachineInfo machine_;
   std::map<std::string, ControlMesh> meshes_;
+  std::map<std::string, std::shared_ptr<const ControlMesh>> inputs_;
   std::map<std::string, std::shared_ptr<const ControlMesh>> accepted_;
   // Keyed by the mesh's content, not its address: a geometry image hands every run a new g0
   // object, and caching those by address kept a 200 MB dense reference per run (the default
   // run reached 24 GB and was killed).
   std::map<std::pair<size_t, int>, std::unique_ptr<LimitEvaluator>> references_;
   std::map<std::pair<size_t, int>, DenseLimit> dense_;
+  std::map<std::pair<size_t, int>, std::unique_ptr<LimitProjector>> projectors_;
   std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
 };
 
@@ -136,8 +146,35 @@ class MeasureObserver {
   MeasureObserver* outer_;
 };
 
-// Validation only (exact weld, rays, deviation, Hausdorff) of one evaluation's output.
-void validate_into(RunRow& row, const Tessellation& t, const std::shared_ptr<const ControlMesh>& reference_mesh,
-                   SubdivisionRule rule, const MeasureOptions& options, MeasureContext& context);
+// The surfaces a run's output is judged against (ARCHITECTURE.md: the reference is the limit
+// surface of the mesh the user gave).
+struct JudgedSurfaces {
+  std::shared_ptr<const ControlMesh> input;     // the mesh as the user gave it
+  std::shared_ptr<const ControlMesh> accepted;  // as the scheme took it: its SurfaceCoords refer to it
+  // False where taking it changed the limit surface (faces of more than four sides split for
+  // mipgh-quadtri); quadrangulation by a Catmull-Clark step keeps it.
+  bool accepted_keeps_limit = true;
+  SubdivisionRule rule = SubdivisionRule::CatmullClark;  // the scheme's (SchemeInfo::reference)
+};
+
+// False where accept_mesh changed the limit surface: faces of more than four sides split (mipgh-quadtri).
+bool accepted_keeps_limit(const ControlMesh& accepted);
+
+// The surfaces a run of `scheme` on `mesh` is judged against. InputError when the scheme refuses the mesh.
+JudgedSurfaces judged_surfaces(const std::string& mesh, const Scheme& scheme, MeasureContext& context);
+
+// The output's distance from the input's limit surface, as rows and pictures report it: at its
+// SurfaceCoords where they are on the accepted mesh and that mesh has the input's limit, else by
+// nearest points from every vertex to the input's limit (a scheme that subdivides a control mesh
+// of its own, Tessellation::reference; one without coords). Throws Unsupported where the
+// yardstick cannot be built.
+LimitDistance input_limit_distance(const Tessellation& t, const JudgedSurfaces& surfaces, MeasureContext& context);
+
+// Validation only (exact weld, rays, deviation, Hausdorff) of one evaluation's output: every
+// figure against the input's limit surface (input_limit_distance), and where the scheme names a
+// control mesh of its own (Tessellation::reference), its distance from that mesh's limit at its
+// coords as the second figure (deviation.own).
+void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& surfaces, const MeasureOptions& options,
+                   MeasureContext& context);
 
 }  // namespace sdb

@@ -114,6 +114,9 @@ void to_json(json& j, const RunRow& r) {
   if (r.peer_backend) j["peer_backend"] = to_string(*r.peer_backend);
   if (r.bound.pos_rel_diag >= 0 || r.bound.normal_deg >= 0)
     j["deviation_bound"] = {{"pos_rel_diag", r.bound.pos_rel_diag}, {"normal_deg", r.bound.normal_deg}};
+  if (r.own_bound.pos_rel_diag >= 0 || r.own_bound.normal_deg >= 0)
+    j["own_deviation_bound"] = {{"pos_rel_diag", r.own_bound.pos_rel_diag}, {"normal_deg", r.own_bound.normal_deg}};
+  if (!r.limit.empty()) j["limit"] = r.limit;
   if (r.gpu_time_ms) j["gpu_time_ms"] = *r.gpu_time_ms;
   if (!r.gpu_passes.empty()) {
     json passes = json::array();
@@ -125,7 +128,14 @@ void to_json(json& j, const RunRow& r) {
     j["deviation"] = {{"pos_max_pct", d.pos_max_pct},       {"pos_mean_pct", d.pos_mean_pct},
                       {"pos_rms_pct", d.pos_rms_pct},       {"pos_p95_pct", d.pos_p95_pct},
                       {"pos_max_rel_diag", d.pos_max_rel_diag}, {"normal_max_deg", d.normal_max_deg},
-                      {"normal_mean_deg", d.normal_mean_deg},   {"hausdorff_rel", d.hausdorff_rel}};
+                      {"normal_mean_deg", d.normal_mean_deg},   {"hausdorff_rel", d.hausdorff_rel},
+                      {"pos_p95_rel_diag", d.pos_p95_rel_diag},   {"measured_by", d.measured_by}};
+    if (d.own)
+      j["deviation"]["own_reference"] = {{"pos_max_rel_diag", d.own->pos_max_rel_diag},
+                                         {"pos_p95_rel_diag", d.own->pos_p95_rel_diag},
+                                         {"pos_max_pct", d.own->pos_max_pct},
+                                         {"pos_p95_pct", d.own->pos_p95_pct},
+                                         {"normal_max_deg", d.own->normal_max_deg}};
     if (d.normals_undefined > 0) j["deviation"]["normals_undefined"] = d.normals_undefined;
   } else if (d.hausdorff_rel >= 0) {
     // No SurfaceCoords: the distance to the limit at the same point is not defined, Hausdorff is.
@@ -147,6 +157,11 @@ void from_json(const json& j, RunRow& r) {
     r.bound.pos_rel_diag = j["deviation_bound"].value("pos_rel_diag", -1.0);
     r.bound.normal_deg = j["deviation_bound"].value("normal_deg", -1.0);
   }
+  if (j.contains("own_deviation_bound")) {
+    r.own_bound.pos_rel_diag = j["own_deviation_bound"].value("pos_rel_diag", -1.0);
+    r.own_bound.normal_deg = j["own_deviation_bound"].value("normal_deg", -1.0);
+  }
+  r.limit = j.value("limit", "");
   r.mesh = j.at("mesh");
   r.mesh_faces = whole(j, "mesh_faces", 0), r.mesh_vertices = whole(j, "mesh_vertices", 0);
   r.extraordinary_fraction = number(j, "extraordinary_fraction", 0.0);
@@ -181,6 +196,14 @@ void from_json(const json& j, RunRow& r) {
       r.deviation.normal_max_deg = number(d, "normal_max_deg", 0.0);
       r.deviation.normal_mean_deg = number(d, "normal_mean_deg", 0.0);
       r.deviation.normals_undefined = whole(d, "normals_undefined", 0L);
+      r.deviation.pos_p95_rel_diag = number(d, "pos_p95_rel_diag", NAN);
+      r.deviation.measured_by = d.value("measured_by", "");
+      if (d.contains("own_reference") && d["own_reference"].is_object()) {
+        const json& o = d["own_reference"];
+        r.deviation.own = DeviationFigures::Own{number(o, "pos_max_rel_diag", NAN), number(o, "pos_p95_rel_diag", NAN),
+                                                number(o, "pos_max_pct", NAN), number(o, "pos_p95_pct", NAN),
+                                                number(o, "normal_max_deg", NAN)};
+      }
     }
   }
   r.status = status_from(j), r.message = j.value("message", "");

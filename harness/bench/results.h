@@ -1,6 +1,7 @@
 // results.json: the contract between runs, reports, the gate and paper tables (ARCHITECTURE.md).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -28,6 +29,8 @@ struct WatertightFigures {
   uint64_t seed = 0;
 };
 
+// Against the limit surface of the row's input: at each vertex's SurfaceCoord, or by nearest
+// points where the scheme's vertices have no coords on the input (measured_by says which).
 struct DeviationFigures {
   bool measured = false;
   double pos_max_pct = 0, pos_mean_pct = 0, pos_rms_pct = 0, pos_p95_pct = 0;
@@ -37,6 +40,14 @@ struct DeviationFigures {
   // Vertices whose normal was not compared: the limit has none there (the yardstick says so: a
   // valence-2 vertex, a ring that turns over, a face degenerate to a curve); counted, not hidden.
   long normals_undefined = 0;
+  double pos_p95_rel_diag = NAN;  // NaN: not measured (files written before it)
+  std::string measured_by;  // "surface-coords" | "nearest-point"; "" in files written before it
+  // Against the limit of the scheme's own control mesh at its coords (Tessellation::reference:
+  // a fitted geometry image's g0), the second figure; judged by the scheme's own_bound.
+  struct Own {
+    double pos_max_rel_diag = 0, pos_p95_rel_diag = 0, pos_max_pct = 0, pos_p95_pct = 0, normal_max_deg = 0;
+  };
+  std::optional<Own> own;
 };
 
 struct RunRow {
@@ -49,7 +60,9 @@ struct RunRow {
   // The row this one is read against (SchemeInfo::peer): same mesh and tessellation, this backend.
   std::string peer;
   std::optional<Backend> peer_backend;
-  DeviationBound bound;  // the scheme's declared bound (negative: none)
+  DeviationBound bound;  // the bound the row is judged by: its scheme's, none where the row approximates by condition
+  DeviationBound own_bound;  // the scheme's bound against its own control mesh (deviation.own)
+  std::string limit;  // "reproduces" | "approximates" (SchemeInfo::limit for this run); "" in older files
   int mesh_faces = 0, mesh_vertices = 0;
   double extraordinary_fraction = 0;
   int level = 0;

@@ -1,4 +1,5 @@
 // validate and run: one checked run, or a selection measured and written with its report.
+#include <cmath>
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -69,9 +70,21 @@ std::string row_figures(const RunRow& r) {
   if (r.watertight.ray_cracks >= 0)
     line += " cracks " + std::to_string(r.watertight.ray_cracks) + "/" + std::to_string(r.watertight.rays);
   if (r.deviation.measured) {
-    std::snprintf(buf, sizeof buf, "  dev max %.3g%% p95 %.3g%% %.3gdeg", r.deviation.pos_max_pct, r.deviation.pos_p95_pct,
-                  r.deviation.normal_max_deg);
+    std::snprintf(buf, sizeof buf, "  dev max %.3g%% p95 %.3g%%", r.deviation.pos_max_pct, r.deviation.pos_p95_pct);
     line += buf;
+    // NaN: no normal compared (a scheme that outputs none, mipgh-quadtri's nodes).
+    if (std::isnan(r.deviation.normal_max_deg)) {
+      line += " no normals";
+    } else {
+      std::snprintf(buf, sizeof buf, " %.3gdeg", r.deviation.normal_max_deg);
+      line += buf;
+    }
+    if (r.limit == "approximates") {
+      std::snprintf(buf, sizeof buf, "  approximates%s: max %.2g p95 %.2g of the diagonal",
+                    r.deviation.measured_by == "nearest-point" ? " (nearest points)" : "", r.deviation.pos_max_rel_diag,
+                    r.deviation.pos_p95_rel_diag);
+      line += buf;
+    }
   }
   if (r.status != RunStatus::Ok) line += "  FAILED: " + r.message;
   return line;
@@ -253,7 +266,7 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   auto* quick = r->add_flag("--quick", opts->quick,
                             "the quick set: every scheme on a quad, a triangle and a real mesh at two levels each "
                             "(about 100 k and 1 M triangles); 3 repetitions, 3 paired rounds and 10000 rays unless "
-                            "given, Hausdorff distances only where no per-vertex deviation is measured");
+                            "given, Hausdorff distances only where the deviation is measured by nearest points");
   quick->excludes(r->get_option("--all"))->excludes(r->get_option("--all-corpus"));
   r->add_option("--shard", opts->shard,
                 "run shard I of N (0 <= I < N) of the selection: the runs whose position among the sorted run names "

@@ -1,5 +1,6 @@
 #include "harness/core/scheme.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace sdb {
@@ -11,6 +12,10 @@ std::string_view to_string(SchemeRole role) {
     case SchemeRole::Test: return "test";
   }
   return "?";
+}
+
+std::string_view to_string(LimitClaim claim) {
+  return claim == LimitClaim::Approximates ? "approximates" : "reproduces";
 }
 
 int segments_per_edge(LevelKind kind, int level) {
@@ -28,6 +33,32 @@ std::optional<int> level_for_segments(LevelKind kind, int segments) {
 
 RunRequest default_request(const SchemeInfo& info, Backend backend, int level, int threads) {
   return {backend, level, threads, Parameters::defaults(info.parameters)};
+}
+
+namespace {
+
+// The largest sharpness below OpenSubdiv's infinite one (Sdc::Crease::SHARPNESS_INFINITE, 10) of
+// the mesh's creases and corners: what still decays at the next levels; 0 without any.
+double largest_finite_sharpness(const ControlMesh& mesh) {
+  constexpr double kInfinite = 10.0;
+  double largest = 0;
+  for (const EdgeCrease& c : mesh.creases)
+    if (c.sharpness < kInfinite) largest = std::max(largest, double(c.sharpness));
+  for (const VertexCorner& c : mesh.corners)
+    if (c.sharpness < kInfinite) largest = std::max(largest, double(c.sharpness));
+  return largest;
+}
+
+}  // namespace
+
+bool reproduces_limit(const SchemeInfo& info, const RunRequest& request, const ControlMesh& mesh) {
+  if (info.limit == LimitClaim::Approximates) return false;
+  const std::string& projection = info.limit_projection_parameter;
+  if (!projection.empty() && request.parameters.values().count(projection) && request.parameters.integer(projection) == 0)
+    return false;
+  if (info.limit == LimitClaim::ReproducesOnceSharpnessDecays)
+    return info.level_kind == LevelKind::Depth && request.level >= largest_finite_sharpness(mesh);
+  return true;
 }
 
 long Scheme::estimated_triangles(const ControlMesh& accepted, const RunRequest& request) const {

@@ -53,13 +53,30 @@ struct MeshRequirements {
   int max_valence = 1024;
 };
 
-// How far a scheme's output may lie from its reference limit surface at the same SurfaceCoord,
-// on every mesh it accepts at its default levels; a row past it is "failed". Negative: no bound
-// (the figures are reported, not judged).
+// How far a scheme's output may lie from the limit surface of its input (at the same SurfaceCoord,
+// or by nearest points where its vertices have none on the input), on every mesh it accepts at its
+// default levels; a row past it is "failed". Negative: no bound (the figures are reported, not
+// judged).
 struct DeviationBound {
   double pos_rel_diag = -1;  // largest distance over the bounding-box diagonal
   double normal_deg = -1;    // largest angle between normals, where both are defined
 };
+
+// Whether a scheme's output lies on the limit surface of the mesh it was given or near it. Rows
+// record which ("reproduces" | "approximates", limit_claim_of) and the report prints it.
+enum class LimitClaim {
+  // On the limit surface, within the scheme's bound.
+  Reproduces,
+  // On it once every semi-sharp crease and corner (finite sharpness) has decayed at the requested
+  // depth, and near it before: Far's limit masks applied at a refined level treat a crease that is
+  // still active as infinitely sharp (osd-uniform). Such rows approximate, and are not judged by
+  // the bound, which is the promise of the rows that reproduce.
+  ReproducesOnceSharpnessDecays,
+  // Near it only: a surface fitted to it (geometry-image), a refined control mesh (OpenMesh,
+  // mipgh-quadtri), a patch approximation (c-patches). The bound, when declared, is how near.
+  Approximates,
+};
+std::string_view to_string(LimitClaim claim);
 
 // In the registry's order: peers first, then methods, then test schemes.
 enum class SchemeRole {
@@ -92,6 +109,14 @@ struct SchemeInfo {
   // Empty: none (the gate then uses the write-bandwidth probe of the same round).
   std::string peer;
   DeviationBound bound;
+  LimitClaim limit = LimitClaim::Reproduces;
+  // An integer parameter that at 0 makes the output the refined control points instead of their
+  // limit (mipgh's `limit`): such rows approximate, and are not judged by the bound. Empty: none.
+  std::string limit_projection_parameter;
+  // For a scheme that subdivides a control mesh of its own (Tessellation::reference: the fitted
+  // image's g0), how far the output may lie from that mesh's limit at its SurfaceCoords: the
+  // scheme's exactness, judged beside its distance from the input's limit.
+  DeviationBound own_bound;
   // False: the output has no SurfaceCoords (OpenMesh's subdividers do not say where a refined
   // vertex lies on the base mesh); rows then carry watertightness and Hausdorff distance only.
   bool surface_coords = true;
@@ -111,6 +136,12 @@ struct RunRequest {
 
 // A request with every parameter the scheme declares at its default.
 RunRequest default_request(const SchemeInfo& info, Backend backend, int level, int threads = 0);
+
+// Whether a run reproduces its input's limit surface or approximates it (SchemeInfo::limit): a
+// scheme that reproduces it once sharpness decays approximates at a depth no greater than the
+// input's largest finite sharpness (Sdc: below 10, sharpness decays by one per level), and one
+// whose limit projection is switched off approximates.
+bool reproduces_limit(const SchemeInfo& info, const RunRequest& request, const ControlMesh& mesh);
 
 class Evaluation {
  public:

@@ -23,8 +23,11 @@ struct Tessellation {
   std::vector<Point3> normals;  // unit length
   std::vector<uint32_t> triangles;  // three indices per triangle
   std::vector<SurfaceCoord> coords;  // one per vertex
-  // The mesh the coords refer to when it is not the mesh handed to the scheme (a geometry image
-  // builds its own control mesh g0). Null means: the scheme's input.
+  // The mesh the coords refer to when the scheme subdivides a control mesh of its own (a geometry
+  // image's g0, fitted to the input). Null means: the scheme's input. Validation judges every row
+  // against the input's limit surface all the same (by nearest points where the coords are on
+  // another mesh); this mesh's limit at the coords is the row's second figure, the scheme's
+  // exactness (harness/bench/measure.h, validate_into).
   std::shared_ptr<const ControlMesh> reference;
 
   size_t num_vertices() const { return positions.size(); }

@@ -20,7 +20,6 @@
 #include "harness/gpu/mesh_renderer.h"
 #include "harness/pictures/colour_map.h"
 #include "harness/pictures/framing.h"
-#include "harness/validate/deviation.h"
 
 namespace sdb::pictures {
 namespace {
@@ -49,20 +48,6 @@ std::string file_safe(const std::string& s) {
 
 std::string picture_file(const std::string& scheme, const std::string& mesh, const std::string& kind) {
   return file_safe(scheme) + "_" + file_safe(mesh) + "_" + kind + ".png";
-}
-
-// Per output vertex, its distance from the limit point at the same SurfaceCoord over the
-// reference's bounding-box diagonal: validate's per-vertex deviation (% of the local face size)
-// scaled back, so that the numbers agree with the rows' pos_max_rel_diag.
-std::vector<float> deviation_over_diagonal(const Tessellation& t, const LimitEvaluator& reference) {
-  const DeviationReport d = measure_deviation(t, reference);
-  const double diagonal = bounds_of(reference.mesh().positions).diagonal();
-  std::vector<float> out(t.positions.size(), 0.0f);
-  if (!(diagonal > 0)) return out;
-  for (size_t i = 0; i < out.size(); ++i)
-    if (d.vertex_pct[i] > 0)  // 0 also for vertices no triangle uses, whose coords are not read
-      out[i] = float(d.vertex_pct[i] / 100.0 * reference.local_size(int(t.coords[i].face)) / diagonal);
-  return out;
 }
 
 nlohmann::ordered_json entry_json(const PictureEntry& e) {
@@ -122,7 +107,7 @@ std::vector<SchemeChoice> resolve_schemes(const std::vector<std::string>& spelle
 // One scheme's surface on the mesh, and its two entries as they stand.
 struct Surface {
   const SchemeChoice* scheme = nullptr;
-  std::shared_ptr<const ControlMesh> accepted;
+  JudgedSurfaces surfaces;  // the accepted mesh the scheme subdivides, and the input it is judged against
   std::unique_ptr<Evaluation> evaluation;  // null when tessellating failed (the entries say why)
   PictureEntry shaded, deviation;
 };
@@ -171,17 +156,18 @@ class MeshPictures {
     s.shaded.kind = "shaded";
     s.deviation.kind = "deviation";
     const Scheme& scheme = *choice.resolved.scheme;
-    s.accepted = measure_.accepted(mesh_, scheme);
+    s.surfaces = judged_surfaces(mesh_, scheme, measure_);
+    const ControlMesh& accepted = *s.surfaces.accepted;
     try {
       const Parameters& parameters = choice.resolved.parameters;
-      const int level = request_.level ? *request_.level : picture_level(scheme, *s.accepted, parameters);
+      const int level = request_.level ? *request_.level : picture_level(scheme, accepted, parameters);
       s.shaded.level = s.deviation.level = level;
       const RunRequest run{Backend::Cpu, level, 0, parameters};
       if (auto why = declined(scheme, run)) throw Unsupported(*why);
-      const long estimate = scheme.estimated_triangles(*s.accepted, run);
+      const long estimate = scheme.estimated_triangles(accepted, run);
       if (double(estimate) > kMaxPictureTriangles)
         throw Unsupported("about " + std::to_string(estimate) + " triangles at this level, too many for a picture");
-      s.evaluation = scheme.prepare(*s.accepted, run);
+      s.evaluation = scheme.prepare(accepted, run);
       execute_on(*s.evaluation, Backend::Cpu);
       s.shaded.triangles = s.deviation.triangles = long(s.evaluation->result().num_triangles());
     } catch (const InputError&) {
@@ -219,12 +205,9 @@ class MeshPictures {
 
   void draw_deviation(Surface& s, const gpu::Camera& camera) {
     try {
+      // Distance from the input's limit surface over its diagonal, as the rows measure it.
       const Tessellation& t = s.evaluation->result();
-      if (t.coords.size() != t.positions.size())
-        throw Unsupported("the scheme does not say where its vertices lie on the surface (no SurfaceCoords)");
-      const auto& reference =
-          measure_.reference(t.reference ? t.reference : s.accepted, s.scheme->resolved.scheme->info().reference);
-      const std::vector<float> deviation = deviation_over_diagonal(t, reference);
+      const std::vector<float> deviation = input_limit_distance(t, s.surfaces, measure_).vertex_rel_diag;
       float max = 0;  // of the finite values: a NaN takes the map's low end, as viridis() says
       for (float d : deviation)
         if (std::isfinite(d)) max = std::max(max, d);

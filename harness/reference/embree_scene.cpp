@@ -60,8 +60,10 @@ void record_hit(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
-double point_triangle_distance(const double p[3], const Point3& A, const Point3& B, const Point3& C) {
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5): its distance,
+// and the point as a + s (b - a) + t (c - a) in `st` when asked.
+double point_triangle_distance(const double p[3], const Point3& A, const Point3& B, const Point3& C,
+                               double* st = nullptr) {
   double a[3], b[3], c[3];
   for (int k = 0; k < 3; ++k) a[k] = A[k], b[k] = B[k], c[k] = C[k];
   auto sub = [](const double* x, const double* y, double* r) { r[0] = x[0] - y[0], r[1] = x[1] - y[1], r[2] = x[2] - y[2]; };
@@ -69,6 +71,7 @@ double point_triangle_distance(const double p[3], const Point3& A, const Point3&
   double ab[3], ac[3], ap[3], bp[3], cp[3], q[3];
   sub(b, a, ab), sub(c, a, ac), sub(p, a, ap);
   auto dist_to = [&](double s, double t) {
+    if (st) st[0] = s, st[1] = t;
     for (int k = 0; k < 3; ++k) q[k] = a[k] + s * ab[k] + t * ac[k] - p[k];
     return std::sqrt(dot(q, q));
   };
@@ -98,14 +101,19 @@ struct ClosestQuery {
   const std::vector<uint32_t>* triangles;
   const double* p;
   double best;
+  uint32_t triangle = 0;
+  double st[2] = {0, 0};
 };
 
 bool closest_callback(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<ClosestQuery*>(args->userPtr);
   const uint32_t* t = &(*q->triangles)[3 * args->primID];
-  const double d = point_triangle_distance(q->p, (*q->positions)[t[0]], (*q->positions)[t[1]], (*q->positions)[t[2]]);
+  double st[2];
+  const double d = point_triangle_distance(q->p, (*q->positions)[t[0]], (*q->positions)[t[1]], (*q->positions)[t[2]], st);
   if (d < q->best) {
     q->best = d;
+    q->triangle = args->primID;
+    q->st[0] = st[0], q->st[1] = st[1];
     args->query->radius = static_cast<float>(d);
     return true;
   }
@@ -172,6 +180,10 @@ EmbreeTriangleScene::LineCrossings EmbreeTriangleScene::crossings(const float or
 }
 
 double EmbreeTriangleScene::closest_distance(const double p[3], double radius_hint) const {
+  return closest(p, radius_hint).distance;
+}
+
+EmbreeTriangleScene::Closest EmbreeTriangleScene::closest(const double p[3], double radius_hint) const {
   for (double radius : {radius_hint, std::numeric_limits<double>::infinity()}) {
     ClosestQuery q{&positions_, &triangles_, p, radius};
     RTCPointQuery query;
@@ -181,9 +193,9 @@ double EmbreeTriangleScene::closest_distance(const double p[3], double radius_hi
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(scene_, &query, &context, closest_callback, &q);
-    if (q.best < radius) return q.best;
+    if (q.best < radius) return {q.best, q.triangle, q.st[0], q.st[1]};
   }
-  return std::numeric_limits<double>::infinity();
+  return {};
 }
 
 }  // namespace sdb

@@ -38,6 +38,14 @@ class EmbreeTriangleScene {
   // Distance from p to the closest point of the surface. Thread-safe. The search starts within
   // `radius_hint` (nearby surfaces answer fast) and widens to everything when nothing is there.
   double closest_distance(const double p[3], double radius_hint = std::numeric_limits<double>::infinity()) const;
+  // The same, with the triangle the closest point lies on (its index in `triangles`) and where:
+  // corner 0 + b1 (corner 1 - corner 0) + b2 (corner 2 - corner 0).
+  struct Closest {
+    double distance = std::numeric_limits<double>::infinity();
+    uint32_t triangle = 0;
+    double b1 = 0, b2 = 0;
+  };
+  Closest closest(const double p[3], double radius_hint = std::numeric_limits<double>::infinity()) const;
 
  private:
   RTCScene scene_ = nullptr;

@@ -8,35 +8,9 @@
 #include <random>
 
 #include "harness/reference/embree_scene.h"
+#include "harness/validate/summary.h"
 
 namespace sdb {
-namespace {
-
-struct Stats {
-  double max = 0, mean = 0, rms = 0, p95 = 0;
-};
-
-Stats stats_of(std::vector<double> v) {
-  Stats s;
-  if (v.empty()) return s;
-  double sum = 0, sq = 0;
-  for (double x : v) sum += x, sq += x * x, s.max = std::max(s.max, x);
-  s.mean = sum / v.size();
-  s.rms = std::sqrt(sq / v.size());
-  const size_t k = static_cast<size_t>(std::ceil(0.95 * v.size())) - 1;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  s.p95 = v[k];
-  return s;
-}
-
-// Vertices used by at least one triangle: unreferenced ones (inside holes) have no surface.
-std::vector<char> referenced(const Tessellation& t) {
-  std::vector<char> used(t.positions.size(), 0);
-  for (uint32_t i : t.triangles) used[i] = 1;
-  return used;
-}
-
-}  // namespace
 
 DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& ref) {
   DeviationReport r;

@@ -39,6 +39,7 @@ SchemeInfo make_info(const char* name, const char* description, std::vector<Back
   // An approximation of the Catmull-Clark limit (the paper's Figure 12): at most 1.15% of the
   // diagonal (pole8) and 43 degrees (next to Blub's extraordinary vertices) in the default set.
   info.bound = {0.02, 60};
+  info.limit = LimitClaim::Approximates;
   // The paper's models (stood in for, TABLES.md) and the real meshes its issue names.
   info.default_meshes = {"sword-standin",      "head-standin",       "frog-standin",
                          "crane/spot_control", "crane/blub_control", "pmp/fandisk_quads"};

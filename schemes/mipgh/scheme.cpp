@@ -54,6 +54,11 @@ SchemeInfo make_info(MeshRule rule) {
   // not bounded.
   info.bound = quadtri ? DeviationBound{} : DeviationBound{1e-5, 0.01};
   info.surface_coords = !quadtri;  // its rows carry the Hausdorff distance (cpu.cpp)
+  // mipgh-quadtri is held to the Catmull-Clark limit of the mesh as given (its rule on quads; no
+  // evaluator exists for Stam and Loop's surface), by nearest points: it approximates. The others
+  // reproduce their limit unless `limit=0` leaves the last step's nodes unprojected.
+  info.limit = quadtri ? LimitClaim::Approximates : LimitClaim::Reproduces;
+  info.limit_projection_parameter = quadtri ? "" : "limit";
   info.peer = loop ? "osd-uniform-loop" : "osd-uniform";
   const std::string headline = loop ? "stanford/bunny" : "stein/sword_quad_dominant";
   info.default_meshes = loop      ? std::vector<std::string>{"stanford/bunny", "crane/spot_low_resolution",

@@ -3,7 +3,8 @@
 // a half-edge mesh (OpenMesh subdivides in place), subdivides it k times, and lays the refined
 // mesh out as triangles with vertex normals from OpenMesh. No limit projection: the output is the
 // refined control mesh, and OpenMesh does not say where a refined vertex lies on the base mesh,
-// so the rows carry watertightness and Hausdorff distance only (SchemeInfo::surface_coords).
+// so the rows measure each vertex's distance to the closest point of the limit surface and the
+// Hausdorff distance (SchemeInfo::surface_coords, LimitClaim::Approximates).
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
@@ -93,6 +94,7 @@ class OpenMeshSubdivider final : public Scheme {
     info_.peer = loop ? "osd-uniform-loop" : "osd-uniform";  // OpenSubdiv's refinement of the same depth
     info_.surface_coords = false;
     info_.reference = rule;
+    info_.limit = LimitClaim::Approximates;  // judged by nearest points and Hausdorff
     info_.level_kind = LevelKind::Depth;
     info_.backends = {Backend::Cpu};  // OpenMesh's subdividers are serial
     info_.default_levels = {1, 2, 3, 4};

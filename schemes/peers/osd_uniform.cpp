@@ -93,9 +93,10 @@ class OsdUniform final : public Scheme {
                              : "Catmull-Clark uniform refinement to depth k, limit projection";
     info_.reference = rule;
     info_.role = SchemeRole::Peer;
-    // Catmull-Clark: exact (1e-7 of the diagonal) once the depth exceeds every semi-sharp crease,
-    // which Far's limit masks treat as infinitely sharp below it (6% of the diagonal on the
-    // creased cube at depth 1): no bound, the figures are reported. Loop: exact.
+    // Exact (1e-7 of the diagonal) once the depth reaches every semi-sharp crease's sharpness;
+    // below it Far's limit masks treat an active crease as infinitely sharp (6% of the diagonal on
+    // the creased cube at depth 1): those rows approximate, their figures reported, not judged.
+    info_.limit = LimitClaim::ReproducesOnceSharpnessDecays;
     if (loop) info_.bound = {1e-5, 0.05};
     // The rate peer of the same rule, met at 2^k segments.
     info_.peer = loop ? "osd-bfr-loop" : "osd-bfr";

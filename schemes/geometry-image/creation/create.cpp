@@ -32,6 +32,7 @@ GeometryImageCreator::GeometryImageCreator(const ControlMesh& mesh, CreationOpti
     : mesh_(mesh), options_(std::move(options)) {
   require_closed_genus0(mesh_);
   surface_ = triangulate(mesh_);
+  domains_ = face_domains(mesh_, surface_.triangles);
 }
 
 GeometryImageCreator::~GeometryImageCreator() = default;
@@ -40,8 +41,8 @@ uint64_t GeometryImageCreator::cache_key() const {
   const SphericalParametrizationOptions& p = options_.parametrization;
   char settings[256];
   std::snprintf(settings, sizeof settings,
-                "gim-create-v%d fairness=%.9g tris=%zu rounds=%d inverse=%.9g sweeps=%d tol=%.9g", kCreationVersion,
-                options_.fit.fairness, p.min_triangles, p.reweighting_rounds, p.inverse_weight, p.max_sweeps,
+                "gim-create-v%d fairness=%.9g reprojections=%d tris=%zu rounds=%d inverse=%.9g sweeps=%d tol=%.9g",
+                kCreationVersion, options_.fit.fairness, options_.fit.reprojections, p.min_triangles, p.reweighting_rounds, p.inverse_weight, p.max_sweeps,
                 p.tolerance);
   return mix_key(content_hash(mesh_), settings);
 }
@@ -63,7 +64,23 @@ const SphericalParametrization& GeometryImageCreator::parametrization() {
   return *parametrization_;
 }
 
-DenseSamples sample_surface(const SphericalParametrization& parametrization, int n) {
+const LimitEvaluator& GeometryImageCreator::limit() {
+  if (!limit_) limit_ = std::make_unique<LimitEvaluator>(mesh_, SubdivisionRule::CatmullClark);
+  return *limit_;
+}
+
+const LimitProjector& GeometryImageCreator::projector() {
+  if (!projector_) projector_ = std::make_unique<LimitProjector>(limit());
+  return *projector_;
+}
+
+DenseSamples sample_limit_surface(const SphericalParametrization& parametrization, const FaceDomains& domains,
+                                  const LimitEvaluator& limit, int n) {
+  FaceDomains refined = domains;
+  while (refined.face.size() < parametrization.surface.triangles.size()) refined = refine_domains(refined);
+  if (refined.face.size() != parametrization.surface.triangles.size())
+    throw std::logic_error("sample_limit_surface: the domains are not those of the parametrized surface's triangles");
+  const ControlMesh& mesh = limit.mesh();
   const SurfaceSampler sampler(parametrization.surface, parametrization.sphere);
   DenseSamples samples;
   samples.side = dense_sample_side(n);
@@ -71,9 +88,17 @@ DenseSamples sample_surface(const SphericalParametrization& parametrization, int
   const double to_image = static_cast<double>(n - 1) / (samples.side - 1);
   tbb::parallel_for(tbb::blocked_range<int>(0, samples.side), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j < rows.end(); ++j)
-      for (int i = 0; i < samples.side; ++i)
-        samples.points[static_cast<size_t>(j) * samples.side + i] =
-            sampler.at_direction(OctahedralMap::sphere_from_image(i * to_image, j * to_image, n));
+      for (int i = 0; i < samples.side; ++i) {
+        const SurfaceSampler::Location at =
+            sampler.locate(OctahedralMap::sphere_from_image(i * to_image, j * to_image, n));
+        const auto& [a, b, c] = refined.corners[at.triangle];
+        const double w0 = 1.0 - at.b1 - at.b2;
+        const Vec2d domain{w0 * a[0] + at.b1 * b[0] + at.b2 * c[0], w0 * a[1] + at.b1 * b[1] + at.b2 * c[1]};
+        const int face = refined.face[at.triangle];
+        const LimitSample s =
+            limit.evaluate(domain_coord(mesh.face_sizes[face], limit.first_ptex_face(face), domain));
+        samples.points[static_cast<size_t>(j) * samples.side + i] = s.position;
+      }
   });
   return samples;
 }
@@ -104,11 +129,15 @@ CreatedImage GeometryImageCreator::create(int size) {
   parametrize_reported_ = true;
   r.stretch = param.stretch;
   auto start = std::chrono::steady_clock::now();
-  const DenseSamples samples = sample_surface(param, size);
+  const DenseSamples samples = sample_limit_surface(param, domains_, limit(), size);
   r.sample_ms = ms_since(start);
   start = std::chrono::steady_clock::now();
   FitReport fit;
-  out.image = fit_geometry_image(size, samples, options_.fit, &fit);
+  const LimitProjector& onto = projector();
+  // The fitted patch lies within a few thousandths of the diagonal of the surface: the search starts there.
+  const double hint = 0.01 * onto.diagonal();
+  out.image = fit_geometry_image(size, samples, options_.fit, &fit,
+                                 [&](const Vec3d& p) { return onto.closest(p, hint).limit.position; });
   r.fit_ms = ms_since(start);
   r.cg_iterations = fit.iterations;
   r.rms_residual = fit.rms_residual;

@@ -1,6 +1,7 @@
 // Geometry image creation (Section 4): spherical parametrization, the octahedral map unfolded by
-// the X-cut, dense sampling of the surface through them, and the least-squares fit; results are
-// cached on disk (cache.h).
+// the X-cut, dense sampling of the input's Catmull-Clark limit surface through them (FaceDomains
+// carries a point of the triangulated input to its face's ptex coordinate), and the least-squares
+// fit of the image's patch to those samples; results are cached on disk (cache.h).
 #pragma once
 
 #include <memory>
@@ -8,7 +9,10 @@
 #include <string>
 
 #include "harness/core/control_mesh.h"
+#include "harness/reference/limit_evaluator.h"
+#include "harness/validate/limit_projector.h"
 #include "schemes/geometry-image/creation/cache.h"
+#include "schemes/geometry-image/creation/face_domains.h"
 #include "schemes/geometry-image/creation/fit.h"
 #include "schemes/geometry-image/creation/parametrize.h"
 #include "schemes/geometry-image/creation/triangle_mesh.h"
@@ -17,7 +21,8 @@
 namespace sdb::gim {
 
 // Bumped whenever a change to creation changes its results, so that old cache files are not used.
-inline constexpr int kCreationVersion = 1;
+// 2: fitted to the input's Catmull-Clark limit surface (1 fitted the flat control polygons).
+inline constexpr int kCreationVersion = 2;
 
 struct CreationOptions {
   int size = 65;  // n: samples per image side, odd, >= 5
@@ -57,6 +62,10 @@ class GeometryImageCreator {
   // The parametrization (computed on first use).
   const SphericalParametrization& parametrization();
   const TriangleMesh& surface() const { return surface_; }
+  // The input's Catmull-Clark limit surface, what the image is fitted to, and its closest points
+  // (built on first use).
+  const LimitEvaluator& limit();
+  const LimitProjector& projector();
   // The cache key of an image of this mesh (content and creation settings).
   uint64_t cache_key() const;
 
@@ -64,15 +73,20 @@ class GeometryImageCreator {
   ControlMesh mesh_;
   CreationOptions options_;
   TriangleMesh surface_;
+  FaceDomains domains_;  // of surface_'s triangles
   std::optional<SphericalParametrization> parametrization_;
+  std::unique_ptr<LimitEvaluator> limit_;
+  std::unique_ptr<LimitProjector> projector_;
   double parametrize_ms_ = 0;
   bool parametrize_reported_ = false;
 };
 
 CreatedImage create_geometry_image(const ControlMesh& mesh, const CreationOptions& options = {});
 
-// The dense samples of the surface, through `parametrization` and the octahedral map, on the
-// grid the fit of an n x n image uses.
-DenseSamples sample_surface(const SphericalParametrization& parametrization, int n);
+// The dense samples of the limit surface, through `parametrization` and the octahedral map, on the
+// grid the fit of an n x n image uses. `domains` are those of the triangles of the mesh the
+// parametrization was computed from (it refines them as the parametrization refined its surface).
+DenseSamples sample_limit_surface(const SphericalParametrization& parametrization, const FaceDomains& domains,
+                                  const LimitEvaluator& limit, int n);
 
 }  // namespace sdb::gim

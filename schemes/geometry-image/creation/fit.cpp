@@ -2,6 +2,8 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -135,7 +137,8 @@ int dense_sample_side(int n) {
   return per_cell * (n - 1) + 1;
 }
 
-GeometryImage fit_geometry_image(int n, const DenseSamples& samples, const FitOptions& options, FitReport* report) {
+GeometryImage fit_geometry_image(int n, const DenseSamples& samples, const FitOptions& options, FitReport* report,
+                                 const ClosestOnSurface& closest) {
   const CutSymmetry sym(n);
   if (n < 5) throw std::invalid_argument("fitting needs an image of at least 5 x 5");
   if (samples.side < 2 || samples.points.size() != static_cast<size_t>(samples.side) * samples.side)
@@ -160,7 +163,6 @@ GeometryImage fit_geometry_image(int n, const DenseSamples& samples, const FitOp
   const Eigen::SparseMatrix<double> bt = basis.transpose();
   Eigen::SparseMatrix<double> normal = (bt * basis) * (1.0 / k);
   normal += (fair.transpose() * fair) * (options.fairness / unknowns.count);
-  const Eigen::MatrixXd rhs = (bt * target) * (1.0 / k);
 
   // Initial guess: the surface at the image's grid points (they are among the dense samples).
   const std::vector<ImagePos> where = canonical_positions(sym);
@@ -177,10 +179,23 @@ GeometryImage fit_geometry_image(int n, const DenseSamples& samples, const FitOp
   cg.setMaxIterations(options.max_iterations);
   cg.compute(normal);
   FitReport r;
-  for (int c = 0; c < 3; ++c) {
-    x.col(c) = cg.solveWithGuess(rhs.col(c), x.col(c));
-    r.iterations = std::max(r.iterations, static_cast<int>(cg.iterations()));
-    r.cg_error = std::max(r.cg_error, cg.error());
+  const int rounds = closest ? 1 + std::max(0, options.reprojections) : 1;
+  for (int round = 0; round < rounds; ++round) {
+    if (round > 0) {
+      const Eigen::MatrixXd patch = basis * x;
+      tbb::parallel_for(tbb::blocked_range<long>(0, k, 1024), [&](const tbb::blocked_range<long>& range) {
+        for (long i = range.begin(); i < range.end(); ++i) {
+          const Vec3d q = closest({patch(i, 0), patch(i, 1), patch(i, 2)});
+          for (int c = 0; c < 3; ++c) target(i, c) = q[c];
+        }
+      });
+    }
+    const Eigen::MatrixXd rhs = (bt * target) * (1.0 / k);
+    for (int c = 0; c < 3; ++c) {
+      x.col(c) = cg.solveWithGuess(rhs.col(c), x.col(c));
+      r.iterations = std::max(r.iterations, static_cast<int>(cg.iterations()));
+      r.cg_error = std::max(r.cg_error, cg.error());
+    }
   }
 
   const Eigen::MatrixXd residual = basis * x - target;

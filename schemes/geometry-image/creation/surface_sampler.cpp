@@ -64,7 +64,7 @@ SurfaceSampler::SurfaceSampler(const TriangleMesh& mesh, const std::vector<Vec3d
 
 SurfaceSampler::~SurfaceSampler() = default;
 
-Vec3d SurfaceSampler::at_direction(const Vec3d& d) const {
+SurfaceSampler::Location SurfaceSampler::locate(const Vec3d& d) const {
   unsigned prim = 0;
   float u = 0, v = 0;
   bool hit = impl_->cast(d, prim, u, v);
@@ -74,12 +74,7 @@ Vec3d SurfaceSampler::at_direction(const Vec3d& d) const {
     hit = impl_->cast({d[0] + e, d[1] - 0.5 * e, d[2] + 0.25 * e}, prim, u, v);
   }
   if (!hit) throw std::runtime_error("surface sampling: a ray from the centre missed the spherical triangulation");
-  const auto& tri = impl_->mesh.triangles[prim];
-  const Vec3d& a = impl_->mesh.positions[tri[0]];
-  const Vec3d& b = impl_->mesh.positions[tri[1]];
-  const Vec3d& c = impl_->mesh.positions[tri[2]];
-  const double w0 = 1.0 - u - v;
-  return {w0 * a[0] + u * b[0] + v * c[0], w0 * a[1] + u * b[1] + v * c[1], w0 * a[2] + u * b[2] + v * c[2]};
+  return {static_cast<int>(prim), u, v};
 }
 
 }  // namespace sdb::gim

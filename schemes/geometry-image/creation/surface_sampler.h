@@ -1,7 +1,8 @@
 // SurfaceSampler: the input surface seen through its spherical parametrization. A direction on
 // the sphere is located in the spherical triangulation by an Embree ray from the centre against
 // the chord triangles (the embedding makes them star-shaped about the centre, so the ray meets
-// exactly one), and its barycentric coordinates there give the surface point.
+// exactly one); its barycentric coordinates there place it on the surface's triangle (and, through
+// FaceDomains, in its base face: create.cpp samples the limit surface there).
 #pragma once
 
 #include <memory>
@@ -18,8 +19,13 @@ class SurfaceSampler {
   SurfaceSampler(const SurfaceSampler&) = delete;
   SurfaceSampler& operator=(const SurfaceSampler&) = delete;
 
-  // The surface point whose spherical image is the direction d (need not be unit). Thread-safe.
-  Vec3d at_direction(const Vec3d& d) const;
+  // Where the direction d (need not be unit) meets the spherical triangulation: the triangle and
+  // the barycentric weights of its corners 1 and 2 (corner 0 has 1 - b1 - b2). Thread-safe.
+  struct Location {
+    int triangle = 0;
+    double b1 = 0, b2 = 0;
+  };
+  Location locate(const Vec3d& d) const;
 
  private:
   struct Impl;

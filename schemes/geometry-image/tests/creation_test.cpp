@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "harness/reference/limit_evaluator.h"
 #include "schemes/geometry-image/closed_mesh.h"
+#include "schemes/geometry-image/creation/face_domains.h"
 #include "schemes/geometry-image/creation/parametrize.h"
 #include "schemes/geometry-image/octahedral_map.h"
 #include "schemes/geometry-image/tests/test_support.h"
@@ -36,6 +38,46 @@ DenseSamples samples_of_patch(const GeometryImage& image) {
 }
 
 }  // namespace
+
+// The limit samples' coordinates (face_domains.h) place a point of the triangulated input on its
+// base face's limit: where triangles of different faces (and an n-gon's sub-quads) meet, the same
+// point of the triangulation gives the same limit point from each side, so the sampled surface has
+// no gap. Every corner of every triangle, twice refined, against every other that is the same vertex.
+TEST(Creation, LimitSamplesAgreeWhereFacesMeet) {
+  std::vector<std::string> names = {"pole5", "icosphere-1"};
+  if (corpus_mesh("crane/spot_control")) names.push_back("crane/spot_control");  // quads and pentagons
+  for (const std::string& name : names) {
+    const ControlMesh mesh = load_mesh(name);
+    const LimitEvaluator limit(mesh, SubdivisionRule::CatmullClark);
+    TriangleMesh surface = triangulate(mesh);
+    FaceDomains domains = face_domains(mesh, surface.triangles);
+    for (int r = 0; r < 2; ++r) {
+      surface = refine_midpoints(surface);
+      domains = refine_domains(domains);
+    }
+    ASSERT_EQ(domains.face.size(), surface.triangles.size());
+    std::vector<Vec3d> at(surface.positions.size());
+    std::vector<char> seen(surface.positions.size(), 0);
+    double worst = 0;
+    long compared = 0;
+    for (size_t t = 0; t < surface.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int f = domains.face[t];
+        const Vec3d p = limit.evaluate(domain_coord(mesh.face_sizes[f], limit.first_ptex_face(f), domains.corners[t][k])).position;
+        const int v = surface.triangles[t][k];
+        if (!seen[v]) {
+          seen[v] = 1, at[v] = p;
+          continue;
+        }
+        worst = std::max(worst, std::hypot(p[0] - at[v][0], p[1] - at[v][1], p[2] - at[v][2]));
+        ++compared;
+      }
+    const double diagonal = bounds_of(mesh.positions).diagonal();
+    std::printf("  %s: %ld shared corners, largest gap %.2e of the diagonal\n", name.c_str(), compared, worst / diagonal);
+    EXPECT_GT(compared, long(surface.positions.size()));
+    EXPECT_LT(worst / diagonal, 1e-6) << name;
+  }
+}
 
 TEST(Creation, RefusesAGenusOneMeshAndAMeshWithBoundaryNamingWhy) {
   const std::string torus = refusal(load_mesh("torus"));

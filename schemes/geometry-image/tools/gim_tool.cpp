@@ -4,7 +4,9 @@
 //   gim_tool time MESH K [REPS]     rough single-thread timing of execute(), beside OpenSubdiv
 //                                   uniform refinement with limit projection on the same g0, and
 //                                   the vulkan backend's timestamps pass by pass (median of REPS)
-//   gim_tool hausdorff MESH N...    two-sided Hausdorff distance of fitted surfaces to MESH
+//   gim_tool hausdorff MESH N...    fitted surfaces (about 513 samples a side) against MESH's Catmull-Clark
+//                                   limit: each vertex's distance to it (max, p95) and the two-sided
+//                                   Hausdorff distance, of the diagonal
 // For experiments, $GIM_FAIRNESS, $GIM_TOL, $GIM_SWEEPS, $GIM_MINTRI, $GIM_RW and $GIM_INVERSE override
 // the creation settings (the cache key follows them).
 #include <opensubdiv/far/primvarRefiner.h>
@@ -22,7 +24,9 @@
 #include "harness/bench/statistics.h"
 #include "harness/mesh/mesh_io.h"
 #include "harness/mesh/osd_topology.h"
+#include "harness/reference/dense_limit.h"
 #include "harness/validate/deviation.h"
+#include "harness/validate/limit_distance.h"
 #include "schemes/geometry-image/closed_mesh.h"
 #include "schemes/geometry-image/creation/create.h"
 #include "schemes/geometry-image/creation/triangle_mesh.h"
@@ -88,6 +92,7 @@ Timing time_osd(const ControlMesh& g0, int level, int reps, long& triangles) {
 CreationOptions options_from_environment() {
   CreationOptions o;
   if (const char* f = std::getenv("GIM_FAIRNESS")) o.fit.fairness = std::atof(f);
+  if (const char* f = std::getenv("GIM_REPROJECT")) o.fit.reprojections = std::atoi(f);
   if (const char* f = std::getenv("GIM_TOL")) o.parametrization.tolerance = std::atof(f);
   if (const char* f = std::getenv("GIM_SWEEPS")) o.parametrization.max_sweeps = std::atoi(f);
   if (const char* f = std::getenv("GIM_MINTRI")) o.parametrization.min_triangles = std::atoi(f);
@@ -99,10 +104,9 @@ CreationOptions options_from_environment() {
 int hausdorff_table(const std::string& name, const std::vector<int>& sizes) {
   const ControlMesh mesh = load_mesh(name);
   GeometryImageCreator creator(mesh, options_from_environment());
-  Tessellation input;
-  input.positions = mesh.positions;
-  for (const auto& f : triangulate(mesh).triangles)
-    for (int v : f) input.triangles.push_back(static_cast<uint32_t>(v));
+  const LimitEvaluator& limit = creator.limit();
+  const LimitProjector projector(limit);
+  const DenseLimit dense = dense_limit(limit);
   const auto scheme = make_geometry_image_scheme();
   for (int n : sizes) {
     const CreatedImage made = creator.create(n);
@@ -110,10 +114,22 @@ int hausdorff_table(const std::string& name, const std::vector<int>& sizes) {
     while (level_size(n, level) < 500) ++level;
     auto eval = scheme->prepare(closed_mesh(made.image, "g0", ""), default_request(scheme->info(), Backend::Cpu, level));
     eval->execute();
-    const HausdorffReport h = hausdorff(eval->result(), input);
-    std::printf("%s m=%d k=%d: Hausdorff %.4f (forward %.4f, backward %.4f; mean %.5f / %.5f) of the diagonal, fit %.0f ms\n",
-                name.c_str(), n, level, h.max(), h.forward_max, h.backward_max, h.forward_mean, h.backward_mean,
-                made.report.fit_ms);
+    const LimitDistance d = distance_by_nearest_point(eval->result(), projector);
+    const HausdorffReport h = hausdorff(eval->result(), dense.surface, *dense.scene);
+    const long turned = std::count_if(d.report.vertex_deg.begin(), d.report.vertex_deg.end(), [](float a) { return a > 10; });
+    // Where the largest distance and the largest normal angle are, in image coordinates.
+    const long side = level_size(n, level);
+    const auto far = std::max_element(d.vertex_rel_diag.begin(), d.vertex_rel_diag.end()) - d.vertex_rel_diag.begin();
+    const auto bent = std::max_element(d.report.vertex_deg.begin(), d.report.vertex_deg.end(),
+                                       [](float a, float b) { return std::isnan(b) ? false : std::isnan(a) || a < b; }) -
+                      d.report.vertex_deg.begin();
+    const double scale = double(n - 1) / double(side - 1);
+    std::printf("%s m=%d k=%d: vertices max %.5f p95 %.5f; Hausdorff %.5f (forward %.5f, backward %.5f) of the "
+                "diagonal from the limit; normals max %.1f deg, %ld past 10 deg; fit %.0f ms; farthest at image "
+                "(%.2f, %.2f), most turned at (%.2f, %.2f)\n",
+                name.c_str(), n, level, d.report.pos_max_rel_diag, d.pos_p95_rel_diag, h.max(), h.forward_max,
+                h.backward_max, d.report.normal_max_deg, turned, made.report.fit_ms, (far % side) * scale,
+                (far / side) * scale, (bent % side) * scale, (bent / side) * scale);
   }
   return 0;
 }

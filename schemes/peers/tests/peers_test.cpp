@@ -8,6 +8,7 @@
 
 #include "datasets/generators.h"
 #include "datasets/manifest.h"
+#include "harness/bench/measure.h"
 #include "harness/core/errors.h"
 #include "harness/mesh/acceptance.h"
 #include "harness/mesh/facts.h"
@@ -106,6 +107,43 @@ TEST(Peers, OsdUniformHonoursCreasesAndHolesBeyondTheirSharpness) {
   const LimitEvaluator ref(chaikin, SubdivisionRule::CatmullClark);
   EXPECT_LE(measure_deviation(run_peer("osd-uniform", chaikin, 6), ref).pos_max_rel_diag, 1e-3);
   EXPECT_LE(measure_deviation(run_peer("osd-bfr", chaikin, 9), ref).pos_max_rel_diag, 1e-6);
+}
+
+// Issue 39: below the largest semi-sharp crease's sharpness a row of osd-uniform(-loop) says it
+// approximates the limit, shows by how much and is not failed by the bound its reproducing rows
+// keep; from that depth on it reproduces the limit and the bound judges it (osd-uniform-loop's).
+TEST(Peers, OsdUniformApproximatesWhereACreaseOutlastsTheDepthAndSaysSo) {
+  MeasureContext context{MachineInfo{}};
+  MeasureOptions options;
+  options.time = false;
+  options.rays = 1000;
+  // The creased cube: every edge of sharpness 2.
+  for (int depth : {1, 2}) {
+    const RunRow row = measure_run({"osd-uniform", "creased-cube", Backend::Cpu, depth}, options, context);
+    std::printf("  osd-uniform creased-cube depth %d: %s, max %.3g p95 %.3g of the diagonal, %s\n", depth, row.limit.c_str(),
+                row.deviation.pos_max_rel_diag, row.deviation.pos_p95_rel_diag, to_string(row.status).data());
+    EXPECT_EQ(row.limit, depth < 2 ? "approximates" : "reproduces");
+    EXPECT_EQ(row.status, RunStatus::Ok) << row.message;
+    if (depth < 2) {
+      EXPECT_GT(row.deviation.pos_max_rel_diag, 1e-3) << "the approximation is shown as it is";
+    } else {
+      EXPECT_LE(row.deviation.pos_max_rel_diag, 1e-5);
+    }
+  }
+  if (!corpus_present()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  // Semi-sharp creases of sharpness 2.8 on a Loop cube: osd-uniform-loop's bound (1e-5) would fail
+  // depths 1 and 2; at 3 it applies.
+  for (int depth : {1, 2, 3}) {
+    const RunRow row = measure_run({"osd-uniform-loop", "opensubdiv/loop_cube_creases0", Backend::Cpu, depth}, options, context);
+    std::printf("  osd-uniform-loop loop_cube_creases0 depth %d: %s, max %.3g p95 %.3g of the diagonal, bound %g, %s %s\n",
+                depth, row.limit.c_str(), row.deviation.pos_max_rel_diag, row.deviation.pos_p95_rel_diag,
+                row.bound.pos_rel_diag, to_string(row.status).data(), row.message.c_str());
+    EXPECT_EQ(row.limit, depth < 3 ? "approximates" : "reproduces");
+    EXPECT_EQ(row.bound.pos_rel_diag < 0, depth < 3) << "the bound judges the rows that reproduce";
+    if (depth < 3) {
+      EXPECT_EQ(row.status, RunStatus::Ok) << row.message;
+    }
+  }
 }
 
 // osd-bfr raises Bfr's approximation level to what its rate samples, so it lands on the limit

@@ -47,6 +47,7 @@ class BilinearLimitScheme final : public Scheme {
     // Flat quads against a curved limit, measured at N = 9 over the conformance meshes: 9.8% of
     // the diagonal on the cube (6 quads for a sphere), normals 67 degrees on Blub.
     info_.bound = {0.12, 75};
+    info_.limit = LimitClaim::Approximates;
     // A typed parameter for the tests of the parameter machinery (--scheme bilinear-limit:repeat=2).
     info_.parameters = {{"repeat", "executions of the interpolation per execute()", true, 1, 1, 8, 0},
                         {"crash", "test only: 1 SIGSEGV in prepare, 2 SIGSEGV in execute, 3 abort() in prepare, 4 abort() in execute",
