@@ -51,6 +51,7 @@ int bench(const GateOptions& opts) {
   if (!opts.workload_config.empty()) plan.runs = read_gate_config(opts.workload_config).workload;
   else if (opts.runs.empty()) plan = make_plan(sel, ctx);
   for (const auto& name : opts.runs) plan.runs.push_back(parse_run_name(name));
+  plan.runs = distinct_runs(plan.runs, &plan.notes);
   ctx.probe_bandwidth();  // after the selection is known to be good: a bad one is said at once
   for (const auto& n : plan.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
   std::vector<std::string> args = {"subdivbench bench"};
