@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 
+#include "harness/bench/output_folder.h"
 #include "harness/bench/process.h"
 #include "harness/bench/results.h"
 #include "harness/bench/results_merge.h"
@@ -52,10 +53,10 @@ fs::path make_work_folder(const fs::path& out_dir) {
 }
 
 // Moves plots/, report.md and report.html from `from` into `out_dir`, the HTML last: its presence
-// with a new time means the set is complete. An earlier plots/ is moved aside into `trash`.
-void move_into_place(const fs::path& from, const fs::path& out_dir, const fs::path& trash) {
-  if (fs::exists(out_dir / "plots")) fs::rename(out_dir / "plots", trash / "plots");
-  fs::rename(from / "plots", out_dir / "plots");
+// with a new time means the set is complete. The plots replace ours file by file: a file of the
+// user's in out_dir/plots stays.
+void move_into_place(const fs::path& from, const fs::path& out_dir) {
+  merge_into_folder(from / "plots", out_dir / "plots");
   fs::rename(from / "report.md", out_dir / "report.md");
   fs::rename(from / "report.html", out_dir / "report.html");
 }
@@ -114,7 +115,7 @@ void write_report(const std::vector<std::string>& inputs, const std::string& out
   if (r.exit_code != 0)
     throw InputError(out_dir, "report generation failed (reports/report.py, " + r.describe() + "); an earlier report is left as it was");
   try {
-    move_into_place(written, out_dir, work.path);
+    move_into_place(written, out_dir);
   } catch (const fs::filesystem_error& e) {
     throw InputError(out_dir, std::string("cannot move the report into place: ") + e.what());
   }

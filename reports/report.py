@@ -44,7 +44,7 @@ def comparison(args, plot_dir):
             manifest = json.load(f)
     papers = []
     for path in args.paper:
-        with open(path) as f:
+        with open(path, encoding="utf-8") as f:  # checked UTF-8 by reports/report_inputs.cpp
             papers.append((path, f.read()))
     write_comparison_html(os.path.join(args.out, "report.html"), results, m, fast, verdicts, (invalid, validity), grid,
                           plots, manifest, args.pictures, papers, args.merged_from)
@@ -98,9 +98,21 @@ def gpu_section_html(results):
             H.sentences(lines, results.schemes)]
 
 
+MD_SPECIAL = re.compile(r"([\\`*_\[\]|~])")
+
+
+def md(text):
+    """Text from data (a mesh's file name, a scheme's message) as Markdown that shows it as it is:
+    HTML's three characters as entities (a renderer would take <img ...> as markup), the
+    punctuation Markdown reads inside a line escaped (a | would end a table cell, * and _ start
+    emphasis, [ a link), line breaks as spaces."""
+    text = H.html.escape(str(text), quote=False).replace("\r", " ").replace("\n", " ")
+    return MD_SPECIAL.sub(r"\\\1", text)
+
+
 def md_cell(cell):
     if not cell.ok:
-        return cell.row["status"]
+        return md(cell.row["status"])
     ratio = "anchor" if not cell.peer else "no peer row"
     if cell.ratio is not None:
         if cell.paired:
@@ -115,37 +127,37 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
     out = ["# subdivbench report", "", H.machine_words(results.machine, results.created).replace("<code>", "`")
            .replace("</code>", "`"), "", "## Summary", "", validity, "", "### Fastest per mesh", ""]
     for mesh, parts in fast:
-        out += [f"- **{mesh}**"] + [f"  - {p}" for p in parts]
+        out += [f"- **{md(mesh)}**"] + [f"  - {md(p)}" for p in parts]
     out += ["", "### Where each scheme wins and loses against its peer", ""]
-    out += [f"- **{spec}**: {text}" for spec, text in verdicts]
+    out += [f"- **{md(spec)}**: {md(text)}" for spec, text in verdicts]
     gpu = gpu_lines(results)
     if gpu:
         out += ["", "### GPU against the same scheme's CPU", "", GPU_READING, ""]
-        out += [f"- **{spec}**: {text}" for spec, text in gpu]
+        out += [f"- **{md(spec)}**: {md(text)}" for spec, text in gpu]
     for backend, per_mesh in m.items():
         specs = [s for s in results.specs(backend) if any(s in c for c in per_mesh.values())]
-        out += ["", f"### {backend}", "", "| mesh | " + " | ".join(specs) + " |", "|---" * (len(specs) + 1) + "|"]
+        out += ["", f"### {md(backend)}", "", "| mesh | " + " | ".join(md(s) for s in specs) + " |", "|---" * (len(specs) + 1) + "|"]
         for mesh, cells in per_mesh.items():
             best = fastest(cells)
-            out.append(f"| {mesh} | " + " | ".join(
+            out.append(f"| {md(mesh)} | " + " | ".join(
                 (f"**{md_cell(cells[s])}**" if s == best else md_cell(cells[s])) if s in cells else "" for s in specs) + " |")
     out += ["", "## Against the input's limit surface", "", H.LIMIT_READING, ""]
     limits = limit_table(results)
     meshes = sorted({m for per_mesh in limits.values() for m in per_mesh})
-    out += ["| scheme | " + " | ".join(meshes) + " |", "|---" * (len(meshes) + 1) + "|"]
-    out += [f"| {spec} | " + " | ".join(per_mesh.get(m, "") for m in meshes) + " |" for spec, per_mesh in limits.items()]
-    out += ["", "## Plots", ""] + [f"![{p.title}](plots/{p.name})\n\n{p.caption}\n" for p in plots]
+    out += ["| scheme | " + " | ".join(md(m) for m in meshes) + " |", "|---" * (len(meshes) + 1) + "|"]
+    out += [f"| {md(spec)} | " + " | ".join(md(per_mesh.get(m, "")) for m in meshes) + " |" for spec, per_mesh in limits.items()]
+    out += ["", "## Plots", ""] + [f"![{md(p.title)}](plots/{p.name})\n\n{md(p.caption)}\n" for p in plots]
     out += ["## Pictures", ""]
     if manifest and manifest.get("available"):
         out.append(f"{len(manifest.get('pictures', []))} pictures in pictures/ (see report.html).")
     else:
-        out.append("No pictures: " + ((manifest or {}).get("reason") or "the run wrote no pictures/pictures.json") + ".")
+        out.append("No pictures: " + md((manifest or {}).get("reason") or "the run wrote no pictures/pictures.json") + ".")
     out += ["", "## Paper tables", ""]
     for p, text in papers:
         out += [text.replace("\n#", "\n###"), ""]
     out += ["## Every row", "", "| " + " | ".join(c[0] for c in H.ROW_COLUMNS) + " |", "|---" * len(H.ROW_COLUMNS) + "|"]
     for r in sorted(results.rows, key=lambda r: (results.schemes.key(spec_of(r)), r["backend"], r["mesh"], r["level"])):
-        out.append("| " + " | ".join(H.html.unescape(c) for c in md_row_cells(r, results)) + " |")
+        out.append("| " + " | ".join(md_row_cells(r, results)) + " |")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
 
@@ -153,7 +165,7 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
 def md_row_cells(r, results):
     """The Every-row table's cells as the HTML has them, for the Markdown."""
     cells = re.findall(r"<td[^>]*>(.*?)</td>", H.row_html(r, results))
-    return [c.replace("|", "/") for c in cells]
+    return [md(H.html.unescape(c)) for c in cells]
 
 
 def history(args, plot_dir):
@@ -170,19 +182,19 @@ def history(args, plot_dir):
     with open(os.path.join(args.out, "report.html"), "w") as f:
         f.write(H.page("subdivbench history", H.machine_words(first.get("machine"), first.get("created", "")),
                        [("history", "History")], "\n".join(body)))
-    md = ["# subdivbench history", "", f"Commits, oldest first: {', '.join(h.labels)}", ""]
-    md += [f"- **{label}**: {text}" for label, text in verdict_lines(h)] + [""]
+    lines = ["# subdivbench history", "", f"Commits, oldest first: {md(', '.join(h.labels))}", ""]
+    lines += [f"- **{md(label)}**: {md(text)}" for label, text in verdict_lines(h)] + [""]
     if plot:
-        md += [f"![{plot.title}](plots/{plot.name})", ""]
-    md += ["| benchmark | normalised by | " + " | ".join(h.labels) + " |", "|---" * (len(h.labels) + 2) + "|"]
+        lines += [f"![{md(plot.title)}](plots/{plot.name})", ""]
+    lines += ["| benchmark | normalised by | " + " | ".join(md(x) for x in h.labels) + " |", "|---" * (len(h.labels) + 2) + "|"]
     for name in h.benchmarks():
         cells = []
         for i, s in enumerate(h.series(name)):
             ch = h.change(name, i)
             cells.append("–" if not s else f"{s.median:.3g}" + (f" ({ch[0]:+.0%}, {ch[1]})" if ch else ""))
-        md.append(f"| {name} | {h.normaliser(name)} | " + " | ".join(cells) + " |")
+        lines.append(f"| {md(name)} | {md(h.normaliser(name))} | " + " | ".join(cells) + " |")
     with open(os.path.join(args.out, "report.md"), "w") as f:
-        f.write("\n".join(md) + "\n")
+        f.write("\n".join(lines) + "\n")
 
 
 def main():

@@ -100,7 +100,10 @@ class Results:
         self.paired = data.get("paired") or []
         self.schemes = Schemes(registry_order, self.rows)
         self._by_tess = {}
+        self._by_cell = defaultdict(list)  # (spec, mesh, backend): rows; a sweep has thousands of meshes
+        self._specs = {}
         for r in self.rows:
+            self._by_cell[(spec_of(r), r["mesh"], r["backend"])].append(r)
             if r["status"] == "ok":
                 self._by_tess[(spec_of(r), r["mesh"], r["backend"], r["tessellation"])] = r
         # Backend cells pair a GPU row with its own scheme's cpu-mt row (harness/bench/paired.h);
@@ -115,7 +118,11 @@ class Results:
         return sorted({r["backend"] for r in self.rows}, key=backend_key)
 
     def specs(self, backend=None):
-        return sorted({spec_of(r) for r in self.rows if backend is None or r["backend"] == backend}, key=self.schemes.key)
+        """Asked once per mesh by the summary: computed once per backend (a sweep has 30,000 rows)."""
+        if backend not in self._specs:
+            self._specs[backend] = sorted({spec for (spec, _, b) in self._by_cell if backend is None or b == backend},
+                                          key=self.schemes.key)
+        return self._specs[backend]
 
     def peer_row(self, r):
         """The row's peer (its scheme's SchemeInfo::peer, recorded in the row) at the same mesh and
@@ -131,7 +138,7 @@ class Results:
         """The row the summary shows for (scheme, mesh, backend): the paired one when the run paired
         this cell, else the ok row with output nearest COMMON_TRIANGLES (else any row, to show its
         status)."""
-        rows = [r for r in self.rows if spec_of(r) == spec and r["mesh"] == mesh and r["backend"] == backend]
+        rows = self._by_cell.get((spec, mesh, backend), [])
         if not rows:
             return None
         p = self.paired_cell(spec, mesh, backend)

@@ -206,9 +206,25 @@ def figure(plot):
             f"<figcaption><b>{e(plot.title)}.</b> {e(plot.caption)}</figcaption></figure>")
 
 
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def is_png_inside(path, folder):
+    """A regular file (not a link) inside `folder` that starts as a PNG: what may be inlined. A
+    paper table is data; its image links must not publish /etc/passwd as a picture."""
+    real, base = os.path.realpath(path), os.path.realpath(folder)
+    if os.path.islink(path) or not os.path.isfile(path) or os.path.commonpath([real, base]) != base:
+        return False
+    with open(path, "rb") as f:
+        return f.read(8) == PNG_SIGNATURE
+
+
 def png_uri(path):
     with open(path, "rb") as f:
-        return "data:image/png;base64," + base64.b64encode(f.read()).decode()
+        data = f.read()
+    if not data.startswith(PNG_SIGNATURE):  # reports/report_inputs.cpp checked it; never inline anything else
+        raise ValueError(f"{path}: not a PNG file")
+    return "data:image/png;base64," + base64.b64encode(data).decode()
 
 
 def pictures_section(manifest, manifest_path):
@@ -299,7 +315,7 @@ def md_table(block, folder):
 def inline(text, folder):
     def image(m):
         path = os.path.join(folder, m.group(2))
-        if m.group(2).endswith(".png") and os.path.isfile(path):
+        if m.group(2).endswith(".png") and is_png_inside(path, folder or "."):
             return f"<img alt='{e(m.group(1))}' style='max-width:420px' src='{png_uri(path)}'>"
         return f"[{e(m.group(1))}]"
     parts = re.split(r"(!\[[^\]]*\]\([^)]*\))", text)

@@ -56,13 +56,32 @@ def ok_rows(results):
             and r["triangle_rate_mtris"] > 0]
 
 
+# A row of panels per mesh is readable, and drawn in seconds, for a handful of meshes; a sweep of
+# the corpus has thousands (2,500 meshes did not finish in 180 s). Beyond this many the plot shows
+# the meshes with the most schemes run on them, and says so; every row stays in the tables.
+RATE_GRID_MESHES = 8
+
+
+def plot_text(text):
+    """Text from data in a plot: matplotlib reads $...$ as mathematics (a mesh named a$b$c.obj
+    would fail the report), so every $ is escaped."""
+    return str(text).replace("$", r"\$")
+
+
+def rate_grid_meshes(rows):
+    by_mesh = group(rows, lambda r: r["mesh"])
+    ranked = sorted(by_mesh, key=lambda m: (-len({spec_of(r) for r in by_mesh[m]}), -len(by_mesh[m]), m))
+    return sorted(ranked[:RATE_GRID_MESHES]), len(by_mesh)
+
+
 def rate_grid(results, plot_dir):
     """Triangle rate against output size: a row of panels per mesh, one panel per backend."""
     rows = ok_rows(results)
-    meshes = sorted({r["mesh"] for r in rows})
-    backends = [b for b in results.backends() if any(r["backend"] == b for r in rows)]
     if not rows:
         return None
+    meshes, all_meshes = rate_grid_meshes(rows)
+    rows = [r for r in rows if r["mesh"] in set(meshes)]
+    backends = [b for b in results.backends() if any(r["backend"] == b for r in rows)]
     fig, axes = plt.subplots(len(meshes), len(backends), figsize=(3.3 * len(backends), 2.5 * len(meshes)),
                              sharex=True, sharey=True, squeeze=False)
     by_cell = group(rows, lambda r: (r["mesh"], r["backend"]))
@@ -83,14 +102,16 @@ def rate_grid(results, plot_dir):
             if i == 0:
                 ax.set_title(backend, fontsize=10)
             if j == 0:
-                ax.set_ylabel(f"{mesh}\nM triangles/s", fontsize=8)
+                ax.set_ylabel(f"{plot_text(mesh)}\nM triangles/s", fontsize=8)
             if i == len(meshes) - 1:
                 ax.set_xlabel("output triangles", fontsize=8)
             ax.tick_params(labelsize=7)
     outside_legend(fig, legend_handles(results.schemes, sorted(specs, key=results.schemes.key), backends))
     fig.tight_layout()
+    shown = (f" {len(meshes)} of the {all_meshes:,} meshes: those with the most schemes run on them (every row is in "
+             "the tables)." if len(meshes) < all_meshes else "")
     return save(fig, plot_dir, "rate.png", "Triangle rate against output size",
-                "One row of panels per mesh, one panel per backend; single-pass figures (each row measured once).")
+                "One row of panels per mesh, one panel per backend; single-pass figures (each row measured once)." + shown)
 
 
 def cost_mesh(results):
@@ -125,7 +146,7 @@ def cost_growth(results, plot_dir):
     ax.set_yscale("log")
     ax.set_xlabel("output triangles")
     ax.set_ylabel("median time (ms)")
-    ax.set_title(f"Cost growth on {mesh}", fontsize=11)
+    ax.set_title(f"Cost growth on {plot_text(mesh)}", fontsize=11)
     ax.grid(True, which="major", alpha=0.3)
     outside_legend(fig, handles, "scheme / backend / bound")
     fig.tight_layout()
@@ -174,18 +195,18 @@ def deviation_distributions(results, plot_dir):
             patch.set_facecolor(results.schemes.colour_of(s))
             patch.set_alpha(0.35)
         for i, s in enumerate(specs):
-            for r in by_spec[s]:
-                v = r["deviation"].get(key)
-                if finite(v):
-                    backends.add(r["backend"])
-                    ax.plot(max(v, 1e-12), i + 1 + rng.uniform(-0.2, 0.2), marker=style(r["backend"])[0],
-                            color=results.schemes.colour_of(s), ms=4, alpha=0.8, linestyle="none")
+            # One line of dots per scheme and backend: one per row would be thousands of artists.
+            for backend, pts in sorted(group([r for r in by_spec[s] if finite(r["deviation"].get(key))],
+                                             lambda r: r["backend"]).items()):
+                backends.add(backend)
+                ax.plot([max(r["deviation"][key], 1e-12) for r in pts], [i + 1 + rng.uniform(-0.2, 0.2) for _ in pts],
+                        marker=style(backend)[0], color=results.schemes.colour_of(s), ms=4, alpha=0.8, linestyle="none")
         ax.set_xscale("log")
         ax.set_title(f"deviation, {label}", fontsize=10)
         ax.set_xlabel("% of the local face size", fontsize=8)
         ax.grid(True, axis="x", which="major", alpha=0.3)
     axes[0][0].set_yticks(range(1, len(specs) + 1))
-    axes[0][0].set_yticklabels(specs, fontsize=8)
+    axes[0][0].set_yticklabels([plot_text(s) for s in specs], fontsize=8)
     handles = [Line2D([], [], color="#555555", marker=style(b)[0], linestyle="none", label=b)
                for b in sorted(backends, key=lambda b: list(BACKEND_STYLE).index(b) if b in BACKEND_STYLE else 9)]
     outside_legend(fig, handles, "backend")
@@ -218,7 +239,7 @@ def history_plot(history, plot_dir):
         for i, colour_mark in [(i, "#d32f2f") for i in slower] + [(i, "#2e8b57") for i in faster]:
             ax.plot([xs[i]], [series[i].median], marker="o", ms=11, mfc="none", mec=colour_mark, mew=2)
         flag = " - SLOWER" if slower else " - faster" if faster else ""
-        ax.set_title(name + flag, fontsize=8, color="#d32f2f" if slower else "#2e8b57" if faster else "black",
+        ax.set_title(plot_text(name) + flag, fontsize=8, color="#d32f2f" if slower else "#2e8b57" if faster else "black",
                      fontweight="bold" if flag else "normal")
         ax.set_ylabel(f"time / {history.normaliser(name)}", fontsize=7)
         ax.grid(True, alpha=0.3)

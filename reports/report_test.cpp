@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "tests/cli_helpers.h"
 
@@ -206,3 +207,63 @@ TEST(Report, AllowMixedMergesOtherCommits) {
 }
 
 }  // namespace
+
+namespace {
+
+// Unescaped | in a Markdown table line: its cell boundaries.
+int table_bars(const std::string& line) {
+  int bars = 0;
+  for (size_t i = 0; i < line.size(); ++i) bars += line[i] == '|' && (i == 0 || line[i - 1] != '\\');
+  return bars;
+}
+
+std::string hostile_row(const std::string& scheme, const std::string& mesh, const std::string& peer) {
+  const std::string peer_fields = peer.empty() ? "" : R"("peer": ")" + peer + R"(", "peer_backend": "cpu", )";
+  return R"({"scheme": ")" + scheme + R"(", "spec": ")" + scheme + R"(", "role": "method", "backend": "cpu", "mesh": )" +
+         mesh + R"(, "level": 9, "tessellation": 8, "triangles": 1000, "vertices": 500, )" + peer_fields +
+         R"("time_ms": {"median": 1, "min": 1, "max": 1, "reps": 1, "samples": [1]}, "triangle_rate_mtris": 1,
+            "watertight": {"open_edges": 0, "rays": 10, "ray_cracks": 0, "seed": 1}, "status": "ok", "message": "ok"})";
+}
+
+}  // namespace
+
+// Issue 40: mesh names are data. A mesh file named <img src=x onerror=alert(1)>.obj must not become
+// markup in report.html or report.md, and pi|pe.obj must not break a Markdown table.
+TEST(Report, EscapesWhatComesFromData) {
+  const fs::path out = fresh_folder("escaping");
+  const std::vector<std::string> meshes = {R"("<img src=x onerror=alert(1)>.obj")", R"("pi|pe_*x*.obj")"};
+  std::string rows;
+  for (const std::string& m : meshes)
+    rows += (rows.empty() ? "" : ", ") + hostile_row("osd-bfr", m, "") + ", " + hostile_row("cpatch-2pass", m, "osd-bfr");
+  std::ofstream(out / "results.json") << R"({"schema": 1, "machine": {"cpu_model": "x", "cores": 2}, "runs": [)" << rows << "]}";
+  const auto r = run_cli(report_args({out / "results.json"}, out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(out / "report.html"), md = slurp(out / "report.md");
+  EXPECT_EQ(html.find("<img src=x"), std::string::npos) << "a mesh name became markup in report.html";
+  EXPECT_NE(html.find("&lt;img src=x onerror=alert(1)&gt;.obj"), std::string::npos);
+  EXPECT_EQ(md.find("<img src=x"), std::string::npos) << "a mesh name became markup in report.md";
+  EXPECT_NE(md.find("&lt;img src=x onerror=alert(1)&gt;.obj"), std::string::npos);
+  // Every table line has as many cell boundaries as its header.
+  int checked = 0, header = 0;
+  std::istringstream lines(md);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("| mesh |", 0) == 0 || line.rfind("| scheme |", 0) == 0) header = table_bars(line);
+    else if (line.rfind("|", 0) == 0 && line.find("pi") != std::string::npos) {
+      EXPECT_EQ(table_bars(line), header) << line;
+      EXPECT_NE(line.find("pi\\|pe\\_\\*x\\*.obj"), std::string::npos) << line;
+      ++checked;
+    } else if (line.empty()) header = 0;
+  }
+  EXPECT_EQ(checked, 3) << "the pi|pe rows of the cpu matrix and of every row's table:\n" << md;
+}
+
+// Issue 40: the report replaces its own plots, file by file: a file of the user's in DIR/plots stays.
+TEST(Report, KeepsTheUsersFilesInThePlotsFolder) {
+  const fs::path out = fresh_folder("users-plots");
+  fs::create_directories(out / "plots");
+  std::ofstream(out / "plots" / "mine.png") << "my plot";
+  ASSERT_EQ(run_cli(report_args({kData / "sample" / "results.json"}, out)).exit_code, 0);
+  ASSERT_EQ(run_cli(report_args({kData / "sample" / "results.json"}, out)).exit_code, 0);
+  EXPECT_EQ(slurp(out / "plots" / "mine.png"), "my plot");
+  EXPECT_TRUE(fs::exists(out / "plots" / "rate.png"));
+}

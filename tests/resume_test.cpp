@@ -173,3 +173,125 @@ TEST(Resume, RefusesAnotherSelectionAndAJournalCorruptBeforeItsEnd) {
   EXPECT_NE(corrupt.err.find(journal.string() + ":2: corrupt journal row"), std::string::npos) << corrupt.err;
   EXPECT_EQ(std::count(corrupt.err.begin(), corrupt.err.end(), '\n'), 1) << corrupt.err;
 }
+
+namespace {
+
+// Waits until the run `pid` has started a journal of its own (not `earlier`) that holds `rows`
+// rows (true), or ends first (false).
+bool wait_for_rows(pid_t pid, const fs::path& journal, int rows, const std::string& earlier = "") {
+  int status = 0;
+  for (auto until = std::chrono::steady_clock::now() + std::chrono::seconds(120); std::chrono::steady_clock::now() < until;) {
+    if (journalled_rows(journal) >= rows && (earlier.empty() || slurp(journal) != earlier)) return true;
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+int exit_code_of(pid_t pid) {
+  int status = 0;
+  EXPECT_EQ(waitpid(pid, &status, 0), pid);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+const std::string kCube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                          "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+}  // namespace
+
+// Issue 40: a resumed run whose mesh file changed content at the same path would publish rows of
+// two meshes as one; the journal records each input's content hash and resume refuses, naming it.
+TEST(Resume, RefusesAnInputFileWhoseContentChanged) {
+  const fs::path dir = fresh_folder("changed-input");
+  fs::create_directories(dir);
+  const fs::path mesh = dir / "box.obj";
+  std::ofstream(mesh) << kCube;
+  const std::string selection = "--scheme osd-uniform --mesh " + mesh.string() + " --level 1 --level 2 --backend cpu --reps 1 --rays 100 --no-report";
+  ASSERT_EQ(run_cli("run " + selection + " --out " + (dir / "out").string()).exit_code, 0);
+  const std::string header = slurp(dir / "out" / "journal.jsonl").substr(0, slurp(dir / "out" / "journal.jsonl").find('\n'));
+  EXPECT_NE(header.find("\"inputs\":[{\"hash\":"), std::string::npos) << header;
+  EXPECT_EQ(run_cli("run --resume " + (dir / "out").string()).exit_code, 0) << "unchanged, it resumes";
+
+  std::ofstream(mesh, std::ios::trunc) << kCube << "v 2 2 2\nf 7 6 9\n";  // another mesh, same path
+  const auto changed = run_cli("run --resume " + (dir / "out").string());
+  EXPECT_EQ(changed.exit_code, 2) << changed.out;
+  EXPECT_EQ(changed.err.find("subdivbench: " + mesh.string() + ": changed since " + (dir / "out" / "journal.jsonl").string() +
+                             " recorded it"),
+            0u)
+      << changed.err;
+  EXPECT_EQ(std::count(changed.err.begin(), changed.err.end(), '\n'), 1) << changed.err;
+}
+
+// Issue 40: a second run into a folder a run is writing is refused, naming the first run's
+// process, and the first run finishes whole; a run that was killed leaves an unfinished journal
+// that a new run replaces only with --force, saying so.
+TEST(Run, OneRunWritesAFolderAtATimeAndAnUnfinishedJournalIsKept) {
+  const fs::path dir = fresh_folder("locked");
+  std::vector<std::string> args = split("run " + kSelection);
+  args.insert(args.end(), {"--out", dir.string(), "--no-report"});
+  const pid_t first = start_cli(args, fs::path(dir.string() + ".first.log"));
+  ASSERT_TRUE(wait_for_rows(first, dir / "journal.jsonl", 1)) << slurp(dir.string() + ".first.log");
+  const std::string small = " --scheme osd-uniform --mesh cube --level 1 --backend cpu --reps 1 --rays 100 --no-report";
+  const auto second = run_cli("run" + small + " --out " + dir.string());
+  EXPECT_EQ(second.exit_code, 2);
+  EXPECT_NE(second.err.find(dir.string() + ": another run (process " + std::to_string(first) + ") is writing this folder"),
+            std::string::npos)
+      << second.err;
+  EXPECT_EQ(std::count(second.err.begin(), second.err.end(), '\n'), 1) << second.err;
+  ASSERT_EQ(exit_code_of(first), 0) << slurp(dir.string() + ".first.log");
+  EXPECT_EQ(rows_of(dir / "results.json").size(), size_t(kRows)) << "the first run's rows were lost";
+
+  // Killed after a row: its journal is an unfinished run.
+  const std::string finished = slurp(dir / "journal.jsonl");
+  const pid_t killed = start_cli(args, fs::path(dir.string() + ".killed.log"));
+  ASSERT_TRUE(wait_for_rows(killed, dir / "journal.jsonl", 1, finished));
+  ASSERT_EQ(kill(killed, SIGKILL), 0);
+  exit_code_of(killed);
+  const int journalled = journalled_rows(dir / "journal.jsonl");
+  ASSERT_LT(journalled, kRows);
+  const std::string unfinished = slurp(dir / "journal.jsonl");
+  const auto refused = run_cli("run" + small + " --out " + dir.string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find((dir / "journal.jsonl").string() + ": holds an unfinished run (" + std::to_string(journalled) +
+                             " of 8 rows"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(slurp(dir / "journal.jsonl"), unfinished) << "the unfinished journal was touched";
+  const auto forced = run_cli("run" + small + " --force --out " + dir.string());
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_NE(forced.out.find("holds an unfinished run (" + std::to_string(journalled) + " of 8 rows"), std::string::npos)
+      << forced.out;
+  EXPECT_NE(forced.out.find("replaced (--force)"), std::string::npos) << forced.out;
+}
+
+// Issue 40: run --out DIR publishes its files over its earlier ones only: a file of the user's in
+// DIR, DIR/plots or DIR/pictures stays.
+TEST(Run, KeepsTheUsersFilesInTheOutputFolder) {
+  const fs::path dir = fresh_folder("users-files");
+  fs::create_directories(dir / "plots");
+  fs::create_directories(dir / "pictures");
+  std::ofstream(dir / "plots" / "mine.png") << "my plot";
+  std::ofstream(dir / "pictures" / "mine.txt") << "my notes";
+  std::ofstream(dir / "notes.txt") << "more notes";
+  const auto r = run_cli("run --scheme osd-uniform --mesh cube --level 1 --level 2 --backend cpu --reps 1 --rays 100 --no-paired --out " +
+                         dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "plots" / "rate.png"));
+  EXPECT_EQ(slurp(dir / "plots" / "mine.png"), "my plot");
+  EXPECT_EQ(slurp(dir / "pictures" / "mine.txt"), "my notes");
+  EXPECT_EQ(slurp(dir / "notes.txt"), "more notes");
+}
+
+// Issue 40: a selection that names a run twice measures it once; the set publishes and resumes.
+TEST(Run, ASelectionNamingARunTwiceMeasuresItOnce) {
+  const fs::path dir = fresh_folder("twice");
+  const std::string selection =
+      "--scheme osd-uniform --scheme osd-uniform --mesh cube --mesh cube --level 1 --level 1 --backend cpu --reps 1 --rays 100 --no-report";
+  const auto r = run_cli("run " + selection + " --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("osd-uniform/cpu/cube/1 is named more than once: measured once"), std::string::npos) << r.out;
+  EXPECT_EQ(rows_of(dir / "results.json").size(), 1u);
+  const auto resumed = run_cli("run --resume " + dir.string());
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(rows_of(dir / "results.json").size(), 1u);
+}

@@ -89,7 +89,7 @@ std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file, 
 }  // namespace
 
 bool GateReport::failed() const {
-  if (!problems.empty()) return true;
+  if (!problems.empty() || !gaps.empty()) return true;
   return other_machine.empty() &&
          std::any_of(entries.begin(), entries.end(), [](const GateEntry& e) { return e.regression; });
 }
@@ -194,17 +194,41 @@ std::optional<std::string> baseline_for_machine(const MachineInfo& current, cons
   return std::nullopt;
 }
 
+namespace {
+
+// Every ok baseline benchmark must have an ok current row: those that have not are gaps; ok
+// current rows the baseline lacks are new. Returns the pairs to judge, in the current file's order.
+std::vector<std::pair<const RunRow*, const RunRow*>> pair_rows(const ResultsFile& baseline, const ResultsFile& current,
+                                                               GateReport& report) {
+  std::map<std::string, const RunRow*> base, now;
+  for (const RunRow& r : baseline.runs)
+    if (r.status == RunStatus::Ok && r.scheme != kCalibrationScheme) base.emplace(r.name(), &r);
+  for (const RunRow& r : current.runs)
+    if (r.scheme != kCalibrationScheme) now.emplace(r.name(), &r);
+  for (const RunRow& r : baseline.runs) {
+    if (r.status != RunStatus::Ok || r.scheme == kCalibrationScheme || base.at(r.name()) != &r) continue;
+    const auto it = now.find(r.name());
+    if (it == now.end()) report.gaps.push_back({r.name(), "missing from the current file (dropped or renamed)"});
+    else if (it->second->status != RunStatus::Ok)
+      report.gaps.push_back({r.name(), std::string(to_string(it->second->status)) + ": " + it->second->message});
+  }
+  std::vector<std::pair<const RunRow*, const RunRow*>> pairs;
+  for (const RunRow& cur : current.runs) {
+    if (cur.status != RunStatus::Ok || cur.scheme == kCalibrationScheme || now.at(cur.name()) != &cur) continue;
+    const auto it = base.find(cur.name());
+    if (it == base.end()) report.new_rows.push_back(cur.name());
+    else pairs.emplace_back(it->second, &cur);
+  }
+  return pairs;
+}
+
+}  // namespace
+
 GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, const GateConfig& config) {
   GateReport report;
   report.other_machine = other_machine(baseline.machine, current.machine);
-  std::map<std::string, const RunRow*> base;
-  for (const RunRow& r : baseline.runs)
-    if (r.status == RunStatus::Ok) base[r.name()] = &r;
-  for (const RunRow& cur : current.runs) {
-    if (cur.status != RunStatus::Ok || cur.scheme == kCalibrationScheme) continue;
-    const auto it = base.find(cur.name());
-    if (it == base.end()) continue;
-    const RunRow& old = *it->second;
+  for (const auto& [old_row, cur_row] : pair_rows(baseline, current, report)) {
+    const RunRow &old = *old_row, &cur = *cur_row;
     GateEntry e;
     e.name = cur.name();
     const int reps = std::min(timing(cur).reps, timing(old).reps);

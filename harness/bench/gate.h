@@ -40,9 +40,19 @@ struct GateEntry {
   bool regression = false, improvement = false;
 };
 
+// A baseline benchmark the current file has no ok row for: it crashed or failed its checks,
+// became unsupported, or is not there at all (dropped, or renamed: its new name is then among
+// GateReport::new_rows). A gate that passed such a run would pass a benchmark that stopped running.
+struct GateGap {
+  std::string name;  // the baseline's run name
+  std::string why;   // "failed: crashed during execute: ...", "unsupported: ...", "missing from the current file"
+};
+
 struct GateReport {
   std::vector<GateEntry> entries;
   std::vector<std::string> problems;  // benchmarks that cannot be judged (too few repetitions, ...)
+  std::vector<GateGap> gaps;          // fail the gate on any machine
+  std::vector<std::string> new_rows;  // ok current rows without a baseline row: reported, not judged
   // Set when the baseline was recorded on another processor or core count: the ratios between
   // kernels move with the processor (measured: the AMD EPYC baseline read on an Intel Xeon gave
   // +44% to +90% on rows nothing had touched, identical instruction counts), so its verdicts are

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 
 #include "harness/bench/gate.h"
 #include "harness/bench/measure.h"
@@ -144,4 +145,48 @@ TEST(GateMachines, APerMachineBaselineIsFoundByItsProcessorAndCores) {
   MachineInfo unnamed;
   EXPECT_EQ(baseline_for_machine(unnamed, {epyc, own}), std::nullopt) << "a run naming no processor matches none";
   fs::remove_all(dir);
+}
+
+// Every baseline benchmark must have an ok row in the current file: one that crashed, became
+// unsupported, was dropped or renamed fails the gate, named, on any machine; a renamed one's new
+// name is reported as new.
+TEST(GateGaps, ABaselineBenchmarkWithoutAnOkCurrentRowFailsTheGateNamingIt) {
+  const ResultsFile baseline = run(around(5.0), around(2.0));
+  const std::string vulkan = "cpatch-2pass/vulkan/cube/9";
+  EXPECT_TRUE(run_gate(baseline, baseline, GateConfig{}).gaps.empty());
+  EXPECT_FALSE(run_gate(baseline, baseline, GateConfig{}).failed());
+  struct Case {
+    std::string name, why;
+    std::function<void(std::vector<RunRow>&)> change;
+  };
+  const std::vector<Case> cases = {
+      {"crashed", "failed: crashed during execute: killed by signal 11",
+       [](std::vector<RunRow>& rows) {
+         rows.back().status = RunStatus::Failed;
+         rows.back().message = "crashed during execute: killed by signal 11";
+       }},
+      {"unsupported", "unsupported: no Vulkan device",
+       [](std::vector<RunRow>& rows) {
+         rows.back().status = RunStatus::Unsupported;
+         rows.back().message = "no Vulkan device";
+       }},
+      {"dropped", "missing from the current file (dropped or renamed)", [](std::vector<RunRow>& rows) { rows.pop_back(); }},
+      {"renamed", "missing from the current file (dropped or renamed)",
+       [](std::vector<RunRow>& rows) { rows.back().spec = "cpatch-2pass:n=2"; }},
+  };
+  for (const Case& c : cases) {
+    ResultsFile current = run(around(5.0), around(2.0));
+    c.change(current.runs);
+    current.machine.cpu_model = "another processor";  // timing verdicts advisory; a missing benchmark is not
+    ResultsFile base = baseline;
+    base.machine.cpu_model = "the baseline's processor";
+    const GateReport r = run_gate(base, current, GateConfig{});
+    ASSERT_EQ(r.gaps.size(), 1u) << c.name;
+    EXPECT_EQ(r.gaps[0].name, vulkan) << c.name;
+    EXPECT_EQ(r.gaps[0].why, c.why) << c.name;
+    EXPECT_FALSE(r.other_machine.empty());
+    EXPECT_TRUE(r.failed()) << c.name << ": the gate passed a benchmark that stopped running";
+    if (c.name == "renamed") EXPECT_EQ(r.new_rows, std::vector<std::string>{"cpatch-2pass:n=2/vulkan/cube/9"});
+    else EXPECT_TRUE(r.new_rows.empty()) << c.name;
+  }
 }

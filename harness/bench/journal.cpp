@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "harness/bench/results_check.h"
 #include "harness/bench/results_json.h"
 #include "harness/core/errors.h"
 
@@ -50,13 +51,16 @@ std::string selection_difference(const RunSelection& journalled, const RunSelect
 namespace {
 
 std::string header_line(const JournalHeader& h) {
+  json inputs = json::array();
+  for (const JournalInput& in : h.inputs) inputs.push_back({{"path", in.path}, {"hash", in.hash}});
   return one_line({{"journal", kJournalVersion},
                    {"schema", kResultsSchema},
                    {"created", h.created},
                    {"cwd", h.cwd},
                    {"machine", h.machine},
                    {"selection", h.selection},
-                   {"runs", h.runs}}) +
+                   {"runs", h.runs},
+                   {"inputs", inputs}}) +
          "\n";
 }
 
@@ -77,6 +81,8 @@ JournalHeader parse_header(const std::string& line, const std::string& path) {
   try {
     j.at("created").get_to(h.created), j.at("cwd").get_to(h.cwd), j.at("machine").get_to(h.machine);
     j.at("selection").get_to(h.selection), j.at("runs").get_to(h.runs);
+    for (const json& in : j.value("inputs", json::array()))
+      h.inputs.push_back({in.at("path").get<std::string>(), in.at("hash").get<std::string>()});
   } catch (const json::exception& e) {
     throw InputError(where, std::string("corrupt journal header: ") + e.what());
   }
@@ -84,11 +90,15 @@ JournalHeader parse_header(const std::string& line, const std::string& path) {
 }
 
 RunRow parse_row(const std::string& line, const std::string& where) {
+  RunRow row;
   try {
-    return json::parse(line).get<RunRow>();
+    row = json::parse(line).get<RunRow>();
   } catch (const json::exception& e) {
     throw InputError(where, std::string("corrupt journal row: ") + e.what());
   }
+  // What results.json may not hold, the journal it is published from may not either.
+  if (const std::string why = impossible_row(row); !why.empty()) throw InputError(where, "impossible journal row " + row.name() + ": " + why);
+  return row;
 }
 
 std::string read_whole(const std::string& path) {

@@ -16,12 +16,21 @@ namespace sdb {
 inline constexpr int kJournalVersion = 1;
 inline constexpr const char* kJournalFile = "journal.jsonl";
 
+// A file the run read (a mesh given by path or found in the corpus) and the hash of its content
+// when the run was planned: a resume refuses a file that changed, whose rows would not compare.
+struct JournalInput {
+  std::string path;
+  std::string hash;  // content_hash.h's fnv1a_64 of the bytes, hex
+  bool operator==(const JournalInput&) const = default;
+};
+
 struct JournalHeader {
   MachineInfo machine;  // with the calibration probes the rows' bandwidth fractions use
   std::string created;  // ISO 8601, UTC
   std::string cwd;      // mesh paths in the selection are relative to it
   RunSelection selection;
   std::vector<std::string> runs;  // the plan's run names, in order
+  std::vector<JournalInput> inputs;  // absent in journals written before it: nothing to compare
 };
 
 struct JournalContents {

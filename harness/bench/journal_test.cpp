@@ -205,6 +205,9 @@ void earlier_set(const fs::path& dir) {
   std::ofstream(dir / "report.md") << "earlier report\n";
   fs::create_directories(dir / "plots");
   std::ofstream(dir / "plots" / "rate_cube.png") << "earlier plot";
+  // What a publish records of the files it put there; a file it does not list is the user's.
+  std::ofstream(dir / "plots" / ".subdivbench-files") << "rate_cube.png\n";
+  std::ofstream(dir / "plots" / "mine.png") << "the user's plot";
 }
 
 }  // namespace
@@ -222,6 +225,7 @@ TEST(Publish, ReplacesTheEarlierSetWhole) {
   EXPECT_EQ(slurp(dir / "report.md"), "new report\n");
   EXPECT_TRUE(fs::exists(dir / "plots" / "rate_torus.png"));
   EXPECT_FALSE(fs::exists(dir / "plots" / "rate_cube.png")) << "a plot of the earlier set left beside the new ones";
+  EXPECT_EQ(slurp(dir / "plots" / "mine.png"), "the user's plot") << "a file of the user's removed";
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_NE(e.path().filename().string()[0], '.') << "staging left behind: " << e.path();
 }

@@ -529,6 +529,7 @@ RunRow measure_one(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
     row.message = e.what();
     return row;
   }
+  for (const std::string& note : eval->notes()) row.message += (row.message.empty() ? "" : "; ") + note;
   enter_stage(o, "execute", row);
   const auto start = std::chrono::steady_clock::now();
   execute_on(*eval, spec.backend);

@@ -87,6 +87,16 @@ std::vector<QuickMesh> quick_meshes() {
   return {{"quadsphere", SubdivisionRule::CatmullClark}, {"icosphere", SubdivisionRule::Loop}, {real, SubdivisionRule::CatmullClark}};
 }
 
+std::vector<RunSpec> distinct_runs(const std::vector<RunSpec>& runs, std::vector<std::string>* notes) {
+  std::set<std::string> seen;
+  std::vector<RunSpec> once;
+  for (const RunSpec& r : runs) {
+    if (seen.insert(r.name()).second) once.push_back(r);
+    else if (notes) notes->push_back(r.name() + " is named more than once: measured once");
+  }
+  return once;
+}
+
 std::pair<int, int> parse_shard(const std::string& text) {
   static const std::regex form(R"((\d{1,6})/(\d{1,6}))");
   std::smatch m;
@@ -190,6 +200,7 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
           // the mesh is absent (the corpus is not beside the checkout): no headline figure
         }
       }
+  plan.runs = distinct_runs(plan.runs, &plan.notes);
   if (sel.shard_count > 1) {
     const size_t all = plan.runs.size();
     plan.runs = shard_runs(plan.runs, sel.shard_index, sel.shard_count);

@@ -50,6 +50,11 @@ std::vector<Backend> available_backends();
 // scheme and one mesh and the scheme refuses the mesh.
 Plan make_plan(const Selection& selection, MeasureContext& context);
 
+// `runs` with every run once, in the order of first mention: a selection that names a run twice
+// (`--level 1 --level 1`, `bench --run X --run X`) measures it once, and its results and journal
+// hold one row per run. Each repeat removed is noted in `notes` when given.
+std::vector<RunSpec> distinct_runs(const std::vector<RunSpec>& runs, std::vector<std::string>* notes = nullptr);
+
 // `run --shard`'s "I/N" as {I, N}; InputError unless 0 <= I < N.
 std::pair<int, int> parse_shard(const std::string& text);
 

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/bench/results_json.h"
+#include "harness/bench/results_check.h"
 
 #include <fstream>
 #include <limits>
@@ -347,6 +348,7 @@ ResultsFile read_results(const std::string& path) {
   } catch (const json::exception& e) {
     throw InputError(path, std::string("malformed results: ") + e.what());
   }
+  check_results(r, path, j.contains("machine") && j["machine"].is_object());
   return r;
 }
 

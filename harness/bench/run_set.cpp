@@ -1,13 +1,17 @@
 #include "harness/bench/run_set.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <ctime>
 #include <deque>
 #include <filesystem>
+#include <set>
 
 #include "harness/bench/machine.h"
+#include "harness/bench/output_folder.h"
 #include "harness/bench/process.h"
 #include "harness/bench/row_worker.h"
+#include "harness/core/content_hash.h"
 #include "harness/core/errors.h"
 
 namespace fs = std::filesystem;
@@ -63,22 +67,54 @@ void require_something_ran(const ResultsFile& results) {
                               "); results.json and the report left as they were");
 }
 
-// Moves `from` over `to`: a file by rename (atomic), a folder (the plots) by renaming the old one
-// aside first, since a rename cannot replace a folder that holds files.
-void replace(const fs::path& from, const fs::path& to) {
+// The files the plan's meshes were read from (given by path, or found in the corpus), each with
+// the hash of its content now; generated meshes have none.
+std::vector<JournalInput> input_files(const Plan& plan, MeasureContext& context) {
+  std::set<std::string> meshes;
+  for (const RunSpec& r : plan.runs) meshes.insert(r.mesh);
+  std::vector<JournalInput> inputs;
+  for (const std::string& name : meshes) {
+    const std::string& source = context.mesh(name).source;
+    std::error_code ec;
+    if (source.rfind("builtin:", 0) == 0 || !fs::is_regular_file(source, ec)) continue;
+    const auto hash = file_content_hash(source);
+    if (!hash) throw InputError(source, "cannot read it to record its content in the journal");
+    inputs.push_back({source, hex64(*hash)});
+  }
+  return inputs;
+}
+
+// A journalled input whose content is not what it was: its journalled rows measured another file.
+void refuse_changed_inputs(const std::vector<JournalInput>& journalled, const std::vector<JournalInput>& now,
+                           const std::string& journal) {
+  for (const JournalInput& was : journalled) {
+    const auto it = std::find_if(now.begin(), now.end(), [&](const JournalInput& n) { return n.path == was.path; });
+    const std::string hash = it == now.end() ? "unreadable" : it->hash;
+    if (hash != was.hash)
+      throw InputError(was.path, "changed since " + journal + " recorded it (content hash " + was.hash + ", now " + hash +
+                                     "): its journalled rows measured the old file; start a new run");
+  }
+}
+
+// A journal that holds fewer rows than its run planned is a run someone may want to resume; a new
+// run replaces it only when told to (--force), and says so.
+void keep_unfinished_journal(const std::string& path, bool force) {
   std::error_code ec;
-  if (fs::is_directory(from)) {
-    const fs::path old = to.parent_path() / (".old-" + to.filename().string());
-    fs::remove_all(old, ec);
-    if (fs::exists(to)) fs::rename(to, old, ec);
-    if (!ec) fs::rename(from, to, ec);
-    if (ec) throw InputError(to.string(), "cannot replace: " + ec.message());
-    fs::remove_all(old, ec);
+  if (!fs::exists(path, ec)) return;
+  JournalContents old;
+  try {
+    old = read_journal(path);
+  } catch (const InputError& e) {
+    std::printf("note: replacing a journal this build cannot resume (%s)\n", e.what());
     return;
   }
-  fs::rename(from, to, ec);
-  if (ec && to.filename() == "results.json") throw InputError(to.string(), "cannot write results (is it a folder?)");
-  if (ec) throw InputError(to.string(), "cannot replace: " + ec.message());
+  if (old.rows.size() >= old.header.runs.size()) return;
+  const std::string what = "holds an unfinished run (" + std::to_string(old.rows.size()) + " of " +
+                           std::to_string(old.header.runs.size()) + " rows, started " + old.header.created + ")";
+  if (!force)
+    throw InputError(path, what + ": continue it with `run --resume " + fs::path(path).parent_path().string() +
+                               "`, or replace it with --force");
+  std::printf("note: %s %s; replaced (--force)\n", path.c_str(), what.c_str());
 }
 
 }  // namespace
@@ -91,21 +127,28 @@ RunSet::~RunSet() = default;
 const MachineInfo& RunSet::machine() const { return context_->machine(); }
 std::string RunSet::journal_path() const { return (fs::path(out_) / kJournalFile).string(); }
 
-RunSet RunSet::start(const std::string& out, const RunSelection& selection, bool isolate) {
+RunSet RunSet::start(const std::string& out, const RunSelection& selection, bool isolate, bool force) {
   prepare_output_folder(out);  // before the measuring, not after it
+  FolderLock lock = FolderLock::take(out);
   RunSet set(out, describe_machine(), isolate);
+  set.lock_ = std::make_unique<FolderLock>(std::move(lock));
   set.selection_ = selection;
   // A bad selection (no such scheme, mesh or run) is said at once, not after seconds of probes.
   set.plan_ = make_plan(selection.selection, *set.context_);
-  set.context_->probe_bandwidth();
   if (set.plan_.runs.empty()) return set;
-  const JournalHeader header{set.machine(), utc_now(), fs::current_path().string(), selection, run_names(set.plan_)};
+  keep_unfinished_journal(set.journal_path(), force);
+  const std::vector<JournalInput> inputs = input_files(set.plan_, *set.context_);
+  set.context_->probe_bandwidth();
+  const JournalHeader header{set.machine(), utc_now(), fs::current_path().string(), selection, run_names(set.plan_), inputs};
   set.journal_.emplace(JournalWriter::create(set.journal_path(), header));
   return set;
 }
 
 RunSet RunSet::resume(const std::string& out, const std::optional<RunSelection>& selection, bool isolate) {
   const std::string path = (fs::path(out) / kJournalFile).string();
+  std::error_code ec;
+  std::optional<FolderLock> lock;
+  if (fs::is_directory(out, ec)) lock.emplace(FolderLock::take(out));
   JournalContents journal = read_journal(path);
   const JournalHeader& h = journal.header;
   if (selection && !(*selection == h.selection))
@@ -122,9 +165,11 @@ RunSet RunSet::resume(const std::string& out, const std::optional<RunSelection>&
     throw InputError(path, "journalled in " + h.cwd + " (mesh paths are relative to it): resume from there");
   // The journal's machine block, probes included: every row reads its bandwidth against the same.
   RunSet set(out, h.machine, isolate);
+  if (lock) set.lock_ = std::make_unique<FolderLock>(std::move(*lock));
   set.selection_ = h.selection;
   set.plan_ = make_plan(h.selection.selection, *set.context_);
   if (const std::string d = plan_difference(h.runs, run_names(set.plan_)); !d.empty()) throw InputError(path, d);
+  refuse_changed_inputs(h.inputs, input_files(set.plan_, *set.context_), path);
   std::map<std::string, int> planned;
   for (const std::string& name : h.runs) ++planned[name];
   for (size_t i = 0; i < journal.rows.size(); ++i) {
@@ -190,10 +235,12 @@ void publish_results(const ResultsFile& results, const std::string& dir, const R
     throw InputError(dir, std::string("nothing replaced: ") + e.what() + " (the rows are in " + kJournalFile +
                               "; `run --resume " + dir + "` publishes them again)");
   }
-  // Every file is written: now they replace the earlier set, results.json first.
+  // Every file is written: now they replace the earlier set, results.json first; the folders
+  // (plots, pictures) file by file, so that files of the user's beside ours stay.
   try {
-    replace(staging / "results.json", fs::path(dir) / "results.json");
-    for (const auto& entry : fs::directory_iterator(staging)) replace(entry.path(), fs::path(dir) / entry.path().filename());
+    fs::rename(staging / "results.json", fs::path(dir) / "results.json", ec);
+    if (ec) throw InputError((fs::path(dir) / "results.json").string(), "cannot write results (is it a folder?)");
+    merge_into_folder(staging, dir, false);
   } catch (const InputError&) {
     fs::remove_all(staging, ec);
     throw;

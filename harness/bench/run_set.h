@@ -10,19 +10,22 @@
 #include <string>
 
 #include "harness/bench/journal.h"
+#include "harness/bench/output_folder.h"
 #include "harness/bench/plan.h"
 
 namespace sdb {
 
 class RunSet {
  public:
-  // A new run into `out`: the folder checked before anything is measured, the machine described
-  // with its probes, the plan made, and (unless the plan is empty) a new journal started.
-  static RunSet start(const std::string& out, const RunSelection& selection, bool isolate);
+  // A new run into `out`: the folder checked and locked before anything is measured (InputError
+  // naming the other run's process while one writes it), the machine described with its probes,
+  // the plan made, and (unless the plan is empty) a new journal started, recording the content
+  // hash of every input file. An unfinished run's journal there is refused unless `force`.
+  static RunSet start(const std::string& out, const RunSelection& selection, bool isolate, bool force = false);
   // The interrupted run journalled in `out`. `selection`, when given, must be the journalled one
   // (nullopt: the journal's). InputError, one line naming the journal, when the selection, the
   // commit, the machine, the working folder or the plan differ, or the journal is corrupt beyond
-  // a torn last line (dropped).
+  // a torn last line (dropped); and naming the file when an input's content changed since.
   static RunSet resume(const std::string& out, const std::optional<RunSelection>& selection, bool isolate);
 
   const Plan& plan() const { return plan_; }
@@ -55,6 +58,7 @@ class RunSet {
   std::string journal_path() const;
 
   std::string out_;
+  std::unique_ptr<FolderLock> lock_;  // held from start or resume until the set is gone
   bool isolate_ = true;
   std::unique_ptr<MeasureContext> context_;
   RunSelection selection_;

@@ -51,6 +51,7 @@ int bench(const GateOptions& opts) {
   if (!opts.workload_config.empty()) plan.runs = read_gate_config(opts.workload_config).workload;
   else if (opts.runs.empty()) plan = make_plan(sel, ctx);
   for (const auto& name : opts.runs) plan.runs.push_back(parse_run_name(name));
+  plan.runs = distinct_runs(plan.runs, &plan.notes);
   ctx.probe_bandwidth();  // after the selection is known to be good: a bad one is said at once
   for (const auto& n : plan.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
   std::vector<std::string> args = {"subdivbench bench"};
@@ -171,8 +172,17 @@ int gate(const GateOptions& opts) {
   for (const GateEntry& e : report.entries)
     std::printf("%-44s %-22s %+8.1f%% %9.4f %8.0f%%  %s\n", e.name.c_str(), e.normaliser.c_str(), 100 * e.change,
                 e.p_value, 100 * e.threshold, e.regression ? "REGRESSION" : e.improvement ? "improvement" : "same");
+  for (const std::string& name : report.new_rows) std::printf("%-44s new: no baseline row, not judged\n", name.c_str());
+  for (const GateGap& g : report.gaps) std::printf("%-44s NO OK ROW: %s\n", g.name.c_str(), g.why.c_str());
   for (const auto& p : report.problems) std::printf("cannot judge %s\n", p.c_str());
-  if (report.entries.empty() && report.problems.empty()) throw InputError(opts.current, "no benchmark in common with the baseline");
+  if (report.entries.empty() && report.problems.empty() && report.gaps.empty())
+    throw InputError(opts.current, "no benchmark in common with the baseline");
+  // Before the problems' exit 2: a benchmark that stopped running is a failed check, said as one.
+  if (!report.gaps.empty()) {
+    std::printf("gate: FAILED: %zu of the baseline's benchmarks have no ok row in %s (first: %s, %s)\n", report.gaps.size(),
+                opts.current.c_str(), report.gaps.front().name.c_str(), report.gaps.front().why.c_str());
+    return 1;
+  }
   if (!report.problems.empty())
     throw InputError(opts.current, std::to_string(report.problems.size()) + " benchmarks cannot be judged (first: " +
                                        report.problems.front() + ")");

@@ -43,7 +43,7 @@ struct RunOptions {
   long rays = 50000;
   uint64_t seed = 1;
   bool json = false, all_meshes = false, all_corpus = false, no_validate = false, no_report = false;
-  bool in_process = false;
+  bool in_process = false, force = false;
   bool quick = false, no_paired = false, no_pictures = false;
   std::string shard;  // "I/N"
   int rounds = 5;     // paired rounds of the summary cells
@@ -194,7 +194,7 @@ RunSet::ReportWriter report_writer(const RunOptions& opts, const Selection& sele
 int run(const RunOptions& opts, bool selection_given) {
   const bool isolate = !opts.in_process;
   RunSet set = opts.resume.empty()
-                   ? RunSet::start(opts.out, run_selection(opts), isolate)
+                   ? RunSet::start(opts.out, run_selection(opts), isolate, opts.force)
                    : RunSet::resume(opts.resume, selection_given ? std::optional(run_selection(opts)) : std::nullopt, isolate);
   const std::string out = opts.resume.empty() ? opts.out : opts.resume;
   for (const auto& n : set.plan().notes) std::printf("note: %s\n", n.c_str());
@@ -280,6 +280,9 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   r->add_option("--resume", opts->resume,
                 "continue the interrupted run journalled in DIR (DIR/journal.jsonl): measure only the rows it lacks")
       ->excludes(out);
+  r->add_flag("--force", opts->force, "replace an unfinished run's journal in the output folder (default: refuse, "
+                                       "naming it; `--resume DIR` continues it)")
+      ->excludes(r->get_option("--resume"));
   r->add_flag("--no-report", opts->no_report, "write results.json only");
   r->add_flag("--no-pictures", opts->no_pictures,
               "no pictures in the report (default: the paper schemes' surfaces, rendered with Vulkan where a device exists)");

@@ -153,6 +153,9 @@ class Evaluation {
   // Bytes the evaluation writes per execute() (its output buffers), for the bandwidth bound.
   virtual size_t bytes_out() const = 0;
   virtual std::optional<GpuTimes> gpu_times() const { return std::nullopt; }
+  // What the row should say besides its figures, one sentence each: how prepare() came by its
+  // input when that is news (a cached geometry image refused and refitted). A scheme never prints.
+  virtual std::vector<std::string> notes() const { return {}; }
 };
 
 class Scheme {

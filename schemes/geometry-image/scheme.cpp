@@ -1,7 +1,9 @@
 // The geometry-image schemes: "geometry-image" (fused passes, the default) and
 // "geometry-image-permask" (one pass per mask, as the paper's Radeon implementation). prepare()
 // finds or creates the image and hands its closed mesh g0 to the backend (backends.h).
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
@@ -20,6 +22,22 @@ using namespace gim;
 constexpr int kMaxLevel = 6;
 // Output vertices beyond this would need more than a few GiB for buffers, positions and indices.
 constexpr long long kMaxOutputVertices = 1ll << 26;
+
+// An evaluation with what its row should say of how its image was made (Evaluation::notes).
+class NotedEvaluation final : public Evaluation {
+ public:
+  NotedEvaluation(std::unique_ptr<Evaluation> inner, std::vector<std::string> notes)
+      : inner_(std::move(inner)), notes_(std::move(notes)) {}
+  void execute() override { inner_->execute(); }
+  const Tessellation& result() override { return inner_->result(); }
+  size_t bytes_out() const override { return inner_->bytes_out(); }
+  std::optional<GpuTimes> gpu_times() const override { return inner_->gpu_times(); }
+  std::vector<std::string> notes() const override { return notes_; }
+
+ private:
+  std::unique_ptr<Evaluation> inner_;
+  std::vector<std::string> notes_;
+};
 
 class GeometryImageScheme final : public Scheme {
  public:
@@ -69,7 +87,8 @@ class GeometryImageScheme final : public Scheme {
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& request) const override {
     if (auto why = unsupported(request)) throw InputError(mesh.name, *why);
-    GeometryImage image = select_image(mesh, request.parameters.integer("fit"));
+    std::vector<std::string> notes;
+    GeometryImage image = select_image(mesh, request.parameters.integer("fit"), notes);
     const long long n = level_size(image.size, request.level);
     if (n * n > kMaxOutputVertices)
       throw Unsupported(mesh.name + ": a " + std::to_string(image.size) + " x " + std::to_string(image.size) +
@@ -80,17 +99,22 @@ class GeometryImageScheme final : public Scheme {
     input.base_size = image.size;
     input.request = request;
     input.plan = plan_;
-    if (request.backend == Backend::Vulkan) return make_vulkan_evaluation(input, mesh.name);
-    return make_cpu_evaluation(input);
+    auto evaluation = request.backend == Backend::Vulkan ? make_vulkan_evaluation(input, mesh.name) : make_cpu_evaluation(input);
+    if (notes.empty()) return evaluation;
+    return std::make_unique<NotedEvaluation>(std::move(evaluation), std::move(notes));
   }
 
  private:
-  // The mesh is an image's g0 (taken as is), or a surface to fit an image of `fit` samples a side to.
-  static GeometryImage select_image(const ControlMesh& mesh, int fit) {
+  // The mesh is an image's g0 (taken as is), or a surface to fit an image of `fit` samples a side
+  // to; a cached fit refused on reading (cache.h) is refitted, and `notes` says so.
+  static GeometryImage select_image(const ControlMesh& mesh, int fit, std::vector<std::string>& notes) {
     if (auto image = image_from_closed_mesh(mesh)) return std::move(*image);
     CreationOptions creation;
     creation.size = fit;
-    return create_geometry_image(mesh, creation).image;
+    CreatedImage created = create_geometry_image(mesh, creation);
+    if (!created.report.cache_refused.empty())
+      notes.push_back("cached geometry image refused (" + created.report.cache_refused + "): refitted");
+    return std::move(created.image);
   }
 
   PassPlan plan_;

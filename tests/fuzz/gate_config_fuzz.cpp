@@ -2,7 +2,7 @@
 // must hold values the gate can judge with (a significance level in (0, 1), at least one
 // repetition, finite non-negative thresholds, run names in the workload) and must drive the gate
 // over a fixed pair of results (rows with 0, 3 and 12 samples, with and without a peer) without a
-// crash or a hang.
+// crash or a hang; and none may let it pass a run in which a baseline benchmark has no row.
 #include <cmath>
 
 #include "harness/bench/gate.h"
@@ -44,8 +44,20 @@ void require_judgeable(const sdb::GateConfig& c) {
 
 }  // namespace
 
+namespace {
+
+// The baseline without its cpatch-2pass row: whatever a configuration says, a benchmark that
+// stopped running fails the gate, named.
+sdb::ResultsFile without_method() {
+  sdb::ResultsFile f = results(1.0);
+  f.runs.erase(f.runs.begin() + 1);
+  return f;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const sdb::ResultsFile baseline = results(1.0), current = results(1.5);
+  static const sdb::ResultsFile baseline = results(1.0), current = results(1.5), dropped = without_method();
   const std::string path = sdb::fuzz::write_input_file(sdb::fuzz::as_text(data, size), ".json");
   sdb::fuzz::holds_contract(path, [&] {
     const sdb::GateConfig c = sdb::read_gate_config(path);
@@ -53,6 +65,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const sdb::GateReport report = sdb::run_gate(baseline, current, c);
     for (const sdb::GateEntry& e : report.entries)
       sdb::fuzz::require(!(e.p_value < 0) && !(e.p_value > 1), "the gate gave a p-value outside [0, 1]");
+    const sdb::GateReport gap = sdb::run_gate(baseline, dropped, c);
+    sdb::fuzz::require(gap.failed() && gap.gaps.size() == 1 && gap.gaps[0].name == "cpatch-2pass/cpu/cube/3",
+                       "a configuration let the gate pass a baseline benchmark that has no current row");
   });
   return 0;
 }

@@ -201,7 +201,90 @@ def files():
     f["level_float.json"] = results([{"scheme": "osd-bfr", "backend": "cpu", "mesh": "cube", "level": 1e300}])
     f["number_overflow.json"] = '{"schema": 1, "runs": [], "created": 22E517456166666665}'
     f["callgrind_bad.json"] = "{\"x\": 1}"
+    f.update(gate_files())
+    f.update(impossible_results())
+    f["paper_binary.md"] = b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR binary, not a table\n"
+    f["paper_latin1.md"] = "| a | b |\n|---|---|\n| caf\xe9 | 1 |\n".encode("latin-1")
+    f["sweep2500.json"] = corpus_sweep(2500)
     return f
+
+
+def timed(scheme, mesh, level, ms, peer="", status="ok", message="", triangles=20000, samples=9):
+    """An ok results row of a bench --rounds file: `samples` rounds around `ms`."""
+    times = [ms * (1 + 0.01 * ((i * 7) % 5 - 2)) for i in range(samples)]
+    row = {"scheme": scheme.split(":")[0], "spec": scheme, "backend": "cpu", "mesh": mesh, "level": level,
+           "tessellation": level - 1, "triangles": triangles, "vertices": triangles // 2, "status": status,
+           "message": message, "time_ms": {"median": sorted(times)[samples // 2], "min": min(times), "max": max(times),
+                                            "reps": samples, "samples": times},
+           "triangle_rate_mtris": triangles / sorted(times)[samples // 2] / 1e3}
+    if peer:
+        row.update(peer=peer, peer_backend="cpu")
+    return row
+
+
+def gate_files():
+    """The gate against a baseline whose benchmark crashed, became unsupported, went missing or was
+    renamed in the current file, or whose times are negative (tests/hostile/cases.txt)."""
+    probe = timed("calibration", "probe", 1, 1.0)
+    probe.update(triangles=0, triangle_rate_mtris=0, tessellation=0)
+    anchor = timed("osd-bfr", "cube", 9, 2.0)
+    method = timed("cpatch-2pass", "cube", 9, 1.0, peer="osd-bfr")
+    other = timed("embree-subdiv", "cube", 9, 3.0, peer="osd-bfr")
+    crashed = dict(method, status="failed", message="crashed during execute: killed by signal 11 (SIGSEGV, Segmentation fault)")
+    negative = dict(method, time_ms=dict(method["time_ms"], samples=[-x for x in method["time_ms"]["samples"]]))
+    return {
+        "gate_base.json": results([probe, anchor, method, other], rounds=9),
+        "gate_crashed.json": results([probe, anchor, crashed, other], rounds=9),
+        "gate_unsupported.json": results([probe, anchor, dict(method, status="unsupported", message="no Vulkan device"), other],
+                                         rounds=9),
+        "gate_dropped.json": results([probe, anchor, other], rounds=9),
+        "gate_renamed.json": results([probe, anchor, dict(method, spec="cpatch-2pass:n=2"), other], rounds=9),
+        "gate_negative.json": results([probe, anchor, negative, other], rounds=9),
+    }
+
+
+def impossible_results():
+    """Figures no run can give, which the results reader refuses naming the row."""
+    row = timed("cpatch-2pass", "cube", 9, 1.0, peer="osd-bfr")
+    peer = timed("osd-bfr", "cube", 9, 2.0)
+    cell = {"mesh": "cube", "scheme": "cpatch-2pass", "backend": "cpu", "level": 9, "triangles": 20000,
+            "peer": {"scheme": "osd-bfr", "backend": "cpu", "level": 9, "triangles": 20000}, "rounds": 3,
+            "rate_ratio": {"median": 2.0, "min": 1.9, "max": 2.1, "per_round": [1.9, 2.0, 2.1]},
+            "time_ms": {"median": 1.0}, "peer_time_ms": {"median": 2.0}}
+
+    def with_cell(**ratio):
+        return json.dumps({"schema": 1, "machine": {"cpu_model": "x", "cores": 2}, "runs": [peer, row],
+                           "paired": [dict(cell, rate_ratio=dict(cell["rate_ratio"], **ratio))]})
+    return {
+        "impossible_median.json": with_cell(median=5.0),
+        "impossible_ratio.json": with_cell(median=-2.0, min=-2.1, max=-1.9, per_round=[-1.9, -2.0, -2.1]),
+        "impossible_rate.json": results([peer, dict(row, triangles=0, triangle_rate_mtris=122.0)]),
+        "impossible_open_edges.json": results([peer, dict(row, watertight={"open_edges": -7, "rays": 10, "ray_cracks": 0})]),
+        "impossible_no_machine.json": json.dumps({"schema": 1, "runs": [peer, row]}),
+        "impossible_time.json": results([peer, dict(row, time_ms=dict(row["time_ms"], median=-1.0, min=-1.0))]),
+    }
+
+
+def corpus_sweep(meshes):
+    """A sweep's merged results over `meshes` meshes: two methods and their peer at two levels on
+    cpu and cpu-mt, validated, every mesh its own name (the report must stay usable on it)."""
+    rows = []
+    for m in range(meshes):
+        mesh = f"corpus/mesh-{m:04d}"
+        for backend in ("cpu", "cpu-mt"):
+            for scheme, peer, scale in (("osd-bfr", "", 2.0), ("cpatch-2pass", "osd-bfr", 1.0), ("osd-uniform", "osd-bfr", 3.0)):
+                for level in (5, 9):
+                    r = timed(scheme, mesh, level, scale * level * (1 + m % 7 / 10), peer=peer, samples=3,
+                              triangles=2 * (level - 1) ** 2 * (100 + m % 50))
+                    r.update(backend=backend, mesh_faces=100 + m % 50, mesh_vertices=102 + m % 50,
+                             watertight={"open_edges": 0, "rays": 1000, "ray_cracks": 0, "seed": 1},
+                             deviation={"pos_max_pct": 0.1, "pos_mean_pct": 0.01, "pos_rms_pct": 0.02, "pos_p95_pct": 0.05,
+                                        "pos_max_rel_diag": 1e-5, "normal_max_deg": 0.5, "normal_mean_deg": 0.05,
+                                        "hausdorff_rel": 1e-4})
+                    if peer:
+                        r["peer_backend"] = backend
+                    rows.append(r)
+    return results(rows)
 
 
 def journals():
@@ -234,9 +317,29 @@ def write_all(folder):
         os.makedirs(os.path.join(folder, name), exist_ok=True)
         with open(os.path.join(folder, name, "journal.jsonl"), "w") as out:
             out.write(text)
+    pictures_with(folder, "evil", "evil.png", lambda path: os.symlink("/etc/passwd", path))
+    pictures_with(folder, "notpng", "notpng.png", lambda path: open(path, "w").write("root:x:0:0:root:/root:/bin/bash\n"))
     fifo = os.path.join(folder, "fifo.obj")
     if not os.path.exists(fifo):
         os.mkfifo(fifo)
     fifo_off = os.path.join(folder, "fifo.off")
     if not os.path.exists(fifo_off):
         os.mkfifo(fifo_off)
+
+
+def pictures_with(folder, name, picture, make):
+    """FOLDER/NAME/results.json with a pictures/pictures.json beside it naming `picture`, made by
+    `make` (a link to /etc/passwd, a text file named .png): the report must not inline it."""
+    base = os.path.join(folder, name)
+    os.makedirs(os.path.join(base, "pictures"), exist_ok=True)
+    with open(os.path.join(base, "results.json"), "w") as out:
+        out.write(results([timed("osd-bfr", "cube", 9, 2.0)]))
+    manifest = {"schema": 1, "available": True, "device": "test", "pictures": [
+        {"scheme": "osd-bfr", "mesh": "cube", "backend": "cpu", "level": 9, "triangles": 20000, "kind": "shaded",
+         "file": picture}]}
+    with open(os.path.join(base, "pictures", "pictures.json"), "w") as out:
+        json.dump(manifest, out)
+    path = os.path.join(base, "pictures", picture)
+    if os.path.lexists(path):
+        os.remove(path)
+    make(path)

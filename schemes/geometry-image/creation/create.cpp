@@ -107,8 +107,9 @@ CreatedImage GeometryImageCreator::create(int size) {
   const CutSymmetry check(size);  // validates the size
   const ImageCache cache(options_.cache_dir.empty() ? ImageCache::default_directory() : options_.cache_dir);
   const uint64_t key = cache_key();
+  std::string refused;
   if (options_.use_cache)
-    if (auto cached = cache.load(key, size)) {
+    if (auto cached = cache.load(key, size, &refused)) {
       CreatedImage out{std::move(cached->image), {}};
       CreationReport& r = out.report;
       r.from_cache = true;
@@ -124,6 +125,7 @@ CreatedImage GeometryImageCreator::create(int size) {
 
   CreatedImage out;
   CreationReport& r = out.report;
+  r.cache_refused = refused;
   const SphericalParametrization& param = parametrization();
   r.parametrize_ms = parametrize_reported_ ? 0.0 : parametrize_ms_;
   parametrize_reported_ = true;

@@ -35,6 +35,7 @@ struct CreationOptions {
 struct CreationReport {
   bool from_cache = false;
   std::string cache_path;  // the file read or written ("" when not cached)
+  std::string cache_refused;  // a cache file refused and refitted, and why ("" when none was)
   // Wall-clock milliseconds of each step of the creation that made the image (also when it came
   // from the cache: the figures stored with it). Parametrization is shared by every size made by
   // one GeometryImageCreator and counted for the first only.
