@@ -4,6 +4,7 @@
 #include <opensubdiv/bfr/surface.h>
 #include <opensubdiv/far/ptexIndices.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -65,6 +66,17 @@ int corner_vertex(const ControlMesh& m, const std::vector<int>& off, Subdivision
   if (u != 0 && u != 1) return -1;
   if (v != 0 && v != 1) return -1;
   return at(v == 0 ? (u == 0 ? 0 : 1) : (u == 1 ? 2 : 3));
+}
+
+// Whether du x dv (of length `cross_len`) has a direction. Where the tangents are nearly parallel,
+// or one vanishes beside the other (the fold of a flat, closed mesh or of a two-sided pillow, where
+// the derivative across the fold is zero), the cross product is rounding and approximation
+// residue, and its direction, up to 180 degrees off, judges nothing: below 1e-6 of the longer
+// tangent's square neither normal is compared. Relative, so the same at every scale.
+bool tangents_span_a_plane(double cross_len, const double du[3], const double dv[3]) {
+  const double lu2 = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
+  const double lv2 = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
+  return cross_len > 1e-6 * std::max(lu2, lv2);
 }
 
 }  // namespace
@@ -148,6 +160,7 @@ LimitSample LimitEvaluator::evaluate(SurfaceCoord c) const {
   s.Evaluate(uv, d.patch_points[f].data(), 3, p, du, dv);
   double n[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
   double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!tangents_span_a_plane(len, du, dv)) len = 0;  // no normal to judge by: a fold, a face of no area
   const int corner = corner_vertex(d.mesh, d.offsets, d.rule, f, d.ptex_sub[c.face], c.u, c.v);
   if (corner >= 0 && d.inexact_corner[corner]) len = 0;  // no normal to judge by (see above)
   for (int k = 0; k < 3; ++k) {

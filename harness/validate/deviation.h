@@ -21,6 +21,10 @@ struct DeviationReport {
   // Vertices where the reference has no normal (du x dv = 0: OpenSubdiv at a valence-2 vertex,
   // say); left out of the normal statistics.
   long normal_undefined = 0;
+  // Vertices left out of every statistic, each for a reason the input gives: on a face with no
+  // limit surface (a hole, or a boundary face under `interpolateboundary 0`), or on a face of no
+  // size (one that repeats a single vertex) where a deviation relative to it means nothing.
+  long no_limit = 0, no_size = 0;
   std::vector<float> vertex_pct, vertex_deg;  // per output vertex, for heat maps
 };
 
