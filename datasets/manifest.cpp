@@ -152,9 +152,16 @@ std::vector<MeshEntry> list_meshes() {
   for (const auto& b : named_meshes()) out.push_back({b.name, "builtin", b.description});
   if (auto dir = corpus_dir()) {
     std::vector<MeshEntry> corpus;
-    for (const auto& e : fs::recursive_directory_iterator(*dir)) {
-      if (!e.is_regular_file() || !is_mesh_file(e.path())) continue;
-      fs::path rel = fs::relative(e.path(), *dir);
+    // error_code throughout: an entry whose status cannot be had (a symbolic-link loop, a file
+    // removed meanwhile, a folder it may not read) is not a mesh, and not an internal error.
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(*dir, fs::directory_options::skip_permission_denied, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      const fs::directory_entry& e = *it;
+      std::error_code status;
+      if (!e.is_regular_file(status) || !is_mesh_file(e.path())) continue;
+      fs::path rel = fs::relative(e.path(), *dir, status);
+      if (status) continue;
       corpus.push_back({rel.replace_extension().string(), "corpus", e.path().string()});
     }
     std::sort(corpus.begin(), corpus.end(), [](const auto& a, const auto& b) { return a.name < b.name; });

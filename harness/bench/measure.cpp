@@ -127,7 +127,11 @@ std::optional<Backend> peer_backend_for(const SchemeInfo& info, Backend backend)
 
 const ControlMesh& MeasureContext::mesh(const std::string& name) {
   auto it = meshes_.find(name);
-  if (it == meshes_.end()) it = meshes_.emplace(name, load_mesh(name)).first;
+  if (it == meshes_.end()) {
+    const ControlMesh loaded = load_mesh(name);
+    it = meshes_.emplace(name, placed_mesh(loaded)).first;
+    placements_[name] = placement_of(loaded);
+  }
   return it->second;
 }
 
@@ -135,6 +139,11 @@ std::shared_ptr<const ControlMesh> MeasureContext::input(const std::string& name
   auto& slot = inputs_[name];
   if (!slot) slot = std::make_shared<const ControlMesh>(mesh(name));
   return slot;
+}
+
+Placement MeasureContext::placement(const std::string& name) {
+  mesh(name);
+  return placements_.at(name);
 }
 
 std::shared_ptr<const ControlMesh> MeasureContext::accepted(const std::string& name, const Scheme& scheme) {
@@ -243,6 +252,16 @@ double normal_figure(const DeviationReport& d, double figure) {
   return d.vertices > d.normal_undefined ? figure : std::numeric_limits<double>::quiet_NaN();
 }
 
+// The vertices the deviation left out, said in the row: an exclusion is the input's claim, counted.
+void note_left_out(RunRow& row, const DeviationReport& d) {
+  auto note = [&](long n, const char* where) {
+    if (n > 0) row.message += (row.message.empty() ? "" : "; ") + std::to_string(n) + " output vertices " + where;
+  };
+  note(d.no_limit, "on faces with no limit surface (holes, or boundary faces under interpolateboundary 0): not in the deviation");
+  note(d.no_size, "on faces of no size (one vertex repeated): not in the deviation");
+  if (d.vertices == 0) row.message += (row.message.empty() ? "" : "; ") + std::string("no vertex to measure the deviation at");
+}
+
 }  // namespace
 
 bool accepted_keeps_limit(const ControlMesh& accepted) {
@@ -266,6 +285,15 @@ LimitDistance input_limit_distance(const Tessellation& t, const JudgedSurfaces& 
 
 void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, const MeasureOptions& o,
                    MeasureContext& ctx) {
+  if (const long bad = positions_out_of_range(t.positions)) {
+    // Embree aborts the process on coordinates past its range, and a NaN has no deviation.
+    row.status = RunStatus::Failed;
+    char range[32];
+    std::snprintf(range, sizeof range, "%g", kEmbreeRange);
+    row.message = std::to_string(bad) + " output positions are NaN, infinite or beyond " + range +
+                  " (the input is placed at unit size): nothing validated";
+    return;
+  }
   const SubdivisionRule rule = s.rule;
   const MeshFacts facts = compute_facts(*s.accepted);
   row.watertight.open_edges = count_open_edges(t);
@@ -290,7 +318,7 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
     if (t.triangles.empty()) return;
     const LimitDistance d = input_limit_distance(t, s, ctx);
     const DeviationReport& r = d.report;
-    if (!o.deviation_ply.empty()) write_deviation_ply(t, r, o.deviation_ply);
+    if (!o.deviation_ply.empty()) write_deviation_ply(t, r, o.deviation_ply, ctx.placement(row.mesh));
     row.deviation = {true, r.pos_max_pct, r.pos_mean_pct, r.pos_rms_pct, r.pos_p95_pct, r.pos_max_rel_diag,
                      normal_figure(r, r.normal_max_deg), normal_figure(r, r.normal_mean_deg), -1, r.normal_undefined,
                      d.pos_p95_rel_diag, d.nearest_point ? "nearest-point" : "surface-coords", std::nullopt};
@@ -299,6 +327,7 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
                      std::to_string(r.vertices) + " vertices without a normal to compare (" +
                      std::to_string(r.normal_undefined - r.normal_declared) + " where the limit has none, " +
                      std::to_string(r.normal_declared) + " where the scheme gives none)";
+    note_left_out(row, r);
     // The scheme's exactness on its own control mesh, the second figure (the first one where that
     // mesh is the input: an image's own g0 given as the mesh).
     if (t.reference && !t.coords.empty()) {
@@ -390,26 +419,38 @@ struct DescribedRun {
   JudgedSurfaces surfaces;
 };
 
+// The process's mapped address space now (/proc/self/statm's first field), 0 where unknown.
+double address_space_in_use() {
+  long pages = 0;
+  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%ld", &pages) != 1) pages = 0;
+    std::fclose(f);
+  }
+  return double(pages) * double(sysconf(_SC_PAGE_SIZE));
+}
+
 // Memory a run may use: the machine's, or less where the process's address space is limited.
 double memory_for_runs() {
   double bytes = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
   rlimit as{};
-  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) bytes = std::min(bytes, double(as.rlim_cur));
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY)
+    bytes = std::min(bytes, double(as.rlim_cur) - address_space_in_use());  // the libraries' mappings are in it
   return bytes;
 }
 
-// Refused before anything is allocated: an output that cannot fit would end in bad_alloc, or on
-// an overcommitting kernel in the OOM killer. A triangle costs about 64 bytes between the output
-// (positions, normals, coordinates, indices) and validation's copies of it.
+// Refused before anything is allocated: a run that cannot fit would end in bad_alloc, or on an
+// overcommitting kernel in the OOM killer. The scheme's estimate of its peak (Scheme::estimated_peak_bytes),
+// not the output alone: osd-uniform on the frog stand-in at depth 7 passed an output estimate of
+// 2.5 GiB and died of bad_alloc under 6 GiB.
 std::optional<std::string> too_large(const Scheme& scheme, const ControlMesh& accepted, const RunRequest& request) {
-  constexpr double kBytesPerTriangle = 64;
   const double triangles = double(scheme.estimated_triangles(accepted, request));
-  const double need = triangles * kBytesPerTriangle, have = 0.75 * memory_for_runs();
+  const double need = scheme.estimated_peak_bytes(accepted, request), have = 0.75 * memory_for_runs();
   // Past 2^31 triangles the outputs' 32-bit indices cannot name the vertices, whatever the memory.
   if (triangles >= 0 && need <= have && triangles < 2e9) return std::nullopt;
   char buf[200];
-  std::snprintf(buf, sizeof buf, "output of about %.3g triangles needs about %.3g GiB, more than the %.3g GiB this process may use",
-                triangles, need / (1 << 30), have / (1 << 30));
+  std::snprintf(buf, sizeof buf,
+                "a run of about %.3g output triangles needs about %.3g GiB at its peak, more than the %.3g GiB this process may use",
+                triangles, need / (1 << 30), std::max(have, 0.0) / (1 << 30));
   return std::string(buf);
 }
 

@@ -14,6 +14,7 @@
 #include "harness/bench/results.h"
 #include "harness/bench/run_spec.h"
 #include "harness/core/scheme.h"
+#include "harness/mesh/placement.h"
 #include "harness/reference/dense_limit.h"
 #include "harness/reference/limit_evaluator.h"
 #include "harness/validate/limit_distance.h"
@@ -68,9 +69,13 @@ struct MeasureOptions {
 class MeasureContext {
  public:
   explicit MeasureContext(MachineInfo machine) : machine_(std::move(machine)) {}
+  // The mesh as every run takes it: placed at the origin at unit size (placement.h), its
+  // geometry checked. InputError for a mesh that cannot be read or judged.
   const ControlMesh& mesh(const std::string& name);
   // The same mesh, shared: the input whose limit surface rows are judged against.
   std::shared_ptr<const ControlMesh> input(const std::string& name);
+  // Where the mesh named `name` was moved from: outputs written for the user map back with it.
+  Placement placement(const std::string& name);
   // The mesh as the scheme takes it (quadrangulated when it asks); throws InputError if refused.
   std::shared_ptr<const ControlMesh> accepted(const std::string& name, const Scheme& scheme);
   const LimitEvaluator& reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
@@ -88,6 +93,7 @@ class MeasureContext {
   MachineInfo machine_;
   std::map<std::string, ControlMesh> meshes_;
   std::map<std::string, std::shared_ptr<const ControlMesh>> inputs_;
+  std::map<std::string, Placement> placements_;
   std::map<std::string, std::shared_ptr<const ControlMesh>> accepted_;
   // Keyed by the mesh's content, not its address: a geometry image hands every run a new g0
   // object, and caching those by address kept a 200 MB dense reference per run (the default

@@ -10,6 +10,7 @@
 
 #include "datasets/manifest.h"
 #include "harness/core/errors.h"
+#include "harness/core/printable.h"
 #include "harness/core/registry.h"
 #include "harness/gl/context.h"
 #include "harness/gpu/device_info.h"
@@ -40,6 +41,7 @@ nlohmann::json facts_json(const ControlMesh& m, const MeshFacts& f) {
           {"boundary_edges", f.boundary_edges},
           {"boundary_loops", f.boundary_loops},
           {"non_manifold_edges", f.non_manifold_edges},
+          {"non_manifold_vertices", f.non_manifold_vertices},
           {"inconsistent_edges", f.inconsistent_edges},
           {"degenerate_faces", f.degenerate_faces},
           {"unused_vertices", f.unused_vertices},
@@ -69,12 +71,13 @@ int info(const MeshVerbOptions& opts) {
     std::cout << facts_json(mesh, f).dump(2) << "\n";
     return 0;
   }
-  std::printf("%s  (%s)\n", mesh.name.c_str(), mesh.source.c_str());
+  std::printf("%s  (%s)\n", printable(mesh.name).c_str(), printable(mesh.source).c_str());
   std::printf("  vertices %d, faces %d, edges %d\n", f.vertices, f.faces, f.edges);
   std::printf("  face sizes   %s\n", histogram_text(f.face_sizes).c_str());
   std::printf("  valences     %s\n", histogram_text(f.valences).c_str());
   std::printf("  boundary edges %d in %d loops, non-manifold edges %d, inconsistently oriented edges %d, degenerate faces %d\n",
               f.boundary_edges, f.boundary_loops, f.non_manifold_edges, f.inconsistent_edges, f.degenerate_faces);
+  if (f.non_manifold_vertices) std::printf("  non-manifold vertices %d (pinched: faces meeting at a vertex only)\n", f.non_manifold_vertices);
   std::printf("  components %d, Euler characteristic %d, genus %s, %s\n", f.components, f.euler,
               f.genus < 0 ? "undefined" : std::to_string(f.genus).c_str(), f.closed ? "closed" : "open");
   std::printf("  extraordinary: %.1f%% of vertices, %.1f%% of quads\n", 100 * f.extraordinary_vertex_fraction,
@@ -82,7 +85,7 @@ int info(const MeshVerbOptions& opts) {
   std::printf("  creased edges %d, corners %d, holes %d, boundary rule %s\n", f.creased_edges, f.corners, f.holes,
               to_string(mesh.boundary).c_str());
   if (f.unused_vertices) std::printf("  unused vertices %d\n", f.unused_vertices);
-  for (const auto& w : mesh.warnings) std::printf("  warning: %s\n", w.c_str());
+  for (const auto& w : mesh.warnings) std::printf("  warning: %s\n", printable(w).c_str());
   return 0;
 }
 
@@ -94,10 +97,11 @@ int list_meshes_cmd() {
       const MeshFacts f = compute_facts(m);
       const bool quads = f.face_sizes.count(4) && f.face_sizes.at(4) * 2 > f.faces;
       const double extra = quads ? f.extraordinary_quad_fraction : f.extraordinary_vertex_fraction;
-      std::printf("%-40s %-8s %8d %8d %7.1f%%  %s%s\n", e.name.c_str(), e.kind.c_str(), f.vertices, f.faces,
-                  100 * extra, quads ? "" : "(vertices) ", e.description.c_str());
+      std::printf("%-40s %-8s %8d %8d %7.1f%%  %s%s\n", printable(e.name).c_str(), e.kind.c_str(), f.vertices, f.faces,
+                  100 * extra, quads ? "" : "(vertices) ", printable(e.description).c_str());
     } catch (const InputError& err) {
-      std::printf("%-40s %-8s %8s %8s %8s  unreadable: %s\n", e.name.c_str(), e.kind.c_str(), "-", "-", "-", err.what());
+      std::printf("%-40s %-8s %8s %8s %8s  unreadable: %s\n", printable(e.name).c_str(), e.kind.c_str(), "-", "-", "-",
+                  printable(err.what()).c_str());
     }
   }
   if (!corpus_dir()) std::printf("(shared corpus not found: set SUBDIVBENCH_DATASETS or place ../shared/datasets beside the checkout)\n");

@@ -12,6 +12,12 @@ namespace sdb::cli {
 
 using Verbs = std::map<std::string, std::function<int()>>;
 
+// Caps on counts a user gives: each is work proportional to it (or memory: Google Benchmark keeps
+// every repetition), and past these a run takes hours or ends in bad_alloc rather than answering.
+// Rays: 10 M lines (and as many aimed at borders) take minutes on two cores already.
+inline constexpr long kMaxRays = 10'000'000;
+inline constexpr int kMaxReps = 1000, kMaxRounds = 1000;
+
 Verbs register_commands(CLI::App& app);
 int run_selected(const CLI::App& app, const Verbs& verbs);  // the chosen verb's exit code
 

@@ -42,6 +42,23 @@ struct GateOptions {
   std::vector<std::string> bench_flags;  // passed to Google Benchmark
 };
 
+// A run named on its own (--run) that its scheme declines (a level out of range, a
+// backend it lacks) is bad usage, as in `validate`: Google Benchmark alone would say that no
+// benchmark matched, and exit 0.
+void require_runnable(const std::vector<RunSpec>& runs) {
+  for (const RunSpec& spec : runs) {
+    const ResolvedScheme r = resolve_scheme(spec.scheme);
+    if (auto why = declined(*r.scheme, {spec.backend, spec.level, 0, r.parameters})) throw InputError(spec.name(), *why);
+  }
+}
+
+// Every run named on its own was measured, or the one it lacks is named (a limit met in prepare).
+void require_measured(const std::vector<RunSpec>& runs, const std::vector<RunRow>& rows) {
+  for (const RunSpec& spec : runs)
+    if (std::none_of(rows.begin(), rows.end(), [&](const RunRow& r) { return r.name() == spec.name(); }))
+      throw InputError(spec.name(), "not measured (a size or device limit; `validate` says which)");
+}
+
 int bench(const GateOptions& opts) {
   if (!opts.out.empty()) prepare_output_folder(opts.out);
   MeasureContext ctx(describe_machine());
@@ -52,6 +69,9 @@ int bench(const GateOptions& opts) {
   else if (opts.runs.empty()) plan = make_plan(sel, ctx);
   for (const auto& name : opts.runs) plan.runs.push_back(parse_run_name(name));
   plan.runs = distinct_runs(plan.runs, &plan.notes);
+  // The workload's rows may lack a device here (its Vulkan rows): the gate judges what is missing.
+  const bool named = opts.workload_config.empty() && !opts.runs.empty();
+  if (named) require_runnable(plan.runs);
   ctx.probe_bandwidth();  // after the selection is known to be good: a bad one is said at once
   for (const auto& n : plan.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
   std::vector<std::string> args = {"subdivbench bench"};
@@ -75,6 +95,9 @@ int bench(const GateOptions& opts) {
     how.progress = &progress.emplace(std::cout, stdout_is_terminal(), size_t(opts.rounds), Progress::steady_seconds, terminal_columns());
   results.runs = bench_runs(plan.runs, m, ctx, &console, how);
   if (progress) progress->close();
+  const bool filtered = std::any_of(opts.bench_flags.begin(), opts.bench_flags.end(),
+                                    [](const std::string& f) { return f.rfind("--benchmark_filter", 0) == 0; });
+  if (named && !filtered) require_measured(plan.runs, results.runs);
   if (opts.rounds > 0) {
     for (const RunRow& r : results.runs)
       std::printf("%-44s median %9.4f ms  min %9.4f ms  over %d rounds\n", r.name().c_str(), r.time_ms.median,
@@ -243,8 +266,8 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   b->add_option("--workload", opts->workload_config, "the workload of a gate configuration (ci/gate.json) instead of the selection");
   b->add_option("--out", opts->out, "folder for results.json");
   b->add_option("--rounds", opts->rounds, "run in this many rounds, every benchmark once per round in random order "
-                                          "(the gate pairs samples by round); default: Google Benchmark's flags")
-      ->check(CLI::NonNegativeNumber);
+                                          "(the gate pairs samples by round; at most 1000); default: Google Benchmark's flags")
+      ->check(CLI::Range(0, kMaxRounds));
   b->allow_extras();
   b->callback([b, opts] { opts->bench_flags = b->remaining(); });
   verbs["bench"] = [opts] { return bench(*opts); };

@@ -3,7 +3,9 @@
 // file and line), 3 internal error.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <string>
 #include <iostream>
@@ -11,8 +13,24 @@
 #include "harness/cli/commands.h"
 #include "harness/cli/main.h"
 #include "harness/core/errors.h"
+#include "harness/core/printable.h"
 
 namespace sdb::cli {
+
+namespace {
+
+// What a verb printed reached standard output, or the run says it did not: a full disk or a
+// closed pipe (`info --json > /dev/full`) is an error, not exit 0 with the output lost.
+int with_output_written(int code) {
+  errno = 0;
+  std::cout.flush();
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return code;
+  const int error = errno;
+  std::cerr << "subdivbench: standard output: write failed" << (error ? std::string(": ") + std::strerror(error) : "") << "\n";
+  return 2;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"subdivbench: GPU subdivision methods on identical meshes, measured and validated"};
@@ -25,23 +43,23 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     // Device choice reads the variable wherever a Context or probe is made.
     if (!device.empty()) setenv("SUBDIVBENCH_VK_DEVICE", device.c_str(), 1);
-    return run_selected(app, verbs);
+    return with_output_written(run_selected(app, verbs));
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "subdivbench: " << e.what() << " (see --help)\n";
+    std::cerr << "subdivbench: " << printable(e.what()) << " (see --help)\n";
     return 2;
   } catch (const sdb::InputError& e) {
-    std::cerr << "subdivbench: " << e.what() << "\n";
+    std::cerr << "subdivbench: " << printable(e.what()) << "\n";
     return 2;
   } catch (const sdb::Unsupported& e) {
     // A limit the one request asked for runs into (validate, workload): bad usage, said in one line.
-    std::cerr << "subdivbench: " << e.what() << "\n";
+    std::cerr << "subdivbench: " << printable(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "subdivbench: internal error: " << e.what() << "\n";
+    std::cerr << "subdivbench: internal error: " << printable(e.what()) << "\n";
     return 3;
   }
 }

@@ -21,6 +21,7 @@
 #include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
+#include "harness/core/printable.h"
 #include "harness/gpu/context.h"
 #include "harness/pictures/pictures.h"
 #include "reports/report.h"
@@ -54,7 +55,7 @@ struct RunOptions {
 
 // The row's name padded to a column, and its figures.
 std::string row_head(const RunRow& r) {
-  std::string head = r.name();
+  std::string head = printable(r.name());
   head.resize(std::max<size_t>(head.size(), 44), ' ');
   return head;
 }
@@ -62,7 +63,7 @@ std::string row_head(const RunRow& r) {
 std::string row_figures(const RunRow& r) {
   char buf[512];
   std::string line;
-  if (r.status == RunStatus::Unsupported) return " unsupported: " + r.message;
+  if (r.status == RunStatus::Unsupported) return " unsupported: " + printable(r.message);
   std::snprintf(buf, sizeof buf, " %9ld tris %9.3f ms %8.2f Mtri/s bw %5.1f%%", r.triangles,
                 r.gpu_time_ms ? r.gpu_time_ms->median : r.time_ms.median, r.triangle_rate_mtris, 100 * r.bandwidth_fraction);
   line += buf;
@@ -86,7 +87,8 @@ std::string row_figures(const RunRow& r) {
       line += buf;
     }
   }
-  if (r.status != RunStatus::Ok) line += "  FAILED: " + r.message;
+  if (r.status != RunStatus::Ok) line += "  FAILED: " + printable(r.message);
+  else if (!r.message.empty()) line += "  (" + printable(r.message) + ")";
   return line;
 }
 
@@ -251,7 +253,8 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   v->add_option("--mesh", opts->mesh, "mesh name or path")->required();
   v->add_option("--level", opts->level, "depth k or rate N")->required();
   v->add_option("--backend", opts->backend, "cpu | cpu-mt | vulkan | opengl");
-  v->add_option("--rays", opts->rays, "random lines (as many again aimed at patch borders)")->check(CLI::NonNegativeNumber);
+  v->add_option("--rays", opts->rays, "random lines (as many again aimed at patch borders), at most 10000000")
+      ->check(CLI::Range(0L, kMaxRays));
   v->add_option("--seed", opts->seed, "seed of the ray generator");
   v->add_flag("--json", opts->json, "print the row as JSON (results.json row format)");
   v->add_option("--deviation-out", opts->deviation_ply, "write the output with per-vertex deviation as a PLY file");
@@ -259,9 +262,9 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
 
   auto* r = app.add_subcommand("run", "Run, validate and time schemes; write results.json and the report");
   add_selection(r, *opts);
-  r->add_option("--reps", opts->reps, "timed repetitions per run")->check(CLI::PositiveNumber);
-  r->add_option("--rays", opts->rays, "random lines per run, as many again aimed at patch borders (default 50000)")
-      ->check(CLI::NonNegativeNumber);
+  r->add_option("--reps", opts->reps, "timed repetitions per run (1..1000)")->check(CLI::Range(1, kMaxReps));
+  r->add_option("--rays", opts->rays, "random lines per run, as many again aimed at patch borders (default 50000, at most 10000000)")
+      ->check(CLI::Range(0L, kMaxRays));
   r->add_flag("--no-validate", opts->no_validate, "time only");
   auto* quick = r->add_flag("--quick", opts->quick,
                             "the quick set: every scheme on a quad, a triangle and a real mesh at two levels each "
@@ -288,8 +291,8 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
               "no pictures in the report (default: the paper schemes' surfaces, rendered with Vulkan where a device exists)");
   auto* rounds = r->add_option("--rounds", opts->rounds,
                                "paired rounds of the summary cells: each scheme+backend and its peer timed in the same "
-                               "rounds (default 5; 3 with --quick)")
-                     ->check(CLI::PositiveNumber);
+                               "rounds (default 5; 3 with --quick; at most 1000)")
+                     ->check(CLI::Range(1, kMaxRounds));
   r->add_flag("--no-paired", opts->no_paired, "skip the paired rounds (the report's ratios are then single-pass)")->excludes(rounds);
   r->add_flag("--in-process", opts->in_process,
               "measure every row in this process, for profilers and debuggers (default: in a worker process, "

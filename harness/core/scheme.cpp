@@ -70,4 +70,8 @@ long Scheme::estimated_triangles(const ControlMesh& accepted, const RunRequest& 
   return triangles > 9e18 ? std::numeric_limits<long>::max() : static_cast<long>(triangles);
 }
 
+double Scheme::estimated_peak_bytes(const ControlMesh& accepted, const RunRequest& request) const {
+  return double(estimated_triangles(accepted, request)) * kPeakBytesPerTriangle;
+}
+
 }  // namespace sdb

@@ -47,10 +47,12 @@ struct MeshRequirements {
   // Past these the libraries fail rather than refuse: OpenSubdiv segfaults on a 10,000-vertex face
   // and its Bfr and limit evaluation grow with the square of a face's size (a 1,000-gon: 16 s;
   // 2,000: over 100 s); Embree aborts past valence 64. The corpus's largest face has 6 vertices,
-  // its largest valence is 720. Checked on the mesh as handed to prepare() (after quadrangulation,
-  // where an n-gon becomes a valence-n vertex).
+  // its largest valence is 360. Checked on the mesh as handed to prepare() (after quadrangulation,
+  // where an n-gon becomes a valence-n vertex). Valence: the reference limit every run is judged
+  // by (Bfr, refined to level 10 around the vertex) grows faster than the square of it, and at
+  // valence 1000 a run took minutes (harness/bench/README.md, "Valence").
   int max_face_size = 64;
-  int max_valence = 1024;
+  int max_valence = 512;
 };
 
 // How far a scheme's output may lie from the limit surface of its input (at the same SurfaceCoord,
@@ -171,6 +173,16 @@ class Scheme {
   // Output size of a request, for run budgets. The default counts samples per base face: a quad
   // gives 2 s^2 triangles, a Loop triangle s^2, an n-gon's n sub-quads n s^2 / 2 (s = segments).
   virtual long estimated_triangles(const ControlMesh& accepted, const RunRequest& request) const;
+  // Memory a run of the request takes at its peak, prepare and validation included, for run
+  // budgets: a run refused up front instead of ending in bad_alloc. The default: the output's
+  // estimated triangles at kPeakBytesPerTriangle; a scheme whose preparation allocates more (a
+  // geometry image's fit) says so here.
+  virtual double estimated_peak_bytes(const ControlMesh& accepted, const RunRequest& request) const;
 };
+
+// Peak memory per output triangle of a validated run, the largest measured over the CPU schemes
+// (harness/bench/README.md, "Memory"): the output, validation's weld and Embree scene, and each
+// library's own (Far keeps every level of a uniform refinement, the stencil tables theirs).
+inline constexpr double kPeakBytesPerTriangle = 512;
 
 }  // namespace sdb

@@ -50,6 +50,65 @@ struct Components {
   void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
+// The fans of faces around each vertex: face corners (indices into face_vertices) joined when
+// their faces share an edge at that corner's vertex. A vertex whose corners form more than one
+// fan is pinched; a boundary loop runs through one fan of each vertex it passes.
+struct Fans {
+  Components corners;
+  explicit Fans(const ControlMesh& m) : corners(static_cast<int>(m.face_vertices.size())) {
+    const auto off = face_offsets(m);
+    std::unordered_map<uint64_t, std::pair<int, int>> first_use;  // edge -> corner of its smaller vertex, and of the other
+    for (int f = 0; f < num_faces(m); ++f) {
+      const int n = m.face_sizes[f];
+      for (int k = 0; k < n; ++k) {
+        const int ca = off[f] + k, cb = off[f] + (k + 1) % n;
+        const int a = m.face_vertices[ca], b = m.face_vertices[cb];
+        if (a == b) continue;
+        const std::pair<int, int> by_vertex = a < b ? std::pair{ca, cb} : std::pair{cb, ca};
+        auto [it, first] = first_use.try_emplace(edge_key(a, b), by_vertex);
+        if (first) continue;
+        corners.join(it->second.first, by_vertex.first);
+        corners.join(it->second.second, by_vertex.second);
+      }
+    }
+  }
+};
+
+// Per vertex, the number of fans of faces around it (0 for unused vertices).
+std::vector<int> fans_per_vertex(const ControlMesh& m, Fans& fans) {
+  std::vector<int> count(m.positions.size(), 0);
+  std::vector<char> root_seen(m.face_vertices.size(), 0);
+  for (size_t c = 0; c < m.face_vertices.size(); ++c) {
+    const int r = fans.corners.find(static_cast<int>(c));
+    if (!root_seen[r]) root_seen[r] = 1, ++count[m.face_vertices[c]];
+  }
+  return count;
+}
+
+// Boundary loops: boundary edges (used by one face) joined where they meet in one fan, so that a
+// bowtie's two triangles are two loops, not one through the pinch.
+int count_boundary_loops(const ControlMesh& m, const EdgeTable& edges, Fans& fans) {
+  const auto off = face_offsets(m);
+  Components loops(static_cast<int>(m.face_vertices.size()));
+  std::vector<char> on_loop(m.face_vertices.size(), 0);
+  for (int f = 0; f < num_faces(m); ++f) {
+    const int n = m.face_sizes[f];
+    for (int k = 0; k < n; ++k) {
+      const int ca = off[f] + k, cb = off[f] + (k + 1) % n;
+      const int a = m.face_vertices[ca], b = m.face_vertices[cb];
+      if (a == b || edges.at(edge_key(a, b)).faces != 1) continue;
+      const int ra = fans.corners.find(ca), rb = fans.corners.find(cb);
+      loops.join(ra, rb);
+      on_loop[ra] = on_loop[rb] = 1;
+    }
+  }
+  int count = 0;
+  std::vector<char> loop_seen(m.face_vertices.size(), 0);
+  for (size_t c = 0; c < on_loop.size(); ++c)
+    if (on_loop[c] && !loop_seen[loops.find(static_cast<int>(c))]) loop_seen[loops.find(static_cast<int>(c))] = 1, ++count;
+  return count;
+}
+
 // First face that repeats a vertex, and the vertex, or {-1, -1}.
 std::pair<int, int> first_degenerate_face(const ControlMesh& m, int* count) {
   std::pair<int, int> first{-1, -1};
@@ -108,7 +167,10 @@ MeshFacts compute_facts(const ControlMesh& m) {
   f.edges = static_cast<int>(edges.size());
   std::vector<int> valence(f.vertices, 0);
   std::vector<char> on_boundary(f.vertices, 0);
-  Components loops(f.vertices), parts(f.vertices);
+  Components parts(f.vertices);
+  Fans fans(m);
+  for (int n : fans_per_vertex(m, fans)) f.non_manifold_vertices += n > 1;
+  f.boundary_loops = count_boundary_loops(m, edges, fans);
   for (const auto& [key, use] : edges) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
     ++valence[a];
@@ -117,13 +179,12 @@ MeshFacts compute_facts(const ControlMesh& m) {
     if (use.faces == 1) {
       ++f.boundary_edges;
       on_boundary[a] = on_boundary[b] = 1;
-      loops.join(a, b);
     }
     if (use.faces > 2) ++f.non_manifold_edges;
     else if (use.forward > 1 || use.backward > 1) ++f.inconsistent_edges;
   }
   int used = 0, extraordinary = 0;
-  std::vector<char> loop_root(f.vertices, 0), part_root(f.vertices, 0);
+  std::vector<char> part_root(f.vertices, 0);
   const int interior_regular = f.all_triangles ? 6 : 4, boundary_regular = f.all_triangles ? 4 : 3;
   for (int v = 0; v < f.vertices; ++v) {
     if (valence[v] == 0) {
@@ -133,7 +194,6 @@ MeshFacts compute_facts(const ControlMesh& m) {
     ++used;
     ++f.valences[valence[v]];
     if (valence[v] != (on_boundary[v] ? boundary_regular : interior_regular)) ++extraordinary;
-    if (on_boundary[v] && !loop_root[loops.find(v)]) loop_root[loops.find(v)] = 1, ++f.boundary_loops;
     if (!part_root[parts.find(v)]) part_root[parts.find(v)] = 1, ++f.components;
   }
   f.extraordinary_vertex_fraction = used ? double(extraordinary) / used : 0.0;
@@ -156,6 +216,29 @@ MeshFacts compute_facts(const ControlMesh& m) {
   return f;
 }
 
+namespace {
+
+// A pinched vertex (its faces form more than one fan) named at the first face of its second fan.
+void require_one_fan(const ControlMesh& m, const std::string& needs) {
+  Fans fans(m);
+  const std::vector<int> count = fans_per_vertex(m, fans);
+  const auto off = face_offsets(m);
+  std::vector<int> first_root(m.positions.size(), -1);
+  for (int f = 0; f < num_faces(m); ++f)
+    for (int c = off[f]; c < off[f + 1]; ++c) {
+      const int v = m.face_vertices[c], r = fans.corners.find(c);
+      if (count[v] < 2) continue;
+      if (first_root[v] < 0) first_root[v] = r;
+      else if (first_root[v] != r) {
+        const int base = m.source.ends_with(".obj") ? 1 : 0;
+        throw InputError(face_location(m, f), "non-manifold vertex " + std::to_string(v + base) + ": its faces form " +
+                                                  std::to_string(count[v]) + " fans that meet only there (a pinch)" + needs);
+      }
+    }
+}
+
+}  // namespace
+
 void require_manifold(const ControlMesh& m, const std::string& scheme) {
   const std::string needs = "; " + scheme + " needs a manifold, oriented mesh";
   if (auto [face, v] = first_degenerate_face(m, nullptr); face >= 0) {
@@ -173,6 +256,7 @@ void require_manifold(const ControlMesh& m, const std::string& scheme) {
                          : "inconsistent orientation: edge " + edge + " traversed twice in the same direction";
   }
   if (worst_face >= 0) throw InputError(face_location(m, worst_face), what + needs);
+  require_one_fan(m, needs);
 }
 
 }  // namespace sdb

@@ -16,6 +16,9 @@ struct MeshFacts {
   int boundary_edges = 0;
   int boundary_loops = 0;
   int non_manifold_edges = 0;     // used by more than two faces
+  // Vertices where the faces around them form more than one fan (two cubes sharing a vertex, a
+  // bowtie): a pinch, which no manifold has.
+  int non_manifold_vertices = 0;
   int inconsistent_edges = 0;     // two faces traverse the edge in the same direction
   int degenerate_faces = 0;       // a vertex repeated within one face
   int unused_vertices = 0;
@@ -30,13 +33,15 @@ struct MeshFacts {
   // Share of quads touching a vertex of valence != 4 (the c-patch paper's "eqs").
   double extraordinary_quad_fraction = 0.0;
   int creased_edges = 0, corners = 0, holes = 0;
-  bool manifold() const { return non_manifold_edges == 0 && inconsistent_edges == 0 && degenerate_faces == 0; }
+  bool manifold() const {
+    return non_manifold_edges == 0 && non_manifold_vertices == 0 && inconsistent_edges == 0 && degenerate_faces == 0;
+  }
 };
 
 MeshFacts compute_facts(const ControlMesh& mesh);
 
 // Throws InputError naming the file and line of the first face that repeats a vertex, makes an
-// edge non-manifold or breaks orientation, for schemes that cannot take such meshes.
+// edge non-manifold or breaks orientation, or pinches a vertex, for schemes that cannot take such meshes.
 void require_manifold(const ControlMesh& mesh, const std::string& scheme);
 
 // Six times the enclosed signed volume (faces fanned from their first vertex): positive when a

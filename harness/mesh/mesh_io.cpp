@@ -100,6 +100,8 @@ void write_obj(const ControlMesh& m, const std::string& path) {
   for (int h : m.holes) out << "t hole 1/0/0 " << h << '\n';
   if (m.boundary != BoundaryRule::EdgeOnly)
     out << "t interpolateboundary 1/0/0 " << (m.boundary == BoundaryRule::None ? 0 : 1) << '\n';
+  if (m.crease_method == CreaseMethod::Chaikin) out << "t creasemethod 0/0/1 chaikin\n";
+  if (m.triangle_rule == TriangleRule::Smooth) out << "t smoothtriangles 0/0/1 smooth\n";
   if (!out) throw InputError(path, "write failed");
 }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -7,6 +9,7 @@
 #include "harness/core/input_error_of_file.h"
 #include "harness/mesh/facts.h"
 #include "harness/mesh/mesh_io.h"
+#include "harness/mesh/placement.h"
 #include "harness/mesh/quadrangulate.h"
 #include "harness/mesh/split_polygons.h"
 
@@ -361,4 +364,121 @@ TEST(SplitPolygons, FansQuadsAndALastTriangleFromTheFirstCorner) {
                                                0, 5, 6, 0, 1, 7}));
   EXPECT_EQ(s.face_lines, (std::vector<int>{10, 10, 11, 11, 12, 12, 12, 13}));
   EXPECT_EQ(s.holes, (std::vector<int>{2, 3}));
+}
+
+// Issue 45: what C calls blanks separate tokens, every line end ends a line, and a coordinate too
+// small for a float is a number (before: the cube read as an empty mesh, or 'number out of range').
+TEST(ObjReader, ReadsEveryBlankEveryLineEndAndDenormals) {
+  const std::string cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                           "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  std::string ff = cube, cr = cube;
+  for (size_t i = 0; (i = ff.find("v ", i)) != std::string::npos;) ff[i + 1] = '\f', ++i;
+  for (size_t i = 0; (i = ff.find("f ", i)) != std::string::npos;) ff[i + 1] = '\v', ++i;
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  for (const std::string& text : {ff, cr}) {
+    const ControlMesh m = parse_obj(text, "cube.obj");
+    EXPECT_EQ(num_vertices(m), 8);
+    EXPECT_EQ(m.face_vertices, parse_obj(cube, "cube.obj").face_vertices);
+  }
+  EXPECT_EQ(parse_obj(cr + "f 1 2 3\r", "cube.obj").face_lines.back(), 15);
+  EXPECT_NE(obj_error(cr + "f 1 2 99\r").find("bad.obj:15:"), std::string::npos) << "CR lines are counted";
+  const ControlMesh tiny = parse_obj("v -1e-50 1e-40 1e-400\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "t.obj");
+  EXPECT_EQ(tiny.positions[0][0], 0.0f);
+  EXPECT_FALSE(std::signbit(tiny.positions[0][0])) << "one zero";
+  EXPECT_GT(tiny.positions[0][1], 0.0f);
+  EXPECT_LT(tiny.positions[0][1], 1.2e-38f);
+  EXPECT_NE(obj_error("v 1e39 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").find("out of range"), std::string::npos);
+}
+
+// A tag given twice is one tag, the last sharpness holding (Far sets it once per tag, in order).
+TEST(ObjReader, RepeatedTagsAreOneTagWithAWarning) {
+  const ControlMesh m = parse_obj(std::string(kQuad) + "f 1 2 3 4\nt crease 2/1/0 0 1 2.0\nt crease 2/1/0 1 0 3.0\n"
+                                                       "t hole 1/0/0 0\nt hole 1/0/0 0\nt corner 1/1/0 2 1.0\nt corner 1/1/0 2 4.0\n",
+                                  "twice.obj");
+  ASSERT_EQ(m.creases.size(), 1u);
+  EXPECT_FLOAT_EQ(m.creases[0].sharpness, 3.0f);
+  EXPECT_EQ(m.holes, (std::vector<int>{0}));
+  ASSERT_EQ(m.corners.size(), 1u);
+  EXPECT_FLOAT_EQ(m.corners[0].sharpness, 4.0f);
+  ASSERT_EQ(m.warnings.size(), 3u);
+  EXPECT_NE(m.warnings[0].find("twice.obj:7: crease on edge (1,0) given again"), std::string::npos) << m.warnings[0];
+  const MeshFacts f = compute_facts(m);
+  EXPECT_EQ(f.creased_edges, 1);
+  EXPECT_EQ(f.holes, 1);
+}
+
+// A uint index past INT_MAX is quoted as written, ASCII and binary (OpenMesh read it as -1).
+TEST(ReadMesh, PlyUintIndexIsQuotedAsWritten) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                           "element face 1\nproperty list uchar uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_NE(file_error("u.ply", head + "3 0 1 4294967295\n").find("u.ply:13: vertex index 4294967295 out of range"),
+            std::string::npos)
+      << file_error("u.ply", head + "3 0 1 4294967295\n");
+  std::string cr = head + "3 0 1 2\n";
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  EXPECT_EQ(file_error("cr.ply", cr), "") << "CR-only lines read as the LF file";
+}
+
+// Pinches and bowties: a vertex whose faces form two fans is non-manifold, and a boundary loop
+// runs through one fan (before: two cubes sharing a vertex were a closed genus-0 manifold; a
+// bowtie's two triangles one boundary loop).
+TEST(Facts, PinchedVerticesAndBowtieLoops) {
+  const ControlMesh bowtie = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n", "bowtie.obj");
+  const MeshFacts f = compute_facts(bowtie);
+  EXPECT_EQ(f.non_manifold_vertices, 1);
+  EXPECT_EQ(f.boundary_loops, 2);
+  EXPECT_FALSE(f.manifold());
+  EXPECT_EQ(f.genus, -1);
+  try {
+    require_manifold(bowtie, "s");
+    ADD_FAILURE() << "a pinch passed require_manifold";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bowtie.obj:7: non-manifold vertex 1"), std::string::npos) << e.what();
+  }
+  const ControlMesh strip = parse_obj(std::string(kQuad) + "v 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n", "strip.obj");
+  EXPECT_EQ(compute_facts(strip).non_manifold_vertices, 0);
+  EXPECT_EQ(compute_facts(strip).boundary_loops, 1);
+}
+
+// Every run judges the mesh placed at unit size: a scaled copy, or one moved by ten diagonals,
+// places onto the original (within float's rounding of the copy), and geometry nothing can be
+// judged on is refused naming what is degenerate.
+TEST(Placement, ScaledAndMovedCopiesPlaceOntoTheOriginal) {
+  const ControlMesh cube = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                     "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nv 1e4 1e4 1e4\n",
+                                     "cube.obj");
+  const ControlMesh placed = placed_mesh(cube);
+  EXPECT_NEAR(used_bounds(placed).diagonal(), 0.866, 1e-3) << "the unused far vertex is not in the bounds";
+  for (double scale : {1e-30, 1e-6, 1e6, 1e10, 1e36})
+    for (double offset : {0.0, 10 * scale}) {
+      ControlMesh copy = cube;
+      for (auto& p : copy.positions)
+        for (float& x : p) x = static_cast<float>(x * scale + offset);
+      const ControlMesh q = placed_mesh(copy);
+      // Centred alike and within a factor of two in size (scaled by a power of two, exact in
+      // float): compared at one size, they agree to float's rounding of the copy.
+      const double size = used_bounds(placed).diagonal() / used_bounds(q).diagonal();
+      EXPECT_GT(size, 0.5) << scale;
+      EXPECT_LT(size, 2.0) << scale;
+      for (int v = 0; v < 8; ++v)
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(q.positions[v][k] * size, placed.positions[v][k], offset > 0 ? 1e-5 : 1e-6) << scale << " " << offset;
+    }
+}
+
+TEST(Placement, DegenerateGeometryIsNamed) {
+  const std::string faces = "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  auto why = [&](const std::string& vertices) { return degenerate_geometry(parse_obj(vertices + faces, "d.obj")).value_or(""); };
+  std::string point, line;
+  for (int v = 0; v < 8; ++v) point += "v 1 1 1\n", line += "v " + std::to_string(v) + " " + std::to_string(2 * v) + " 0\n";
+  EXPECT_NE(why(point).find("d.obj: degenerate geometry: the 8 vertices the faces use all lie at one point"), std::string::npos);
+  EXPECT_NE(why(line).find("collapsed to a line"), std::string::npos) << why(line);
+  EXPECT_EQ(why("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"), "")
+      << "a flat, closed mesh has faces of area";
+  const ControlMesh strips = parse_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 3\nf 4 5 6\n", "z.obj");
+  EXPECT_NE(degenerate_geometry(strips).value_or("").find("every face has zero area"), std::string::npos);
+  const ControlMesh coincident = parse_obj(std::string(kQuad) + "v 5 5 5\nv 5 5 5\nv 5 5 5\nf 1 2 3 4\nf 5 6 7\n", "c.obj");
+  EXPECT_NE(degenerate_geometry(coincident).value_or("").find("c.obj:9: degenerate geometry: the face's 3 vertices lie at one point"),
+            std::string::npos);
+  EXPECT_THROW(placed_mesh(coincident), InputError);
 }

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <fstream>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "harness/core/errors.h"
@@ -160,6 +161,47 @@ void apply_tag(const LineParser& p, const Tag& t, ObjState& s, int line) {
   }
 }
 
+// A tag given twice for one edge, vertex or face is one tag, as OpenSubdiv reads it: the last
+// sharpness holds (Far sets it once per tag, in order). Kept twice, it was counted as two creased
+// edges or two holes, and handed twice to Embree. Each repeat is said (file and line).
+void merge_repeated_tags(ObjState& s) {
+  ControlMesh& m = s.mesh;
+  auto edge = [](const EdgeCrease& c) { return (uint64_t(uint32_t(std::min(c.v0, c.v1))) << 32) | uint32_t(std::max(c.v0, c.v1)); };
+  std::unordered_map<uint64_t, size_t> crease_at;
+  std::vector<EdgeCrease> creases;
+  for (size_t i = 0; i < m.creases.size(); ++i) {
+    auto [it, first] = crease_at.try_emplace(edge(m.creases[i]), creases.size());
+    if (first) {
+      creases.push_back(m.creases[i]);
+      continue;
+    }
+    creases[it->second].sharpness = m.creases[i].sharpness;
+    m.warnings.push_back(at_line(m.source, s.creases[i].line) + ": crease on edge (" + std::to_string(m.creases[i].v0) + "," +
+                         std::to_string(m.creases[i].v1) + ") given again: one crease, the last sharpness holds");
+  }
+  m.creases = std::move(creases);
+  std::unordered_map<int, size_t> corner_at;
+  std::vector<VertexCorner> corners;
+  for (const auto& [i, line] : s.corner_lines) {
+    auto [it, first] = corner_at.try_emplace(m.corners[i].vertex, corners.size());
+    if (first) {
+      corners.push_back(m.corners[i]);
+      continue;
+    }
+    corners[it->second].sharpness = m.corners[i].sharpness;
+    m.warnings.push_back(at_line(m.source, line) + ": corner on vertex " + std::to_string(m.corners[i].vertex) +
+                         " given again: one corner, the last sharpness holds");
+  }
+  m.corners = std::move(corners);
+  std::unordered_set<int> seen;
+  std::vector<int> holes;
+  for (const auto& [i, line] : s.hole_lines) {
+    if (seen.insert(m.holes[i]).second) holes.push_back(m.holes[i]);
+    else m.warnings.push_back(at_line(m.source, line) + ": hole on face " + std::to_string(m.holes[i]) + " given again: one hole");
+  }
+  m.holes = std::move(holes);
+}
+
 }  // namespace
 
 ControlMesh parse_obj(std::string_view text, const std::string& path) {
@@ -168,10 +210,9 @@ ControlMesh parse_obj(std::string_view text, const std::string& path) {
   int line_no = 0;
   size_t pos = text::after_bom(text);
   while (pos < text.size()) {
-    size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = trim(text.substr(pos, end - pos));
-    pos = end + 1;
+    const auto [raw, next] = text::next_line(text, pos);
+    const std::string_view line = trim(raw);
+    pos = next;
     ++line_no;
     if (line.empty() || line.front() == '#') continue;
     if (line.find('\0') != std::string_view::npos)
@@ -209,6 +250,7 @@ ControlMesh parse_obj(std::string_view text, const std::string& path) {
                                                   std::to_string(c.crease.v1) + "), which is not an edge");
     m.creases.push_back(c.crease);
   }
+  merge_repeated_tags(s);
   return m;
 }
 

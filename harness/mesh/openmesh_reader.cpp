@@ -7,6 +7,8 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <sstream>
+
 #include "harness/core/errors.h"
 #include "harness/mesh/mesh_io.h"
 #include "harness/mesh/ply_check.h"
@@ -51,7 +53,8 @@ ControlMesh read_openmesh_file(const std::string& path, std::string_view data) {
   OmMesh om;
   RawImporter importer(om);
   OpenMesh::IO::Options opt;
-  if (!OpenMesh::IO::IOManager().read(path, importer, opt)) throw InputError(path, "OpenMesh could not parse the file");
+  std::istringstream lf(with_lf_line_ends(data, layout));
+  if (!OpenMesh::IO::IOManager().read(lf, "ply", importer, opt)) throw InputError(path, "OpenMesh could not parse the file");
 
   ControlMesh m;
   m.source = path;

@@ -18,7 +18,14 @@ struct Property {
   std::string name;
   int size = 0, count_size = 0;  // count_size > 0: a list, its count of this many bytes
   bool is_float = false, count_float = false;
+  bool is_unsigned = false;  // of the values (a list's items)
 };
+
+bool unsigned_type(std::string_view t) { return t.front() == 'u'; }
+
+std::string index_out_of_range(std::string_view index, long vertices) {
+  return "vertex index " + std::string(index.substr(0, 40)) + " out of range (mesh has " + std::to_string(vertices) + " vertices)";
+}
 
 struct Element {
   std::string name;
@@ -26,6 +33,13 @@ struct Element {
   std::vector<Property> properties;
   int line = 0;  // of its header line
 };
+
+// The face element's list of vertex indices, which OpenMesh reads as int: a uint index past
+// INT_MAX (4294967295, say) would reach our checks as -1, so indices are held to the vertex count
+// here, quoted as the file writes them.
+bool is_vertex_indices(const Element& e, const Property& p) {
+  return e.name == "face" && p.count_size && !p.is_float && (p.name == "vertex_indices" || p.name == "vertex_index");
+}
 
 enum class Format { Ascii, BinaryLittle, BinaryBig };
 
@@ -52,11 +66,11 @@ Property parse_property(const text::LineParser& p, const std::vector<std::string
     auto [cs, cf] = scalar_type(tok[2]);
     auto [is, inf] = scalar_type(tok[3]);
     if (!cs || !is) p.fail("unknown list type '" + std::string(tok[2]) + " " + std::string(tok[3]) + "'");
-    prop = {std::string(tok[4]), is, cs, inf, cf};
+    prop = {std::string(tok[4]), is, cs, inf, cf, unsigned_type(tok[3])};
   } else if (tok.size() == 3) {
     auto [s, f] = scalar_type(tok[1]);
     if (!s) p.fail("unknown property type " + text::quoted(tok[1]));
-    prop = {std::string(tok[2]), s, 0, f, false};
+    prop = {std::string(tok[2]), s, 0, f, false, unsigned_type(tok[1])};
   } else {
     p.fail("malformed property line");
   }
@@ -90,10 +104,11 @@ Header read_header(std::string_view data, const std::string& path) {
   int no = 0;
   bool have_format = false;
   while (true) {
-    const size_t end = data.find('\n', pos);
-    if (end == std::string_view::npos) throw InputError(path, "header has no end_header line");
-    const std::string_view line = text::trim(data.substr(pos, end - pos));
-    pos = end + 1;
+    if (pos >= data.size()) throw InputError(path, "header has no end_header line");
+    const auto [raw, next] = text::next_line(data, pos);
+    if (next == data.size() && raw.size() == data.size() - pos) throw InputError(path, "header has no end_header line");
+    const std::string_view line = text::trim(raw);
+    pos = next;
     const text::LineParser p(path, ++no);
     const auto tok = text::tokens(line);
     if (no == 1) {
@@ -144,30 +159,47 @@ struct ByteReader {
     return true;
   }
   // A list count, as a signed or unsigned integer of `size` bytes (float counts refused by caller).
-  bool count(int size, long& out) {
+  bool count(int size, long& out) { return integer(size, false, out); }
+  // An integer of `size` bytes (at most 4), signed or not.
+  bool integer(int size, bool is_signed, long& out) {
     if (data.size() - pos < size_t(size)) return false;
     unsigned char b[8] = {};
     std::memcpy(b, data.data() + pos, size);
     pos += size;
     uint64_t v = 0;
     for (int k = 0; k < size; ++k) v |= uint64_t(b[big_endian ? size - 1 - k : k]) << (8 * k);
-    out = static_cast<long>(v);
+    const bool negative = is_signed && size < 8 && (v >> (8 * size - 1)) & 1;
+    out = negative ? static_cast<long>(v) - (long(1) << (8 * size)) : static_cast<long>(v);
     return true;
   }
 };
 
+long vertex_count(const Header& h) {
+  for (const Element& e : h.elements)
+    if (e.name == "vertex") return e.count;
+  return 0;
+}
+
 void walk_binary(const Header& h, std::string_view data, const std::string& path) {
   ByteReader r{data, h.body, h.format == Format::BinaryBig};
+  const long vertices = vertex_count(h);
   for (const Element& e : h.elements)
     for (long i = 0; i < e.count; ++i)
       for (const Property& p : e.properties) {
+        const std::string where = e.name + " " + std::to_string(i);
         long n = 1;
         if (p.count_size && (p.count_float || !r.count(p.count_size, n)))
-          throw InputError(path, "file ends inside " + e.name + " " + std::to_string(i) + " of the " +
-                                     std::to_string(e.count) + " the header announces");
-        if (!r.skip(size_t(n) * p.size))
-          throw InputError(path, "file ends inside " + e.name + " " + std::to_string(i) + " of the " +
-                                     std::to_string(e.count) + " the header announces");
+          throw InputError(path, "file ends inside " + where + " of the " + std::to_string(e.count) + " the header announces");
+        if (is_vertex_indices(e, p) && p.size <= 4) {
+          for (long k = 0; k < n; ++k) {
+            long index = 0;
+            if (!r.integer(p.size, !p.is_unsigned, index))
+              throw InputError(path, "file ends inside " + where + " of the " + std::to_string(e.count) + " the header announces");
+            if (index < 0 || index >= vertices) throw InputError(path, where + ": " + index_out_of_range(std::to_string(index), vertices));
+          }
+        } else if (!r.skip(size_t(n) * p.size)) {
+          throw InputError(path, "file ends inside " + where + " of the " + std::to_string(e.count) + " the header announces");
+        }
       }
   // A trailing newline or two is a writer's habit; more is data the header does not announce.
   if (data.size() - r.pos > 2)
@@ -176,7 +208,7 @@ void walk_binary(const Header& h, std::string_view data, const std::string& path
 
 // ---- ASCII: one line per element
 
-void check_ascii_element(const text::LineParser& p, const Element& e, std::string_view line) {
+void check_ascii_element(const text::LineParser& p, const Element& e, std::string_view line, long vertices) {
   const auto tok = text::tokens(line);
   size_t t = 0;
   for (const Property& prop : e.properties) {
@@ -195,7 +227,8 @@ void check_ascii_element(const text::LineParser& p, const Element& e, std::strin
         const float v = p.number(tok[t]);
         if (!std::isfinite(v)) p.fail("NaN or Inf in " + e.name + " property '" + prop.name + "'");
       } else {
-        p.integer(tok[t]);
+        const long v = p.integer(tok[t]);
+        if (is_vertex_indices(e, prop) && (v < 0 || v >= vertices)) p.fail(index_out_of_range(tok[t], vertices));
       }
       ++t;
     }
@@ -220,7 +253,7 @@ std::vector<int> check_ascii(const Header& h, std::string_view data, const std::
   size_t next = 0;
   for (const Element& e : h.elements)
     for (long i = 0; i < e.count; ++i, ++next) {
-      check_ascii_element(text::LineParser(path, lines[next].number), e, lines[next].text);
+      check_ascii_element(text::LineParser(path, lines[next].number), e, lines[next].text, vertex_count(h));
       if (e.name == "face") face_lines.push_back(lines[next].number);
     }
   return face_lines;
@@ -248,6 +281,22 @@ PlyLayout check_ply(std::string_view data, const std::string& path) {
   if (!has_indices) throw InputError(path, "no face element with a vertex_indices list");
   if (h.format == Format::Ascii) out.face_lines = check_ascii(h, data, path);
   else walk_binary(h, data, path);
+  out.body = h.body;
+  out.ascii = h.format == Format::Ascii;
+  return out;
+}
+
+std::string with_lf_line_ends(std::string_view data, const PlyLayout& layout) {
+  const size_t text_end = layout.ascii ? data.size() : layout.body;
+  std::string out;
+  out.reserve(data.size());
+  for (size_t pos = 0; pos < text_end;) {
+    const auto [line, next] = text::next_line(data.substr(0, text_end), pos);
+    out.append(line);
+    if (next > pos + line.size()) out += '\n';
+    pos = next;
+  }
+  out.append(data.substr(text_end));
   return out;
 }
 

@@ -134,8 +134,17 @@ RTCDevice embree_device() {
   return device;
 }
 
+long positions_out_of_range(const std::vector<Point3>& positions) {
+  return std::count_if(positions.begin(), positions.end(), [](const Point3& p) {
+    return !(std::abs(p[0]) <= kEmbreeRange && std::abs(p[1]) <= kEmbreeRange && std::abs(p[2]) <= kEmbreeRange);
+  });
+}
+
 EmbreeTriangleScene::EmbreeTriangleScene(const std::vector<Point3>& positions, const std::vector<uint32_t>& triangles)
     : positions_(positions), triangles_(triangles) {
+  // Checked before Embree sees them: past its range it aborts the process (a NaN fails the test too).
+  if (const long bad = positions_out_of_range(positions))
+    throw std::invalid_argument(std::to_string(bad) + " positions past Embree's range (NaN, infinite or beyond 1e17)");
   // Embree reads shared vertex buffers 16 bytes at a time: the last vertex needs padding after it
   // (valgrind found the read past the end).
   positions_.push_back({0, 0, 0});

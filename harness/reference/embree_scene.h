@@ -17,6 +17,13 @@ RTCDevice embree_device();
 // Throws std::runtime_error with `what` if Embree reported an error on this thread.
 void check_embree(const char* what);
 
+// Embree asserts, aborting the process, on a vertex or a ray origin past FLT_LARGE (1.8e18), and
+// the ray-crack check starts its lines 2.5 bounding radii out: positions handed to Embree stay
+// within this magnitude.
+inline constexpr double kEmbreeRange = 1e17;
+// How many of `positions` are NaN, infinite or past kEmbreeRange in some coordinate.
+long positions_out_of_range(const std::vector<Point3>& positions);
+
 class EmbreeTriangleScene {
  public:
   // positions: xyz per vertex; triangles: three indices each.

@@ -101,12 +101,15 @@ Point3d cross3(const Point3d& a, const Point3d& b) {
 }
 double norm3(const Point3d& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
-// du x dv has no direction where the parametrization degenerates (a derivative vanishes): along
-// the fold of a face folded over onto its neighbour (catmark_val2_back2back), where the surface
-// is no regular surface and the normals from its two sheets point opposite ways. No normal there.
+// du x dv has no direction where the parametrization degenerates (a derivative vanishes, or the
+// tangents are nearly parallel): along the fold of a face folded over onto its neighbour
+// (catmark_val2_back2back), of a flat closed mesh or of a two-sided pillow, where the surface is
+// no regular surface and the normals from its two sheets point opposite ways. Below 1e-6 of the
+// longer tangent's square the cross product is rounding and approximation residue whose direction,
+// up to 180 degrees off, judges nothing: no normal there. Relative, so the same at every scale.
 bool degenerate(const Point3d& du, const Point3d& dv) {
   const double scale = std::max(norm3(du), norm3(dv));
-  return !(norm3(cross3(du, dv)) > 1e-10 * scale * scale);
+  return !(norm3(cross3(du, dv)) > 1e-6 * scale * scale);
 }
 
 // Bfr at (u, v) of its face's parametrization; the normal zero where it degenerates.

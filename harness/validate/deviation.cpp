@@ -7,17 +7,32 @@
 #include <cmath>
 #include <random>
 
+#include "harness/mesh/placement.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/validate/summary.h"
 
 namespace sdb {
+namespace {
+
+// Takes out of `used` the vertices whose coordinate's ptex face `leave` names; returns how many.
+template <class Leave>
+long leave_out(const Tessellation& t, const LimitEvaluator& ref, std::vector<char>& used, Leave leave) {
+  long count = 0;
+  for (size_t i = 0; i < used.size(); ++i)
+    if (used[i] && t.coords[i].face < uint32_t(ref.num_ptex_faces()) && leave(t.coords[i].face)) used[i] = 0, ++count;
+  return count;
+}
+
+}  // namespace
 
 DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& ref) {
   DeviationReport r;
   const size_t n = t.positions.size();
   r.vertex_pct.assign(n, 0.0f);
   r.vertex_deg.assign(n, 0.0f);
-  const std::vector<char> used = referenced(t);
+  std::vector<char> used = referenced(t);
+  const long no_limit = leave_out(t, ref, used, [&](uint32_t face) { return !ref.has_limit(int(face)); });
+  const long no_size = leave_out(t, ref, used, [&](uint32_t face) { return ref.local_size(int(face)) == 0; });
   std::vector<double> dist(n, 0.0), abs_dist(n, 0.0);
   std::vector<char> declared(n, 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
@@ -56,9 +71,10 @@ DeviationReport measure_deviation(const Tessellation& t, const LimitEvaluator& r
   const Stats p = stats_of(pct), a = stats_of(deg);
   r.pos_max_pct = p.max, r.pos_mean_pct = p.mean, r.pos_rms_pct = p.rms, r.pos_p95_pct = p.p95;
   r.normal_max_deg = a.max, r.normal_mean_deg = a.mean, r.normal_rms_deg = a.rms, r.normal_p95_deg = a.p95;
-  const double diag = bounds_of(ref.mesh().positions).diagonal();
+  const double diag = used_bounds(ref.mesh()).diagonal();
   r.pos_max_rel_diag = diag > 0 ? max_abs / diag : 0;
   r.vertices = static_cast<long>(pct.size());
+  r.no_limit = no_limit, r.no_size = no_size;
   return r;
 }
 

@@ -24,6 +24,10 @@ struct DeviationReport {
   // Of them, vertices where the limit has a normal and the output none (a zero normal: the scheme
   // declares it has none there, its tangents vanishing on a face folded flat over its neighbour).
   long normal_declared = 0;
+  // Vertices left out of every statistic, each for a reason the input gives: on a face with no
+  // limit surface (a hole, or a boundary face under `interpolateboundary 0`), or on a face of no
+  // size (one that repeats a single vertex) where a deviation relative to it means nothing.
+  long no_limit = 0, no_size = 0;
   std::vector<float> vertex_pct, vertex_deg;  // per output vertex, for heat maps
 };
 

@@ -7,7 +7,7 @@
 
 namespace sdb {
 
-void write_deviation_ply(const Tessellation& t, const DeviationReport& d, const std::string& path) {
+void write_deviation_ply(const Tessellation& t, const DeviationReport& d, const std::string& path, const Placement& placement) {
   using Mesh = OpenMesh::PolyMesh_ArrayKernelT<>;
   Mesh mesh;
   OpenMesh::VPropHandleT<float> pct, deg;
@@ -18,7 +18,8 @@ void write_deviation_ply(const Tessellation& t, const DeviationReport& d, const 
   std::vector<Mesh::VertexHandle> vh;
   vh.reserve(t.positions.size());
   for (size_t i = 0; i < t.positions.size(); ++i) {
-    vh.push_back(mesh.add_vertex({t.positions[i][0], t.positions[i][1], t.positions[i][2]}));
+    const Point3 p = placement.original(t.positions[i]);
+    vh.push_back(mesh.add_vertex({p[0], p[1], p[2]}));
     mesh.property(pct, vh.back()) = i < d.vertex_pct.size() ? d.vertex_pct[i] : 0.0f;
     mesh.property(deg, vh.back()) = i < d.vertex_deg.size() ? d.vertex_deg[i] : 0.0f;
   }

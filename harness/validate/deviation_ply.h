@@ -5,10 +5,14 @@
 #include <string>
 
 #include "harness/core/tessellation.h"
+#include "harness/mesh/placement.h"
 #include "harness/validate/deviation.h"
 
 namespace sdb {
 
-void write_deviation_ply(const Tessellation& t, const DeviationReport& d, const std::string& path);
+// `placement`: where the run moved the mesh from (placement.h); positions are written back in
+// the file's own coordinates.
+void write_deviation_ply(const Tessellation& t, const DeviationReport& d, const std::string& path,
+                         const Placement& placement = {});
 
 }  // namespace sdb

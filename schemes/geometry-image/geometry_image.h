@@ -20,7 +20,7 @@ namespace sdb {
 
 inline constexpr int kDefaultFitSize = 65;
 
-// The `fit` parameter: samples a side of images fitted to ordinary meshes, odd, 5..1025; by
+// The `fit` parameter: samples a side of images fitted to ordinary meshes, odd, 5..513; by
 // default 2^6 + 1, which subsamples down to the octahedron.
 ParameterSpec fit_size_parameter();
 

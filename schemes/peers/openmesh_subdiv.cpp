@@ -11,6 +11,7 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
 #include "harness/core/errors.h"
+#include "harness/mesh/facts.h"
 #include "schemes/peers/peers.h"
 
 namespace sdb {
@@ -109,6 +110,13 @@ class OpenMeshSubdivider final : public Scheme {
     return std::nullopt;
   }
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
+    // OpenMesh's subdividers have one boundary rule and always refine every face: an open mesh
+    // tagged `interpolateboundary 0` (no surface on its boundary faces) or 1 (corners pinned) is a
+    // tag they cannot honour, and their output would pass for the surface the tag asks for.
+    if (mesh.boundary != BoundaryRule::EdgeOnly && compute_facts(mesh).boundary_edges > 0)
+      throw InputError(mesh.source, info_.name + " cannot honour the tag 'interpolateboundary " +
+                                        (mesh.boundary == BoundaryRule::None ? "0' (none" : "1' (edge-and-corner") +
+                                        "): OpenMesh's subdividers have one boundary rule");
     if (rule_ == SubdivisionRule::Loop)
       return std::make_unique<OpenMeshEvaluation<TriMesh, OpenMesh::Subdivider::Uniform::LoopT<TriMesh>>>(mesh, r.level);
     return std::make_unique<OpenMeshEvaluation<PolyMesh, OpenMesh::Subdivider::Uniform::CatmullClarkT<PolyMesh>>>(mesh,

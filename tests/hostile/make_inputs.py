@@ -206,6 +206,59 @@ def files():
     f["paper_binary.md"] = b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR binary, not a table\n"
     f["paper_latin1.md"] = "| a | b |\n|---|---|\n| caf\xe9 | 1 |\n".encode("latin-1")
     f["sweep2500.json"] = corpus_sweep(2500)
+    f.update(round_two_files())
+    return f
+
+
+def scaled_cube(scale, offset=0.0):
+    return "".join(f"v {x * scale + offset!r} {y * scale + offset!r} {z * scale + offset!r}\n" for x, y, z in CUBE_PTS) + CUBE_F
+
+
+def round_two_files():
+    """Issue 45's families: readers that dropped or misread, geometry at any scale, degenerate
+    shapes, tags, and facts."""
+    f = {}
+    # Blanks and line ends as C has them: a form feed or vertical tab after v or f, CR-only lines.
+    f["ff_vt.obj"] = CUBE_V.replace("v ", "v\f") + CUBE_F.replace("f ", "f\v")
+    f["cr_only.obj"] = CUBE.replace("\n", "\r")
+    f["cr_only.off"] = ("OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F).replace("\n", "\r")
+    f["cr_only.ply"] = ply_ascii(8, 6, PLY_V, PLY_F).replace("\n", "\r")
+    f["ff_vt.off"] = ("OFF\n8 6 0\n" + OFF_CUBE_V + OFF_CUBE_F).replace(" ", "\f")
+    # Coordinates below the smallest float are numbers (zero or a denormal), not out of range.
+    f["vdenormal.obj"] = CUBE_V.replace("v 0 0 0", "v -1e-50 1e-40 1e-400") + CUBE_F
+    f["vdenormal.ply"] = ply_ascii(8, 6, PLY_V.replace("0 0 0", "-1e-50 1e-40 1e-400", 1), PLY_F)
+    f["vdenormal.off"] = "OFF\n8 6 0\n" + OFF_CUBE_V.replace("0 0 0", "-1e-50 1e-40 1e-400", 1) + OFF_CUBE_F
+    # A file name that would steer the terminal, and a PLY uint index that OpenMesh reads as -1.
+    f["esc\n\x1b[31mname.obj"] = TRI_V + "f 1 2 4\n"
+    f["uint_idx.ply"] = ply_ascii(8, 6, PLY_V, PLY_F.replace("4 3 0 4 7", "4 3 0 4 4294967295")).replace(
+        "list uchar int", "list uchar uint")
+    f["uint_idx_bin.ply"] = ply_binary(8, 6, CUBE_PTS, CUBE_QUADS).replace(b"list uchar int", b"list uchar uint")[:-4] + \
+        b"\xff\xff\xff\xff"
+    # Scale: the verdicts of the unit cube, whatever the size or the place.
+    f["cube_1e10.obj"] = scaled_cube(1e10)
+    f["cube_1e-30.obj"] = scaled_cube(1e-30)
+    f["cube_off1e7.obj"] = scaled_cube(1.0, 1e7)
+    f["cube_1e19.obj"] = scaled_cube(1e19)
+    f["cube_1e38.obj"] = scaled_cube(1e38)
+    f["flat.obj"] = CUBE_V.replace(" 1\n", " 0\n") + CUBE_F  # closed and flat: the top lies on the bottom
+    f["pillow.obj"] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 4 3 2 1\n"  # two-sided
+    f["far_unused.obj"] = CUBE + "v 1e4 1e4 1e4\n"
+    # Geometry nothing can be judged on.
+    f["line.obj"] = "".join(f"v {x} 0 0\n" for x in (0, 1, 2, 3, 0.5, 1.5, 2.5, 3.5)) + CUBE_F
+    f["point.obj"] = "v 1 1 1\n" * 8 + CUBE_F
+    f["zero_area.obj"] = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 3 1 0\nf 1 2 3 4\nf 5 6 7 8\n"
+    f["coincident_face.obj"] = CUBE + "v 2 2 2\nv 2 2 2\nv 2 2 2\nv 2 2 2\nf 9 10 11 12\n"
+    # Faces without a limit surface: an open cube under interpolateboundary 0, a hole.
+    f["open_none.obj"] = CUBE_V + CUBE_F.replace("f 5 6 7 8\n", "") + "t interpolateboundary 1/0/0 0\n"
+    f["hole_one.obj"] = CUBE + "t hole 1/0/0 1\n"
+    # Facts: a pinch, a bowtie, tags given twice.
+    second = [(x + 1, y + 1, z + 1) for x, y, z in CUBE_PTS[1:]]  # the second cube's corner 0 is the first's 7
+    renumber = lambda i: 7 if i == 0 else 7 + i
+    f["pinch.obj"] = CUBE + "".join(f"v {x} {y} {z}\n" for x, y, z in second) + \
+        "".join("f " + " ".join(str(renumber(i) + 1) for i in q) + "\n" for q in CUBE_QUADS)
+    f["bowtie.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n"
+    f["crease_twice.obj"] = CUBE + "t crease 2/1/0 0 1 2.0\nt crease 2/1/0 1 0 3.0\n"
+    f["hole_twice.obj"] = CUBE + "t hole 1/0/0 1\nt hole 1/0/0 1\n"
     return f
 
 
@@ -319,6 +372,14 @@ def write_all(folder):
             out.write(text)
     pictures_with(folder, "evil", "evil.png", lambda path: os.symlink("/etc/passwd", path))
     pictures_with(folder, "notpng", "notpng.png", lambda path: open(path, "w").write("root:x:0:0:root:/root:/bin/bash\n"))
+    # A corpus folder holding a symbolic-link loop beside a mesh ($SUBDIVBENCH_DATASETS in cases.txt).
+    loop = os.path.join(folder, "loop_corpus")
+    os.makedirs(loop, exist_ok=True)
+    with open(os.path.join(loop, "cube.obj"), "w") as out:
+        out.write(CUBE)
+    for name, target in (("loop_a.obj", "loop_b.obj"), ("loop_b.obj", "loop_a.obj"), ("self", ".")):
+        if not os.path.lexists(os.path.join(loop, name)):
+            os.symlink(target, os.path.join(loop, name))
     fifo = os.path.join(folder, "fifo.obj")
     if not os.path.exists(fifo):
         os.mkfifo(fifo)

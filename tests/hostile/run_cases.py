@@ -26,7 +26,8 @@ def limit_child():
 
 def parse_cases(path):
     """One case a line: EXIT SECONDS PATTERN ARGS...  (PATTERN a Python regex in single quotes,
-    matched against stderr for exit 2, stdout otherwise; '' matches anything)."""
+    matched against stderr for exit 2, stdout otherwise; '' matches anything; ARGS may start with
+    NAME=VALUE settings, split_settings)."""
     cases = []
     with open(path) as f:
         for no, line in enumerate(f, 1):
@@ -40,17 +41,32 @@ def parse_cases(path):
     return cases
 
 
+def split_settings(args):
+    """Leading NAME=VALUE arguments set the environment (STDOUT=PATH: standard output goes to PATH,
+    /dev/full say); the rest is the argument vector."""
+    env, stdout = dict(os.environ), subprocess.PIPE
+    while args and re.match(r"^[A-Z_]+=", args[0]):
+        name, value = args[0].split("=", 1)
+        if name == "STDOUT":
+            stdout = open(value, "wb")
+        else:
+            env[name] = value
+        args = args[1:]
+    return env, stdout, args
+
+
 def check(case, exe, subst, workdir):
     no, want, seconds, pattern, args = case
-    argv = [exe] + [a.format(**subst) for a in args]
+    env, stdout, args = split_settings([a.format(**subst) for a in args])
+    argv = [exe] + args
     start = time.monotonic()
     try:
-        p = subprocess.run(argv, cwd=workdir, capture_output=True, timeout=seconds, preexec_fn=limit_child,
-                           stdin=subprocess.DEVNULL)
+        p = subprocess.run(argv, cwd=workdir, stdout=stdout, stderr=subprocess.PIPE, timeout=seconds,
+                           preexec_fn=limit_child, stdin=subprocess.DEVNULL, env=env)
     except subprocess.TimeoutExpired:
         return f"hang: over {seconds:g} s"
     took = time.monotonic() - start
-    out, err = p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
+    out, err = (p.stdout or b"").decode(errors="replace"), p.stderr.decode(errors="replace")
     if p.returncode < 0:
         return f"signal {-p.returncode}; stderr: {err[-300:]!r}"
     problems = []
@@ -85,7 +101,7 @@ def main():
         if "{S}" in " ".join(case[4]) and not shared:
             print(f"skip  line {case[0]}: needs the shared corpus")
             continue
-        problem = check(case, exe, {"D": inputs, "S": shared, "W": workdir, "R": REPO}, workdir)
+        problem = check(case, exe, {"D": inputs, "S": shared, "W": workdir, "R": REPO, "NL": "\n", "ESC": "\x1b"}, workdir)
         print(f"{'FAIL' if problem else 'ok  '}  line {case[0]}: {' '.join(case[4])}" + (f"\n      {problem}" if problem else ""))
         failures += bool(problem)
     if os.path.exists(os.path.join(workdir, "SHELL_RAN")):

@@ -140,14 +140,14 @@ TEST(GeometryImageScheme, FitsAnImageToAMeshThatIsNotOne) {
 }
 
 // The fit size is a typed parameter on the request (`--scheme geometry-image:fit=129`), odd,
-// 5..1025, 65 by default; the estimate of the output follows it.
+// 5..513, 65 by default; the estimate of the output follows it.
 TEST(GeometryImageScheme, FitSizeIsATypedParameter) {
   const auto scheme = make_geometry_image_scheme();
   const auto& declared = scheme->info().parameters;
   ASSERT_EQ(declared.size(), 1u);
   EXPECT_EQ(Parameters::defaults(declared).integer("fit"), kDefaultFitSize);
   EXPECT_EQ(Parameters::resolve(declared, parse_scheme_spec("geometry-image:fit=129")).integer("fit"), 129);
-  for (const char* bad : {"geometry-image:fit=64", "geometry-image:fit=3", "geometry-image:fit=x", "geometry-image:fit=1027"})
+  for (const char* bad : {"geometry-image:fit=64", "geometry-image:fit=3", "geometry-image:fit=x", "geometry-image:fit=515", "geometry-image:fit=1025"})
     EXPECT_THROW(Parameters::resolve(declared, parse_scheme_spec(bad)), InputError) << bad;
   const ControlMesh ico = accept_mesh(load_mesh("icosphere"), scheme->info());
   RunRequest request = default_request(scheme->info(), Backend::Cpu, 2);

@@ -1,0 +1,130 @@
+// A mesh's verdicts do not depend on where it lies or how large it is (issue 45): for every scheme,
+// every mesh of the shared corpus and three copies of it, scaled by 1e-6 and by 1e6 and moved by
+// ten times its diagonal, get the same verdict (ok, failed, unsupported or refused) at the
+// scheme's lowest default level. The harness judges every mesh placed at unit size
+// (harness/mesh/placement.h); before it did, a cube scaled by 1e10 failed with 180-degree normals.
+// The corpus is split into shards that ctest runs side by side; within a shard every scheme runs
+// on a mesh in one MeasureContext, so that the schemes share its reference surfaces.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "datasets/manifest.h"
+#include "harness/bench/measure.h"
+#include "harness/core/errors.h"
+#include "harness/core/registry.h"
+#include "harness/mesh/mesh_io.h"
+#include "harness/mesh/placement.h"
+
+using namespace sdb;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kShards = 4;
+
+// The copies of a mesh, as the harness would read them from files; the first is the mesh itself.
+struct Copy {
+  const char* what;
+  double scale, offset_in_diagonals;
+};
+constexpr Copy kCopies[] = {{"as it is", 1, 0}, {"scaled by 1e-6", 1e-6, 0}, {"scaled by 1e6", 1e6, 0}, {"moved by ten diagonals", 1, 10}};
+
+ControlMesh copy_of(const ControlMesh& m, const Copy& c) {
+  ControlMesh out = m;
+  const double shift = c.offset_in_diagonals * used_bounds(m).diagonal();
+  for (auto& p : out.positions)
+    for (float& x : p) x = static_cast<float>(double(x) * c.scale + shift);
+  return out;
+}
+
+// A scheme as the sweep runs it: at its lowest default level, on cpu where it has it; a geometry
+// image fits a 17 x 17 image (the default 65 costs seconds per mesh and copy).
+struct SweepRun {
+  std::string spelled;
+  Backend backend;
+  int level;
+};
+
+std::vector<SweepRun> sweep_runs() {
+  std::vector<SweepRun> runs;
+  for (const auto& s : all_schemes()) {
+    const SchemeInfo& info = s->info();
+    if (info.role == SchemeRole::Test) continue;
+    const auto& b = info.backends;
+    const Backend backend = std::find(b.begin(), b.end(), Backend::Cpu) != b.end() ? Backend::Cpu : b.front();
+    const int level = *std::min_element(info.default_levels.begin(), info.default_levels.end());
+    if (auto why = declined(*s, default_request(info, backend, level))) {
+      std::printf("scale invariance: %s not run here: %s\n", info.name.c_str(), why->c_str());
+      continue;
+    }
+    runs.push_back({info.name.rfind("geometry-image", 0) == 0 ? info.name + ":fit=17" : info.name, backend, level});
+  }
+  return runs;
+}
+
+// ok, failed or unsupported (the row's status), or refused; then the reason, which names files
+// and figures the copies do not share.
+std::string verdict(const RunSpec& spec, MeasureContext& context) {
+  MeasureOptions o;
+  o.time = false;
+  o.rays = 200;
+  o.hausdorff = false;  // reported, never judged: not part of a verdict
+  try {
+    const RunRow row = measure_run(spec, o, context);
+    return std::string(to_string(row.status)) + (row.status == RunStatus::Ok ? "" : " (" + row.message + ")");
+  } catch (const InputError& e) {
+    return std::string("refused (") + e.what() + ")";
+  }
+}
+
+std::string kind_of(const std::string& verdict) { return verdict.substr(0, verdict.find(' ')); }
+
+class ScaleInvariance : public ::testing::TestWithParam<int> {};
+
+}  // namespace
+
+TEST_P(ScaleInvariance, EveryCorpusMeshGetsOneVerdictAtAnyScaleOrPlace) {
+  if (!corpus_dir()) GTEST_SKIP() << "shared corpus not found beside the checkout";
+  const int shard = GetParam();
+  const std::vector<SweepRun> runs = sweep_runs();
+  const fs::path dir = fs::temp_directory_path() / ("scale_invariance_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::map<std::string, std::map<std::string, int>> counts;  // scheme -> the originals' verdicts, counted
+  int meshes = 0, index = 0;
+  for (const auto& entry : list_meshes()) {
+    if (entry.kind != "corpus" || index++ % kShards != shard) continue;
+    ++meshes;
+    const ControlMesh mesh = load_mesh(entry.name);
+    std::vector<std::string> original(runs.size());
+    for (const Copy& c : kCopies) {
+      const bool first = &c == kCopies;
+      const std::string file = (dir / (std::to_string(&c - kCopies) + ".obj")).string();
+      if (!first) write_obj(copy_of(mesh, c), file);
+      MeasureContext context{MachineInfo{}};
+      for (size_t r = 0; r < runs.size(); ++r) {
+        const std::string v = verdict({runs[r].spelled, first ? entry.name : file, runs[r].backend, runs[r].level}, context);
+        if (first) {
+          original[r] = v;
+          ++counts[runs[r].spelled][kind_of(v)];
+        } else {
+          EXPECT_EQ(kind_of(v), kind_of(original[r])) << runs[r].spelled << " on " << entry.name << " " << c.what << " at level "
+                                                      << runs[r].level << ": " << v << "; as it is: " << original[r];
+        }
+      }
+    }
+  }
+  fs::remove_all(dir);
+  for (const auto& [scheme, kinds] : counts) {
+    std::string line;
+    for (const auto& [kind, n] : kinds) line += " " + kind + " " + std::to_string(n);
+    std::printf("scale invariance, shard %d/%d: %s on %d corpus meshes and 3 copies of each:%s\n", shard, kShards, scheme.c_str(),
+                meshes, line.c_str());
+  }
+  EXPECT_GE(meshes, 100 / kShards);
+}
+
+INSTANTIATE_TEST_SUITE_P(CorpusShards, ScaleInvariance, ::testing::Range(0, kShards));
