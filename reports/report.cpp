@@ -10,6 +10,7 @@
 #include "harness/bench/output_folder.h"
 #include "harness/bench/process.h"
 #include "harness/bench/results.h"
+#include "harness/bench/resources.h"
 #include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
@@ -99,10 +100,10 @@ void write_report(const std::vector<std::string>& inputs, const std::string& out
   const fs::path written = work.path / "report";
   // Debian's interpreter: python3-matplotlib lives there, not in a user's pyenv. An argument
   // vector, not a shell line: file names are data.
-  std::vector<std::string> argv = {"/usr/bin/python3", SDB_SOURCE_DIR "/reports/report.py", "--out", written.string(),
+  std::vector<std::string> argv = {"/usr/bin/python3", resource_path("reports/report.py"), "--out", written.string(),
                                    "--schemes", registry_schemes()};
   if (options.history) {
-    argv.insert(argv.end(), {"--history", "--gate-config", SDB_SOURCE_DIR "/ci/gate.json", "--names"});
+    argv.insert(argv.end(), {"--history", "--gate-config", resource_path("ci/gate.json"), "--names"});
     argv.insert(argv.end(), inputs.begin(), inputs.end());
   } else {
     argv.insert(argv.end(), {"--merged-from", merged_from(read)});

@@ -14,9 +14,14 @@ import re
 import sys
 
 import report_html as H
-from report_data import Results, load_results, fmt, spec_of
+from report_data import Results, cpu_implementation, load_results, fmt, spec_of
 from report_history import History, read_gate_config, verdict_lines
-from report_plots import cost_growth, deviation_distributions, history_plot, rate_grid
+try:
+    from report_plots import cost_growth, deviation_distributions, history_plot, rate_grid
+    NO_PLOTS = ""
+except ImportError as missing:  # a GPU machine's python3 may lack matplotlib: the report without plots
+    NO_PLOTS = (f"No plots: {missing} (python3-matplotlib is not installed here); `subdivbench report --in "
+                "results.json` on a machine with it draws them.")
 from report_summary import (fastest, fastest_lines, gpu_lines, limit_table, matrix, scheme_lines, validation_grid,
                             validation_sentence)
 
@@ -36,8 +41,8 @@ def comparison(args, plot_dir):
     verdicts = scheme_lines(results, m)
     invalid, validity = validation_sentence(results)
     grid = validation_grid(results)
-    plots = [p for p in (rate_grid(results, plot_dir), cost_growth(results, plot_dir),
-                         deviation_distributions(results, plot_dir)) if p]
+    plots = [] if NO_PLOTS else [p for p in (rate_grid(results, plot_dir), cost_growth(results, plot_dir),
+                                             deviation_distributions(results, plot_dir)) if p]
     manifest = None
     if args.pictures:
         with open(args.pictures) as f:
@@ -71,7 +76,8 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
         H.validation_matrix(grid, results.meshes(), results.schemes),
         "<h3>Against the input's limit surface</h3>", H.limit_matrix(limit_table(results), results.meshes(), results.schemes),
         "</section>",
-        "<section id='plots'><h2>Plots</h2>", *[H.figure(p) for p in plots], "</section>",
+        "<section id='plots'><h2>Plots</h2>", *[H.figure(p) for p in plots],
+        (f"<p>{H.e(NO_PLOTS)}</p>" if NO_PLOTS else ""), "</section>",
         "<section id='pictures'><h2>Pictures</h2>", H.pictures_section(manifest, manifest_path), "</section>",
         "<section id='papers'><h2>Paper tables</h2>", H.paper_section(papers, results.machine), "</section>",
         "<section id='paired'><h2>Paired cells</h2>", H.paired_table(results), "</section>",
@@ -94,7 +100,7 @@ def gpu_section_html(results):
     lines = gpu_lines(results)
     if not lines:
         return []
-    return ["<h3>GPU against the same scheme's CPU</h3>", f"<p class='reading'>{H.e(GPU_READING)}</p>",
+    return ["<h3>GPU against the same scheme's CPU</h3>", f"<p class='reading'>{H.e(gpu_reading(results))}</p>",
             H.sentences(lines, results.schemes)]
 
 
@@ -108,6 +114,13 @@ def md(text):
     emphasis, [ a link), line breaks as spaces."""
     text = H.html.escape(str(text), quote=False).replace("\r", " ").replace("\n", " ")
     return MD_SPECIAL.sub(r"\\\1", text)
+
+
+def gpu_reading(results):
+    """GPU_READING, and what the device is where it is a CPU implementation (lavapipe, llvmpipe)."""
+    labels = [f"{b}: {cpu_implementation(results.machine, b)}." for b in ("vulkan", "opengl")
+              if cpu_implementation(results.machine, b)]
+    return " ".join([GPU_READING] + labels)
 
 
 def md_cell(cell):
@@ -132,11 +145,13 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
     out += [f"- **{md(spec)}**: {md(text)}" for spec, text in verdicts]
     gpu = gpu_lines(results)
     if gpu:
-        out += ["", "### GPU against the same scheme's CPU", "", GPU_READING, ""]
+        out += ["", "### GPU against the same scheme's CPU", "", gpu_reading(results), ""]
         out += [f"- **{md(spec)}**: {md(text)}" for spec, text in gpu]
     for backend, per_mesh in m.items():
         specs = [s for s in results.specs(backend) if any(s in c for c in per_mesh.values())]
-        out += ["", f"### {md(backend)}", "", "| mesh | " + " | ".join(md(s) for s in specs) + " |", "|---" * (len(specs) + 1) + "|"]
+        label = cpu_implementation(results.machine, backend)
+        out += ["", f"### {md(backend)}" + (f" (on {md(label)})" if label else ""), "",
+                "| mesh | " + " | ".join(md(s) for s in specs) + " |", "|---" * (len(specs) + 1) + "|"]
         for mesh, cells in per_mesh.items():
             best = fastest(cells)
             out.append(f"| {md(mesh)} | " + " | ".join(
@@ -147,6 +162,7 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
     out += ["| scheme | " + " | ".join(md(m) for m in meshes) + " |", "|---" * (len(meshes) + 1) + "|"]
     out += [f"| {md(spec)} | " + " | ".join(md(per_mesh.get(m, "")) for m in meshes) + " |" for spec, per_mesh in limits.items()]
     out += ["", "## Plots", ""] + [f"![{md(p.title)}](plots/{p.name})\n\n{md(p.caption)}\n" for p in plots]
+    out += [NO_PLOTS, ""] if NO_PLOTS else []
     out += ["## Pictures", ""]
     if manifest and manifest.get("available"):
         out.append(f"{len(manifest.get('pictures', []))} pictures in pictures/ (see report.html).")
@@ -171,7 +187,7 @@ def md_row_cells(r, results):
 def history(args, plot_dir):
     files = [(name, load_results(path)) for name, path in zip(args.names or args.inputs, args.inputs)]
     h = History(files, args.scheme_order, read_gate_config(args.gate_config))
-    plot = history_plot(h, plot_dir)
+    plot = None if NO_PLOTS else history_plot(h, plot_dir)
     first = files[-1][1]
     body = ["<section id='history'><h2>Gated benchmarks per commit</h2>",
             f"<p class='lede'>{len(files)} results files, oldest first: {H.e(', '.join(h.labels))}. Each benchmark's "

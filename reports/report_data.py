@@ -57,6 +57,17 @@ def timing(r):
     return r.get("gpu_time_ms") or r["time_ms"]
 
 
+def cpu_implementation(machine, backend):
+    """The words for a GPU backend whose rows ran on a CPU implementation of its API (the machine
+    block's device type, harness/bench/results.h: lavapipe, llvmpipe), else ""."""
+    m = machine or {}
+    device = {"vulkan": ("vulkan_device", "vulkan_device_type", "Vulkan"),
+              "opengl": ("opengl_renderer", "opengl_device_type", "OpenGL")}.get(backend)
+    if not device or m.get(device[1]) != "cpu":
+        return ""
+    return f"{m.get(device[0], '?')}, a CPU implementation of {device[2]}, not a GPU: its rates are not GPU figures"
+
+
 def backend_key(b):
     return (BACKEND_ORDER.index(b) if b in BACKEND_ORDER else len(BACKEND_ORDER), b)
 

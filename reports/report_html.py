@@ -5,7 +5,7 @@ import html
 import os
 import re
 
-from report_data import bound_state, finite, fmt, spec_of, timing, watertight_state
+from report_data import bound_state, cpu_implementation, finite, fmt, spec_of, timing, watertight_state
 from report_history import p_words
 
 e = html.escape
@@ -80,7 +80,8 @@ def machine_words(machine, created, extra=""):
     parts = [f"{e(m.get('cpu_model', '?'))}, {m.get('cores', '?')} cores",
              f"write bandwidth {m.get('write_bandwidth_gbs', 0):.1f} GB/s one thread, "
              f"{m.get('write_bandwidth_mt_gbs', 0):.1f} GB/s all",
-             f"Vulkan: {e(m.get('vulkan_device') or 'none')}{vulkan_bandwidths(m)}",
+             f"Vulkan: {e(m.get('vulkan_device') or 'none')}"
+             f"{' (a CPU implementation of Vulkan, not a GPU)' if cpu_implementation(m, 'vulkan') else ''}{vulkan_bandwidths(m)}",
              f"{e(m.get('compiler', '?'))} {e(m.get('build_type', ''))}, commit <code>{e(m.get('git_commit', '?'))}</code>",
              f"created {e(created)}"]
     return " · ".join(parts) + (f" · {extra}" if extra else "")
@@ -146,7 +147,9 @@ def summary_matrix(results, m, fastest):
         specs = [s for s in results.specs(backend) if any(s in cells for cells in per_mesh.values())]
         if not specs:
             continue
-        out.append(f"<h3>{e(backend)}</h3><div class='scroll'><table class='matrix' id='summary-matrix-{e(backend)}' "
+        label = cpu_implementation(results.machine, backend)
+        out.append(f"<h3>{e(backend)}{' (on ' + e(label) + ')' if label else ''}</h3>"
+                   f"<div class='scroll'><table class='matrix' id='summary-matrix-{e(backend)}' "
                    f"data-backend='{e(backend)}'><thead><tr><th>mesh</th>")
         for s in specs:
             peers = sorted({c.peer.split(" (")[0] for cells in per_mesh.values() for x, c in cells.items() if x == s and c.peer})

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "harness/bench/results_check.h"
+#include "harness/bench/line_file.h"
 #include "harness/bench/results_json.h"
 #include "harness/core/errors.h"
 
@@ -60,8 +61,7 @@ std::string header_line(const JournalHeader& h) {
                    {"machine", h.machine},
                    {"selection", h.selection},
                    {"runs", h.runs},
-                   {"inputs", inputs}}) +
-         "\n";
+                   {"inputs", inputs}});
 }
 
 JournalHeader parse_header(const std::string& line, const std::string& path) {
@@ -101,110 +101,31 @@ RunRow parse_row(const std::string& line, const std::string& where) {
   return row;
 }
 
-std::string read_whole(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path, "no journal here: no run to resume");
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw InputError(path, "cannot read the journal");
-  return text.str();
-}
-
-// Writes all of `data` or says why not.
-std::string write_all(int fd, const std::string& data) {
-  for (size_t done = 0; done < data.size();) {
-    const ssize_t n = write(fd, data.data() + done, data.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return std::strerror(errno);
-    done += size_t(n);
-  }
-  return fsync(fd) == 0 ? "" : std::strerror(errno);
-}
-
-void sync_folder_of(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  const int dir = open(parent.empty() ? "." : parent.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir < 0) return;
-  fsync(dir);  // the rename itself survives a power cut
-  close(dir);
-}
-
 }  // namespace
 
 JournalContents read_journal(const std::string& path) {
-  const std::string text = read_whole(path);
+  const LineFileContents file = read_line_file(path, "no journal here: no run to resume");
+  if (file.lines.empty()) throw InputError(at_line(path, 1), "not a subdivbench run journal (no complete header line)");
   JournalContents c;
-  size_t start = 0;
-  for (int line = 1;; ++line) {
-    const size_t nl = text.find('\n', start);
-    if (nl == std::string::npos) {
-      // What follows the last newline was cut off mid-write: the row it held was not journalled.
-      if (line == 1) throw InputError(at_line(path, 1), "not a subdivbench run journal (no complete header line)");
-      c.dropped_torn_line = start < text.size();
-      break;
-    }
-    const std::string content = text.substr(start, nl - start);
-    if (line == 1) {
-      c.header = parse_header(content, path);
-    } else {
-      c.rows.push_back(parse_row(content, at_line(path, line)));
-      c.row_lines.push_back(line);
-    }
-    start = nl + 1;
-    c.intact_bytes = start;
+  c.header = parse_header(file.lines[0], path);
+  for (size_t i = 1; i < file.lines.size(); ++i) {
+    const int line = int(i) + 1;
+    c.rows.push_back(parse_row(file.lines[i], at_line(path, line)));
+    c.row_lines.push_back(line);
   }
+  c.intact_bytes = file.intact_bytes;
+  c.dropped_torn_line = file.dropped_torn_line;
   return c;
 }
 
-JournalWriter::JournalWriter(std::string path, int fd) : path_(std::move(path)), fd_(fd) {}
-JournalWriter::JournalWriter(JournalWriter&& other) noexcept : path_(std::move(other.path_)), fd_(other.fd_) { other.fd_ = -1; }
-JournalWriter::~JournalWriter() {
-  if (fd_ >= 0) close(fd_);
-}
-
 JournalWriter JournalWriter::create(const std::string& path, const JournalHeader& header) {
-  const std::string tmp = path + ".partial";
-  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError(path, std::string("cannot start the journal: ") + std::strerror(errno));
-  const std::string failed = write_all(fd, header_line(header));
-  close(fd);
-  std::error_code ec;
-  if (!failed.empty()) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path, "cannot start the journal: " + failed);
-  }
-  // Renamed into place whole: a journal always starts with a complete header.
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path, "cannot start the journal (is it a folder?)");
-  }
-  sync_folder_of(path);
-  return reopen(path, std::filesystem::file_size(path));
+  return JournalWriter(LineFileWriter::create(path, header_line(header), "the journal"));
 }
 
 JournalWriter JournalWriter::reopen(const std::string& path, uintmax_t intact_bytes) {
-  const int fd = open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (fd < 0) throw InputError(path, std::string("cannot open the journal: ") + std::strerror(errno));
-  if (ftruncate(fd, off_t(intact_bytes)) != 0) {
-    const std::string why = std::strerror(errno);
-    close(fd);
-    throw InputError(path, "cannot drop the journal's torn last line: " + why);
-  }
-  return JournalWriter(path, fd);
+  return JournalWriter(LineFileWriter::reopen(path, intact_bytes, "the journal"));
 }
 
-void JournalWriter::append(const RunRow& row) {
-  struct stat before {};
-  fstat(fd_, &before);
-  const std::string failed = write_all(fd_, row_json(row, -1) + "\n");
-  if (failed.empty()) return;
-  // A line cut short (a full disk) would read as torn and be dropped; cut it now, so that the
-  // journal stays whole for --resume whatever happens next.
-  if (ftruncate(fd_, before.st_size) == 0) fsync(fd_);
-  throw InputError(path_, "cannot journal row " + row.name() + ": " + failed);
-}
+void JournalWriter::append(const RunRow& row) { file_.append(row_json(row, -1), "journal row " + row.name()); }
 
 }  // namespace sdb

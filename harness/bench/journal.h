@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/bench/line_file.h"
 #include "harness/bench/plan.h"
 #include "harness/bench/results.h"
 
@@ -48,7 +49,7 @@ std::string selection_difference(const RunSelection& journalled, const RunSelect
 // anything else that does not read as a header or a row is an InputError naming the file and line.
 JournalContents read_journal(const std::string& path);
 
-// Appends rows to a journal. Move-only; the file is closed on destruction.
+// Appends rows to a journal (a line file, line_file.h). Move-only.
 class JournalWriter {
  public:
   // A new journal holding only `header`, written beside `path` and renamed over any earlier one.
@@ -59,14 +60,9 @@ class JournalWriter {
   // disk refuses it; the journal is then cut back to its last complete row.
   void append(const RunRow& row);
 
-  JournalWriter(JournalWriter&& other) noexcept;
-  JournalWriter& operator=(JournalWriter&&) = delete;
-  ~JournalWriter();
-
  private:
-  JournalWriter(std::string path, int fd);
-  std::string path_;
-  int fd_ = -1;
+  explicit JournalWriter(LineFileWriter file) : file_(std::move(file)) {}
+  LineFileWriter file_;
 };
 
 }  // namespace sdb

@@ -1,4 +1,5 @@
 #include "harness/bench/machine.h"
+#include "harness/bench/resources.h"
 #include "harness/gl/context.h"
 
 #include "harness/gpu/device_info.h"
@@ -12,10 +13,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -26,16 +27,6 @@
 
 namespace sdb {
 namespace {
-
-std::string first_line_of(const char* command) {
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command, "r"), pclose);
-  if (!pipe) return "";
-  std::array<char, 256> buf{};
-  if (!fgets(buf.data(), buf.size(), pipe.get())) return "";
-  std::string s = buf.data();
-  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-  return s;
-}
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -54,6 +45,28 @@ double memory_gib() {
 
 }  // namespace
 
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+// The machine as far as it shapes the rows; the probes' bandwidths are measured, not compared.
+std::string machine_difference(const MachineInfo& a, const MachineInfo& b) {
+  const std::pair<const char*, std::pair<std::string, std::string>> fields[] = {
+      {"CPU", {a.cpu_model, b.cpu_model}},
+      {"cores", {std::to_string(a.cores), std::to_string(b.cores)}},
+      {"Vulkan device", {a.vulkan_device, b.vulkan_device}},
+      {"Vulkan driver", {a.vulkan_driver, b.vulkan_driver}},
+      {"OpenGL renderer", {a.opengl_renderer, b.opengl_renderer}},
+      {"compiler", {a.compiler, b.compiler}},
+      {"build type", {a.build_type, b.build_type}}};
+  for (const auto& [what, values] : fields)
+    if (values.first != values.second) return std::string(what) + " '" + values.first + "', now '" + values.second + "'";
+  return "";
+}
+
 MachineInfo describe_machine(bool probe_devices) {
   MachineInfo m;
   m.cpu_model = cpu_model();
@@ -64,15 +77,16 @@ MachineInfo describe_machine(bool probe_devices) {
   if (const gl::DeviceInfo g = probe_devices ? gl::probe() : gl::DeviceInfo{}; g.available) {
     m.opengl_renderer = g.renderer;
     m.opengl_version = g.version;
+    m.opengl_device_type = g.software ? "cpu" : "gpu";
   }
   if (const gpu::DeviceInfo vk = probe_devices ? gpu::probe() : gpu::DeviceInfo{}; vk.available) {
     m.vulkan_device = vk.name;
     m.vulkan_driver = vk.driver_name + " " + vk.driver_info + " (" + vk.driver_version + ")";
     m.vulkan_api = vk.api_version;
+    m.vulkan_device_type = std::string(gpu::to_string(vk.type));
+    m.vulkan_memory_gib = double(vk.limits.device_local_bytes) / double(1ull << 30);
   }
-  m.git_commit = first_line_of("git -C " SDB_SOURCE_DIR " rev-parse --short HEAD 2>/dev/null");
-  if (!first_line_of("git -C " SDB_SOURCE_DIR " status --porcelain --untracked-files=no 2>/dev/null").empty())
-    m.git_commit += "-dirty";
+  m.git_commit = build_commit();
   return m;
 }
 

@@ -9,6 +9,13 @@ namespace sdb {
 // OpenGL context a run would use; the probes load the drivers, which costs llvmpipe its LLVM.
 MachineInfo describe_machine(bool probe_devices = true);
 
+// The first field, as far as it shapes rows, in which `now` differs from `journalled` ("CPU 'x',
+// now 'y'"; the probes' bandwidths are measured, not compared); "" when none does.
+std::string machine_difference(const MachineInfo& journalled, const MachineInfo& now);
+
+// Now, ISO 8601 in UTC (results' `created`).
+std::string utc_now();
+
 // Achievable write bandwidth in GB/s: sequential stores over a buffer several times the last-level
 // cache, best of five passes, on one thread and on `threads` TBB workers (the same buffer).
 struct CpuWriteBandwidth {

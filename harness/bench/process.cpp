@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
+#include <thread>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -37,14 +39,41 @@ pid_t spawn(const std::vector<std::string>& argv, const SpawnActions& actions) {
   return pid;
 }
 
-ProcessResult wait_for(pid_t pid, const std::string& name) {
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error("waiting for " + name + ": " + std::strerror(errno));
+ProcessResult result_of(int status) {
   ProcessResult r;
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
   return r;
+}
+
+ProcessResult wait_for(pid_t pid, const std::string& name) {
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw std::runtime_error("waiting for " + name + ": " + std::strerror(errno));
+  return result_of(status);
+}
+
+// Waits, polling, and ends the child once `timeout_s` has passed: SIGTERM (it may still write what
+// it has), then SIGKILL after a grace period.
+ProcessResult wait_for(pid_t pid, const std::string& name, double timeout_s) {
+  using clock = std::chrono::steady_clock;
+  const auto term_at = clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto kill_at = term_at + std::chrono::seconds(5);
+  bool termed = false, killed = false;
+  for (;;) {
+    int status = 0;
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done < 0 && errno != EINTR) throw std::runtime_error("waiting for " + name + ": " + std::strerror(errno));
+    if (done == pid) {
+      ProcessResult r = result_of(status);
+      r.timed_out = termed;
+      return r;
+    }
+    const auto now = clock::now();
+    if (!termed && now >= term_at) kill(pid, SIGTERM), termed = true;
+    if (!killed && now >= kill_at) kill(pid, SIGKILL), killed = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 }  // namespace
@@ -61,8 +90,13 @@ ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOpt
   if (options.quiet) {
     posix_spawn_file_actions_addopen(&actions.actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions.actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  } else if (!options.output_file.empty()) {
+    posix_spawn_file_actions_addopen(&actions.actions, STDOUT_FILENO, options.output_file.c_str(),
+                                     O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&actions.actions, STDOUT_FILENO, STDERR_FILENO);
   }
-  return wait_for(spawn(argv, actions), argv.at(0));
+  const pid_t pid = spawn(argv, actions);
+  return options.timeout_s > 0 ? wait_for(pid, argv.at(0), options.timeout_s) : wait_for(pid, argv.at(0));
 }
 
 ChannelProcess::ChannelProcess(const std::vector<std::string>& argv, int channel_fd) : name_(argv.at(0)) {

@@ -12,11 +12,15 @@ namespace sdb {
 
 struct ProcessOptions {
   bool quiet = false;  // stdout and stderr to /dev/null
+  std::string output_file;  // when set (and not quiet): stdout and stderr appended to this file
+  // > 0: a child still running after this many seconds is sent SIGTERM, and SIGKILL 5 s later.
+  double timeout_s = 0;
 };
 
 struct ProcessResult {
   int exit_code = -1;  // -1 when it did not exit normally
   int signal = 0;      // the signal that ended it, or 0
+  bool timed_out = false;  // ended by ProcessOptions::timeout_s
   // "exit code 1", "killed by signal 11 (SIGSEGV, Segmentation fault)"
   std::string describe() const;
 };

@@ -83,6 +83,19 @@ RunStatus status_from(const json& j) {
 
 std::string RunRow::name() const { return run_name(spelled(), backend, mesh, level); }
 
+bool on_cpu_implementation(const MachineInfo& m, Backend backend) {
+  if (backend == Backend::Vulkan) return m.vulkan_device_type == "cpu";
+  if (backend == Backend::OpenGl) return m.opengl_device_type == "cpu";
+  return false;
+}
+
+std::string cpu_implementation_words(const MachineInfo& m, Backend backend) {
+  if (!on_cpu_implementation(m, backend)) return "";
+  const bool vulkan = backend == Backend::Vulkan;
+  return (vulkan ? m.vulkan_device : m.opengl_renderer) + ", a CPU implementation of " + (vulkan ? "Vulkan" : "OpenGL") +
+         ", not a GPU";
+}
+
 void to_json(json& j, const RunRow& r) {
   j = {{"scheme", r.scheme},
        {"spec", r.spelled()},
@@ -213,6 +226,8 @@ void from_json(const json& j, RunRow& r) {
 void to_json(json& j, const MachineInfo& m) {
   j = {{"cpu_model", m.cpu_model},       {"cores", m.cores},
        {"memory_gib", m.memory_gib},     {"vulkan_device", m.vulkan_device},
+       {"vulkan_device_type", m.vulkan_device_type}, {"vulkan_memory_gib", m.vulkan_memory_gib},
+       {"opengl_device_type", m.opengl_device_type},
        {"opengl_renderer", m.opengl_renderer}, {"opengl_version", m.opengl_version},
        {"vulkan_driver", m.vulkan_driver}, {"vulkan_api", m.vulkan_api},
        {"compiler", m.compiler},         {"build_type", m.build_type},
@@ -224,6 +239,8 @@ void from_json(const json& j, MachineInfo& m) {
   m.cpu_model = j.value("cpu_model", ""), m.cores = whole(j, "cores", 0), m.memory_gib = number(j, "memory_gib", 0.0);
   m.vulkan_device = j.value("vulkan_device", ""), m.vulkan_driver = j.value("vulkan_driver", "");
   m.vulkan_api = j.value("vulkan_api", "");
+  m.vulkan_device_type = j.value("vulkan_device_type", ""), m.vulkan_memory_gib = number(j, "vulkan_memory_gib", 0.0);
+  m.opengl_device_type = j.value("opengl_device_type", "");
   m.opengl_renderer = j.value("opengl_renderer", ""), m.opengl_version = j.value("opengl_version", "");
   m.compiler = j.value("compiler", ""), m.build_type = j.value("build_type", ""), m.git_commit = j.value("git_commit", "");
   m.write_bandwidth_gbs = number(j, "write_bandwidth_gbs", 0.0);

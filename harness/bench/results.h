@@ -89,7 +89,13 @@ struct MachineInfo {
   int cores = 0;
   double memory_gib = 0;
   std::string vulkan_device, vulkan_driver, vulkan_api;
+  // Vulkan's own device type ("discrete", "integrated", "virtual", "cpu", "other"; "cpu" is Mesa's
+  // lavapipe, a CPU implementation of Vulkan) and its largest device-local heap; "" and 0 in files
+  // written before them.
+  std::string vulkan_device_type;
+  double vulkan_memory_gib = 0;
   std::string opengl_renderer, opengl_version;  // the opengl backend's context (EGL)
+  std::string opengl_device_type;  // "cpu" for Mesa's software rasterizers (llvmpipe), else "gpu"; "" unknown
   std::string compiler, build_type, git_commit;
   double write_bandwidth_gbs = 0;     // one thread, streaming store
   double write_bandwidth_mt_gbs = 0;  // all threads
@@ -123,6 +129,12 @@ struct PairedCell {
   double rate_ratio_median = 0, rate_ratio_min = 0, rate_ratio_max = 0;
   double time_ms_median = 0, peer_time_ms_median = 0;
 };
+
+// Whether `backend`'s rows ran on a CPU implementation of the GPU API (lavapipe, llvmpipe): such rows
+// test the device paths' correctness, their rates are not GPU figures.
+bool on_cpu_implementation(const MachineInfo& m, Backend backend);
+// "llvmpipe (LLVM 15.0.6, 256 bits), a CPU implementation of Vulkan, not a GPU" for such a backend, else "".
+std::string cpu_implementation_words(const MachineInfo& m, Backend backend);
 
 struct ResultsFile {
   int schema = kResultsSchema;

@@ -20,32 +20,10 @@ namespace sdb {
 
 namespace {
 
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-
 std::vector<std::string> run_names(const Plan& plan) {
   std::vector<std::string> names;
   for (const RunSpec& r : plan.runs) names.push_back(r.name());
   return names;
-}
-
-// The machine as far as it shapes the rows; the probes' bandwidths are measured, not compared.
-std::string machine_difference(const MachineInfo& a, const MachineInfo& b) {
-  const std::pair<const char*, std::pair<std::string, std::string>> fields[] = {
-      {"CPU", {a.cpu_model, b.cpu_model}},
-      {"cores", {std::to_string(a.cores), std::to_string(b.cores)}},
-      {"Vulkan device", {a.vulkan_device, b.vulkan_device}},
-      {"Vulkan driver", {a.vulkan_driver, b.vulkan_driver}},
-      {"OpenGL renderer", {a.opengl_renderer, b.opengl_renderer}},
-      {"compiler", {a.compiler, b.compiler}},
-      {"build type", {a.build_type, b.build_type}}};
-  for (const auto& [what, values] : fields)
-    if (values.first != values.second) return std::string(what) + " '" + values.first + "', now '" + values.second + "'";
-  return "";
 }
 
 std::string plan_difference(const std::vector<std::string>& journalled, const std::vector<std::string>& now) {

@@ -74,15 +74,20 @@ std::pair<PairedSide, const PairedCell*> fastest(const std::vector<PairedCell>& 
   return {best, nullptr};
 }
 
+// A backend's name, marked where its rows ran on a CPU implementation of the API.
+std::string backend_text(Backend b, const MachineInfo* machine) {
+  return std::string(to_string(b)) + (machine && on_cpu_implementation(*machine, b) ? "*" : "");
+}
+
 // The backend cells (paired.h) as lines: a GPU row's rate over its own scheme's cpu-mt rate.
-std::vector<std::string> backend_lines(const std::vector<PairedCell>& cells) {
+std::vector<std::string> backend_lines(const std::vector<PairedCell>& cells, const MachineInfo* machine) {
   std::vector<std::string> lines;
   for (const PairedCell& c : cells) {
     if (!is_backend_cell(c)) continue;
     if (lines.empty()) lines.push_back("GPU against the same scheme's CPU (paired rounds: median rate ratio, range over rounds):");
     char buf[320];
     std::snprintf(buf, sizeof buf, "  %-28s %-24s %-7s %.3fx %s (%.3f-%.3f over %d rounds; %.3f against %.3f ms)", c.mesh.c_str(),
-                  c.row.scheme.c_str(), std::string(to_string(c.row.backend)).c_str(), c.rate_ratio_median,
+                  c.row.scheme.c_str(), backend_text(c.row.backend, machine).c_str(), c.rate_ratio_median,
                   std::string(to_string(c.peer.backend)).c_str(), c.rate_ratio_min, c.rate_ratio_max, c.rounds,
                   c.time_ms_median, c.peer_time_ms_median);
     lines.push_back(buf);
@@ -92,7 +97,7 @@ std::vector<std::string> backend_lines(const std::vector<PairedCell>& cells) {
 
 }  // namespace
 
-std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells) {
+std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells, const MachineInfo* machine) {
   std::vector<std::string> lines;
   if (cells.empty()) return lines;
   std::map<std::string, std::set<Backend>> backends;
@@ -103,7 +108,7 @@ std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells) {
       double rate = 0;
       const auto [side, own] = fastest(cells, mesh, backend, rate);
       char buf[256];
-      std::snprintf(buf, sizeof buf, "  %-28s %-7s %-24s %9.2f Mtri/s", mesh.c_str(), std::string(to_string(backend)).c_str(),
+      std::snprintf(buf, sizeof buf, "  %-28s %-7s %-24s %9.2f Mtri/s", mesh.c_str(), backend_text(backend, machine).c_str(),
                     side.scheme.c_str(), rate);
       std::string line = buf;
       if (own) {
@@ -115,7 +120,13 @@ std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells) {
       }
       lines.push_back(line);
     }
-  for (std::string& line : backend_lines(cells)) lines.push_back(std::move(line));
+  for (std::string& line : backend_lines(cells, machine)) lines.push_back(std::move(line));
+  std::set<Backend> used;
+  for (const PairedCell& c : cells) used.insert({c.row.backend, c.peer.backend});
+  for (Backend b : used)
+    if (machine && on_cpu_implementation(*machine, b))
+      lines.push_back("* " + std::string(to_string(b)) + ": " + cpu_implementation_words(*machine, b) +
+                      ": its rates check the device path, they are not GPU figures");
   return lines;
 }
 

@@ -24,8 +24,9 @@ std::vector<std::string> summary_lines(const RunSummary& summary, const std::str
 // From the paired cells: for each mesh and backend, the fastest scheme (triangle rate from its
 // paired median time, either side of a cell) and, where it has a peer, its paired ratio with the
 // range over rounds; then each backend cell, a GPU row against its own scheme's cpu-mt row; no
-// lines without cells.
-std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells);
+// lines without cells. With `machine`, a backend that ran on a CPU implementation of its API
+// (lavapipe, llvmpipe) is marked "vulkan*" and a last line says what it is.
+std::vector<std::string> paired_lines(const std::vector<PairedCell>& cells, const MachineInfo* machine = nullptr);
 
 // Whether a closed input's row shows an open edge or a ray crack (rows on open inputs have their
 // boundary as open edges by design and no ray test).

@@ -71,3 +71,25 @@ TEST(PairedLines, ABackendCellHasItsOwnLineAndIsNoSchemesPeerRatio) {
   EXPECT_TRUE(has("0.250x cpu-mt (0.200-0.300 over 3 rounds; 2.000 against 0.500 ms)"));
   EXPECT_FALSE(has("0.25x cpatch/cpu-mt")) << "a backend cell read as a peer ratio";
 }
+
+TEST(PairedLines, RowsOnACpuImplementationOfVulkanAreMarkedAndSaidToBeNoGpu) {
+  PairedCell cell;
+  cell.mesh = "cube";
+  cell.row = {"cpatch", Backend::Vulkan, 17, 1000};
+  cell.peer = {"cpatch", Backend::CpuMt, 17, 1000};
+  cell.rounds = 3;
+  MachineInfo lavapipe;
+  lavapipe.vulkan_device = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  lavapipe.vulkan_device_type = "cpu";
+  const std::vector<std::string> lines = paired_lines({cell}, &lavapipe);
+  auto has = [&](const std::string& text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(has(" vulkan* ")) << ::testing::PrintToString(lines);
+  EXPECT_EQ(lines.back(), "* vulkan: llvmpipe (LLVM 15.0.6, 256 bits), a CPU implementation of Vulkan, not a GPU: its rates "
+                          "check the device path, they are not GPU figures");
+  MachineInfo gpu = lavapipe;
+  gpu.vulkan_device_type = "discrete";
+  const std::vector<std::string> plain = paired_lines({cell}, &gpu);
+  EXPECT_TRUE(std::none_of(plain.begin(), plain.end(), [](const std::string& l) { return l.find('*') != std::string::npos; }));
+}

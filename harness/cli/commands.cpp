@@ -170,6 +170,7 @@ Verbs register_commands(CLI::App& app) {
   add_run_verbs(app, verbs);
   add_gate_verbs(app, verbs);
   add_picture_verbs(app, verbs);
+  add_gpu_check_verbs(app, verbs);
   return verbs;
 }
 

@@ -22,10 +22,11 @@ Verbs register_commands(CLI::App& app);
 int run_selected(const CLI::App& app, const Verbs& verbs);  // the chosen verb's exit code
 
 // list, info (commands.cpp); validate, run (run_commands.cpp); bench, gate, report, paper and the
-// hidden workload (gate_commands.cpp); pictures (picture_commands.cpp).
+// hidden workload (gate_commands.cpp); pictures (picture_commands.cpp); gpu-check (gpu_check_commands.cpp).
 void add_mesh_verbs(CLI::App& app, Verbs& verbs);
 void add_run_verbs(CLI::App& app, Verbs& verbs);
 void add_gate_verbs(CLI::App& app, Verbs& verbs);
 void add_picture_verbs(CLI::App& app, Verbs& verbs);
+void add_gpu_check_verbs(CLI::App& app, Verbs& verbs);
 
 }  // namespace sdb::cli

@@ -16,6 +16,7 @@
 #include "harness/bench/plan.h"
 #include "harness/bench/process.h"
 #include "harness/bench/progress.h"
+#include "harness/bench/resources.h"
 #include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
@@ -30,8 +31,9 @@ namespace {
 struct GateOptions {
   std::vector<std::string> schemes, meshes, backends, inputs, runs;
   std::string workload_config;  // bench --workload FILE: the "workload" of a gate configuration
+  std::string machine_from;     // bench --machine-from FILE: its machine block, probes included
   std::vector<int> levels;
-  std::string out, baseline, current, config = SDB_SOURCE_DIR "/ci/gate.json";
+  std::string out, baseline, current, config = resource_path("ci/gate.json");
   std::string machine_baselines;  // gate: a folder of per-machine baselines (ci/baselines)
   bool record_machine = false;    // gate: copy --current into that folder, named for its machine
   bool callgrind = false, record = false;
@@ -59,9 +61,20 @@ void require_measured(const std::vector<RunSpec>& runs, const std::vector<RunRow
       throw InputError(spec.name(), "not measured (a size or device limit; `validate` says which)");
 }
 
+// bench --machine-from FILE: the machine block of a results file written here (gpu-check's device
+// stage), its probes included, so that several bench processes read their rows' bandwidth
+// fractions against one measurement instead of each paying for the probes.
+MachineInfo machine_from(const std::string& path) {
+  const MachineInfo here = describe_machine();
+  MachineInfo m = read_results(path).machine;
+  if (const std::string d = machine_difference(m, here); !d.empty() || m.git_commit != here.git_commit)
+    throw InputError(path, "describes another machine or build (" + (d.empty() ? "commit " + m.git_commit : d) + ")");
+  return m;
+}
+
 int bench(const GateOptions& opts) {
   if (!opts.out.empty()) prepare_output_folder(opts.out);
-  MeasureContext ctx(describe_machine());
+  MeasureContext ctx(opts.machine_from.empty() ? describe_machine() : machine_from(opts.machine_from));
   Selection sel;
   sel.schemes = opts.schemes, sel.meshes = opts.meshes, sel.backends = opts.backends, sel.levels = opts.levels;
   Plan plan;
@@ -72,7 +85,7 @@ int bench(const GateOptions& opts) {
   // The workload's rows may lack a device here (its Vulkan rows): the gate judges what is missing.
   const bool named = opts.workload_config.empty() && !opts.runs.empty();
   if (named) require_runnable(plan.runs);
-  ctx.probe_bandwidth();  // after the selection is known to be good: a bad one is said at once
+  if (opts.machine_from.empty()) ctx.probe_bandwidth();  // after the selection is known to be good: a bad one is said at once
   for (const auto& n : plan.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
   std::vector<std::string> args = {"subdivbench bench"};
   args.insert(args.end(), opts.bench_flags.begin(), opts.bench_flags.end());
@@ -105,7 +118,7 @@ int bench(const GateOptions& opts) {
     // Every row ran once per round: a row and its peer, or a GPU row and its scheme's cpu-mt row,
     // pair by round as they are (results.json's paired, the report's ratios).
     results.paired = pair_measured_rows(results.runs);
-    for (const std::string& line : paired_lines(results.paired)) std::printf("%s\n", line.c_str());
+    for (const std::string& line : paired_lines(results.paired, &results.machine)) std::printf("%s\n", line.c_str());
   }
   if (!opts.out.empty()) {
     write_results(results, (fs::path(opts.out) / "results.json").string());
@@ -265,6 +278,9 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   b->add_option("--run", opts->runs, "one benchmark, scheme/backend/mesh/level (repeatable; instead of the selection)");
   b->add_option("--workload", opts->workload_config, "the workload of a gate configuration (ci/gate.json) instead of the selection");
   b->add_option("--out", opts->out, "folder for results.json");
+  b->add_option("--machine-from", opts->machine_from,
+                "take the machine block and its bandwidth probes from this results file (of this machine and build) "
+                "instead of measuring the probes");
   b->add_option("--rounds", opts->rounds, "run in this many rounds, every benchmark once per round in random order "
                                           "(the gate pairs samples by round; at most 1000); default: Google Benchmark's flags")
       ->check(CLI::Range(0, kMaxRounds));

@@ -227,7 +227,7 @@ int run(const RunOptions& opts, bool selection_given) {
   set.publish(results, report_writer(opts, set.selection().selection));
   const RunSummary summary = summarise(results.runs);
   std::printf("\n");
-  for (const std::string& line : paired_lines(results.paired)) std::printf("%s\n", line.c_str());
+  for (const std::string& line : paired_lines(results.paired, &results.machine)) std::printf("%s\n", line.c_str());
   for (const std::string& line :
        summary_lines(summary, (std::filesystem::path(out) / "results.json").string(), opts.no_report ? "" : out))
     std::printf("%s\n", line.c_str());

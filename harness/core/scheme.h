@@ -126,6 +126,10 @@ struct SchemeInfo {
   // and every scheme runs on every mesh of it that it accepts.
   std::vector<std::string> default_meshes;
   std::vector<HeadlineRun> headline_runs;
+  // Meshes its large outputs are measured on (`subdivbench gpu-check`: 10-100 M triangles on a
+  // GPU), in order of preference: a real mesh big enough that the output comes from many patches
+  // at a moderate level. Empty: its headline runs' meshes, then its default meshes.
+  std::vector<std::string> large_meshes;
   std::vector<ParameterSpec> parameters;
 };
 

@@ -150,6 +150,8 @@ Context::Context() : egl_(std::make_unique<Egl>()) {
   info_.renderer = text(GL_RENDERER);
   info_.version = text(GL_VERSION);
   info_.vendor = text(GL_VENDOR);
+  for (const char* software : {"llvmpipe", "softpipe", "swrast"})
+    if (info_.renderer.rfind(software, 0) == 0) info_.software = true;
   info_.available = true;
 }
 

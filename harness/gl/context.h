@@ -40,6 +40,9 @@ struct DeviceInfo {
   std::string reason;                      // why not, when unavailable
   std::string renderer, version, vendor;   // GL_RENDERER, GL_VERSION, GL_VENDOR
   std::string platform;                    // "surfaceless" or "default display, pbuffer"
+  // The renderer is one of Mesa's software rasterizers (llvmpipe, softpipe): OpenGL on the CPU
+  // cores, not a GPU. OpenGL has no device type; these are the renderer names Mesa gives them.
+  bool software = false;
 };
 
 // A context current on the thread that made it (GL calls must come from that thread: the

@@ -137,6 +137,8 @@ class OsdGlCompute final : public Scheme {
                         " limit stencils at the vertices of depth-k refinement, evaluated by a GL compute shader";
     info_.peer = loop ? "osd-stencil-loop" : "osd-stencil";  // the same tables on the CPU
     info_.backends = {Backend::OpenGl};
+    // The meshes the methods' large outputs are measured on, for a same-device comparison.
+    info_.large_meshes = {loop ? "stanford/bunny" : "stein/sword_quad_dominant"};
   }
   const SchemeInfo& info() const override { return info_; }
   std::optional<std::string> unsupported(const RunRequest& r) const override {
