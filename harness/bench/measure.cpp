@@ -389,6 +389,8 @@ void record_output(RunRow& row, Evaluation& e) {
   row.triangles = static_cast<long>(out.num_triangles());
   row.vertices = static_cast<long>(out.num_vertices());
   row.bytes_out = static_cast<long>(e.bytes_out());
+  if (const std::string note = e.note(); !note.empty() && row.message.find(note) == std::string::npos)
+    row.message += (row.message.empty() ? "" : "; ") + note;
 }
 
 void enter_stage(const MeasureOptions& o, const char* stage, const RunRow& row) {

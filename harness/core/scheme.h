@@ -122,6 +122,9 @@ class Evaluation {
   // Bytes the evaluation writes per execute() (its output buffers), for the bandwidth bound.
   virtual size_t bytes_out() const = 0;
   virtual std::optional<GpuTimes> gpu_times() const { return std::nullopt; }
+  // What the row should say of this output beside its figures (a limit the scheme could not take
+  // exactly, say); empty: nothing. Recorded in the row's message.
+  virtual std::string note() const { return {}; }
 };
 
 class Scheme {
