@@ -132,11 +132,13 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule) {
   LimitPlan plan;
   plan.face_size = l.face_size;
   plan.num_vertices = l.num_vertices;
-  plan.regular_corner = vertex_corners(l);
+  plan.ring_size = catmark ? 8 : 6;
+  const std::vector<uint32_t> corners = vertex_corners(l);
+  plan.regular_ring.assign(size_t(plan.ring_size) * l.num_vertices, kNone);
   std::vector<float> sharpness;
   Masks masks;
   for (uint32_t v = 0; v < l.num_vertices; ++v) {
-    const uint32_t start = plan.regular_corner[v];
+    const uint32_t start = corners[v];
     if (start == kNone) continue;  // in no face: no limit (Far leaves it), none written
     Ring r = walk(l, start);
     sharpness.clear();
@@ -151,8 +153,15 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule) {
     }
     if (vs < kInfiniteSharpness) plan.largest_sharpness_left = std::max(plan.largest_sharpness_left, vs);
     plan.semi_sharp_vertices += semi;
-    if (regular(l, r, sharp, vs)) continue;
-    plan.regular_corner[v] = kNone;
+    if (regular(l, r, sharp, vs)) {
+      uint32_t* ring = &plan.regular_ring[size_t(plan.ring_size) * v];
+      for (size_t i = 0; i < r.corners.size(); ++i) {
+        const uint32_t nc = next_corner(r.corners[i], l.face_size);
+        ring[i] = l.verts[nc];
+        if (catmark) ring[4 + i] = l.verts[next_corner(nc, 4)];
+      }
+      continue;
+    }
     const Sdc::Crease::Rule vrule =
         Sdc::Crease().DetermineVertexVertexRule(vs, static_cast<int>(sharpness.size()), sharpness.data());
     if (vrule == Sdc::Crease::RULE_CREASE && !r.boundary()) {
@@ -212,25 +221,19 @@ RegularConstants regular_constants(uint32_t face_size) {
 }
 
 void project_regular(const LimitPlan& plan, const Projection& p, uint32_t first, uint32_t last) {
-  const uint32_t n = plan.face_size;
-  const RegularConstants rc = regular_constants(n);
+  const RegularConstants rc = regular_constants(plan.face_size);
   const float k0 = rc.k[0], k1 = rc.k[1], k2 = rc.k[2];
-  const uint32_t *verts = p.verts, *twin = p.twin, stride = p.stride;
+  const uint32_t stride = p.stride, size = plan.ring_size;
   const float* points = p.points;
   const P3 origin{p.origin[0], p.origin[1], p.origin[2]};
   for (uint32_t v = first; v < last; ++v) {
-    uint32_t c = plan.regular_corner[v];
-    if (c == kNone) continue;
+    const uint32_t* ring = &plan.regular_ring[size_t(size) * v];
+    if (ring[0] == kNone) continue;
     const P3 centre = load(points, stride, v);
     P3 pos, t1, t2;
-    if (n == 4) {
+    if (size == 8) {
       P3 e[4], d[4];
-      for (int i = 0; i < 4; ++i) {
-        const uint32_t nc = next_corner(c, 4);
-        e[i] = load(points, stride, verts[nc]);
-        d[i] = load(points, stride, verts[next_corner(nc, 4)]);
-        c = twin[prev_corner(c, 4)];
-      }
+      for (int i = 0; i < 4; ++i) e[i] = load(points, stride, ring[i]), d[i] = load(points, stride, ring[4 + i]);
       pos = d[0] * k0 + d[1] * k0 + d[2] * k0 + d[3] * k0 + e[0] * k1 + e[1] * k1 + e[2] * k1 + e[3] * k1 + centre * k2;
       // tan1: faces (1, -1, -1, 1), edges (4, 0, -4, 0); tan2: faces (1, 1, -1, -1), edges (0, 4, 0, -4).
       const P3 d02 = d[0] - d[2], d13 = d[1] - d[3];
@@ -238,10 +241,7 @@ void project_regular(const LimitPlan& plan, const Projection& p, uint32_t first,
       t2 = (d02 + d13) + (e[1] - e[3]) * 4.0f;
     } else {
       P3 e[6];
-      for (int i = 0; i < 6; ++i) {
-        e[i] = load(points, stride, verts[next_corner(c, 3)]);
-        c = twin[prev_corner(c, 3)];
-      }
+      for (int i = 0; i < 6; ++i) e[i] = load(points, stride, ring[i]);
       pos = e[0] * k0 + e[1] * k0 + e[2] * k0 + e[3] * k0 + e[4] * k0 + e[5] * k0 + centre * k1;
       // tan1: (1, .5, -.5, -1, -.5, .5); tan2: (0, r, r, 0, -r, -r), r = sqrt(3) / 2.
       const P3 d14 = e[1] - e[4], d25 = e[2] - e[5];

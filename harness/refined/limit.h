@@ -4,7 +4,9 @@
 //
 // Most vertices of a refined level are regular and smooth (Catmull-Clark: interior, valence 4;
 // Loop: valence 6; no sharp edge but at most one, no vertex sharpness), and their masks are
-// constants: those are computed from the ring on the fly (a walk of the level's corners, no table).
+// constants: those take their ring's vertices from a list made with the plan (8 or 6 a vertex)
+// and apply the constants. (Walking the ring through the level's twins in the frame instead was
+// a chain of dependent loads per vertex: most of the cpu's frame on the sword.)
 // The rest, the "special" vertices (extraordinary, creased, on a boundary: a few per base vertex
 // and 2^k per base crease or boundary edge), get their masks from Sdc itself when the plan is made,
 // as a table of ring vertices and weights. Where sharpness is left at the level (a semi-sharp
@@ -22,8 +24,11 @@ namespace sdb::refined {
 struct LimitPlan {
   uint32_t face_size = 4;
   uint32_t num_vertices = 0;
-  // Per vertex: the corner its regular walk starts at, kNone for a special vertex.
-  std::vector<uint32_t> regular_corner;
+  // Per vertex, `ring_size` entries (8: the other ends of its edges e0..e3 counter-clockwise, then
+  // the vertices opposite it in faces 0..3; 6: the edges' other ends): its regular ring, or kNone
+  // first for a special vertex (or one in no face).
+  uint32_t ring_size = 8;
+  std::vector<uint32_t> regular_ring;
   // The special vertices, and for each its entries [begin[i], begin[i + 1]): ring vertex and three
   // weights (position, first tangent, second tangent), face weights first, then edges, then the
   // vertex itself (PrimvarRefiner::Limit's order).
@@ -51,8 +56,6 @@ LimitPlan plan_limit(const FaceLevel& level, SubdivisionRule rule);
 // [first, last) of plan.special: from the level's points (xyz, `stride` floats apart).
 // shaders/limit.comp does the same operations in the same order.
 struct Projection {
-  const uint32_t* verts;
-  const uint32_t* twin;
   const float* points;
   uint32_t stride;
   float origin[3];

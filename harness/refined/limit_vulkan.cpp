@@ -9,7 +9,7 @@ namespace shaders = sdb_refined_shaders;
 constexpr uint32_t kLocalSize = 64;
 
 struct Push {
-  uint32_t count = 0, face_size = 0, pad0 = 0, pad1 = 0;
+  uint32_t count = 0, ring_size = 0, pad0 = 0, pad1 = 0;
   float origin[4] = {0, 0, 0, 0};
   float k[4] = {0, 0, 0, 0};
 };
@@ -19,8 +19,7 @@ gpu::ComputePipelineDesc desc(const char* shader) {
   return {shaders::get(shader),
           {Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
            Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::UniformTexelBuffer,
-           Binding::UniformTexelBuffer, Binding::UniformTexelBuffer, Binding::StorageTexelBuffer,
-           Binding::StorageTexelBuffer},
+           Binding::StorageTexelBuffer, Binding::StorageTexelBuffer},
           sizeof(Push),
           {{0, kLocalSize}}};
 }
@@ -28,15 +27,16 @@ gpu::ComputePipelineDesc desc(const char* shader) {
 }  // namespace
 
 uint64_t VulkanLimit::table_bytes(const LimitPlan& p) {
-  return 4 * (uint64_t(p.regular_corner.size()) + p.special.size() + p.begin.size() + p.ring.size() + p.weights.size()) + 80;
+  return 4 * (uint64_t(p.regular_ring.size()) + p.special.size() + p.begin.size() + p.ring.size() + p.weights.size()) + 80;
 }
 
 VulkanLimit::VulkanLimit(gpu::Context& ctx, const LimitPlan& plan)
     : ctx_(&ctx),
+      ring_size_(plan.ring_size),
       face_size_(plan.face_size),
       vertices_(plan.num_vertices),
       specials_(static_cast<uint32_t>(plan.special.size())),
-      regular_corner_(gpu::texel_table(ctx, plan.regular_corner, "limit: regular corners")),
+      regular_ring_(gpu::texel_table(ctx, plan.regular_ring, "limit: regular rings")),
       special_(gpu::texel_table(ctx, plan.special, "limit: special vertices")),
       begin_(gpu::texel_table(ctx, plan.begin, "limit: entry ranges")),
       ring_(gpu::texel_table(ctx, plan.ring, "limit: ring vertices")),
@@ -44,17 +44,16 @@ VulkanLimit::VulkanLimit(gpu::Context& ctx, const LimitPlan& plan)
       regular_(gpu::shared_compute_pipeline(ctx, desc("limit_regular.comp"))),
       special_pass_(gpu::shared_compute_pipeline(ctx, desc("limit_special.comp"))) {}
 
-void VulkanLimit::bind(const gpu::Buffer& points, const gpu::Buffer& verts, const gpu::Buffer& twin,
-                       const gpu::Buffer& positions, const gpu::Buffer& normals) {
+void VulkanLimit::bind(const gpu::Buffer& points, const gpu::Buffer& positions, const gpu::Buffer& normals) {
   constexpr VkFormat u = VK_FORMAT_R32_UINT, f = VK_FORMAT_R32_SFLOAT;
-  set_ = gpu::DescriptorSet(*regular_, {points.texels(VK_FORMAT_R32G32B32A32_SFLOAT), verts.texels(u), twin.texels(u),
-                                        regular_corner_.texels(u), special_.texels(u), begin_.texels(u), ring_.texels(u),
-                                        weights_.texels(f), positions.texels(f), normals.texels(f)});
+  set_ = gpu::DescriptorSet(*regular_, {points.texels(VK_FORMAT_R32G32B32A32_SFLOAT), regular_ring_.texels(u),
+                                        special_.texels(u), begin_.texels(u), ring_.texels(u), weights_.texels(f),
+                                        positions.texels(f), normals.texels(f)});
 }
 
 void VulkanLimit::record(gpu::Commands& cmd, gpu::GpuTimer& timer, const float origin[3]) const {
   Push p;
-  p.face_size = face_size_;
+  p.ring_size = ring_size_;
   for (int k = 0; k < 3; ++k) p.origin[k] = origin[k];
   const RegularConstants rc = regular_constants(face_size_);
   for (int k = 0; k < 3; ++k) p.k[k] = rc.k[k];

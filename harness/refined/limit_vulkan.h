@@ -16,17 +16,16 @@ class VulkanLimit {
   VulkanLimit(gpu::Context& ctx, const LimitPlan& plan);
   // Device bytes the plan's tables take, for gpu::check_memory before anything is made.
   static uint64_t table_bytes(const LimitPlan& plan);
-  // The level: points (rgba32f texels), its corners' vertices and twins (r32ui); the output's
-  // positions and normals (r32f texels, three floats a vertex).
-  void bind(const gpu::Buffer& points, const gpu::Buffer& verts, const gpu::Buffer& twin, const gpu::Buffer& positions,
-            const gpu::Buffer& normals);
+  // The level's points (rgba32f texels); the output's positions and normals (r32f texels, three
+  // floats a vertex).
+  void bind(const gpu::Buffer& points, const gpu::Buffer& positions, const gpu::Buffer& normals);
   // Both passes, each under the timer, positions moved by `origin`.
   void record(gpu::Commands& cmd, gpu::GpuTimer& timer, const float origin[3]) const;
 
  private:
   gpu::Context* ctx_;
-  uint32_t face_size_, vertices_, specials_;
-  gpu::Buffer regular_corner_, special_, begin_, ring_, weights_;
+  uint32_t ring_size_, face_size_, vertices_, specials_;
+  gpu::Buffer regular_ring_, special_, begin_, ring_, weights_;
   std::shared_ptr<const gpu::ComputePipeline> regular_, special_pass_;
   gpu::DescriptorSet set_;
 };

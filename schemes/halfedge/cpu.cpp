@@ -40,8 +40,7 @@ class CpuEvaluation final : public Evaluation {
     const std::vector<Point3>& last = points_.back();
     Tessellation& out = s_.out;
     if (s_.project) {
-      const Level& l = s_.last();
-      refined::Projection p{l.vert.data(), l.twin.data(), last[0].data(), 3,
+      refined::Projection p{last[0].data(), 3,
                             {s_.origin[0], s_.origin[1], s_.origin[2]}, out.positions.data(), out.normals.data()};
       refined::project(s_.limit, p, multithreaded_);
       return;

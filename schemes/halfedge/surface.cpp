@@ -46,6 +46,10 @@ Surface::Surface(const ControlMesh& mesh, SubdivisionRule r, int d, bool p)
   out.triangles = refined::level_triangles(l.vert.data(), l.num_halfedges, n);
   out.positions.resize(l.num_vertices);
   out.normals.resize(l.num_vertices);
+  // The frame reads nothing of the last level's halfedges (its points come from the level before,
+  // the limit from the plan's rings): free them.
+  Level& kept = hierarchy.levels.back();
+  for (auto* v : {&kept.twin, &kept.vert, &kept.edge, &kept.edge_corner, &kept.vertex_corner}) std::vector<uint32_t>().swap(*v);
 }
 
 std::string semi_sharp_note(const Surface& s) {

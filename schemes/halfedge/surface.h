@@ -23,6 +23,7 @@ struct Surface {
   refined::LimitPlan limit;  // empty without projection
   float origin[3];           // the control box's centre: levels are refined relative to it (float keeps its precision)
   Tessellation out;          // triangles and coords; positions and normals sized
+  // The last level: its counts and sharpness (its halfedges are freed once the output is laid out).
   const Level& last() const { return hierarchy.levels.back(); }
 };
 

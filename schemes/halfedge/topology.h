@@ -36,7 +36,7 @@ struct Level {
 
   uint32_t next(uint32_t h) const { return face_size ? refined::next_corner(h, face_size) : next_of[h]; }
   uint32_t prev(uint32_t h) const { return face_size ? refined::prev_corner(h, face_size) : prev_of[h]; }
-  uint32_t face(uint32_t h) const { return face_size ? h / face_size : face_of[h]; }
+  uint32_t face(uint32_t h) const { return face_size == 4 ? h >> 2 : face_size == 3 ? h / 3 : face_of[h]; }
   float sharpness_of_edge(uint32_t e) const { return edge_sharpness.empty() ? 0.0f : edge_sharpness[e]; }
   float sharpness_of_vertex(uint32_t v) const { return vertex_sharpness.empty() ? 0.0f : vertex_sharpness[v]; }
   // The face-level view of this level (corners = halfedges), for the limit and the output.

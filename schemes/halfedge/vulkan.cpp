@@ -79,9 +79,11 @@ class VulkanEvaluation final : public Evaluation {
     const Level& last = s_.last();
     for (size_t d = 0; d < levels().size(); ++d) {
       const Level& l = levels()[d];
-      gpu::check_texel_binding(*ctx_, l.num_halfedges, "a level's halfedges");
-      device += 16 * uint64_t(l.num_vertices) + 8 * l.num_halfedges;
-      if (&l != &last) device += 4 * (l.num_halfedges + l.num_edges + l.num_vertices);
+      device += 16 * uint64_t(l.num_vertices);
+      if (&l != &last) {
+        gpu::check_texel_binding(*ctx_, l.num_halfedges, "a level's halfedges");
+        device += 4 * (3 * l.num_halfedges + l.num_edges + l.num_vertices);
+      }
       device += 4 * (l.edge_sharpness.size() + l.vertex_sharpness.size());
     }
     output_bytes_ = std::max<uint64_t>(12 * uint64_t(last.num_vertices), 16);
@@ -104,9 +106,9 @@ class VulkanEvaluation final : public Evaluation {
       LevelBuffers b;
       b.points = gpu::Buffer::device(c, std::max<uint64_t>(16 * uint64_t(l.num_vertices), 16),
                                      BufferUsage::UniformTexel | BufferUsage::StorageTexel, "points" + at);
-      b.twin = table(c, l.twin, "twins" + at);
-      b.vert = table(c, l.vert, "vertices" + at);
-      if (d + 1 < levels().size()) {
+      if (d + 1 < levels().size()) {  // the last level's halfedges are not read (surface.h)
+        b.twin = table(c, l.twin, "twins" + at);
+        b.vert = table(c, l.vert, "vertices" + at);
         b.edge = table(c, l.edge, "edges" + at);
         b.edge_corner = table(c, l.edge_corner, "edge halfedges" + at);
         b.vertex_corner = table(c, l.vertex_corner, "vertex halfedges" + at);
@@ -157,10 +159,10 @@ class VulkanEvaluation final : public Evaluation {
                                                        c.edge_sharpness.texels(kFloat), c.vertex_sharpness.texels(kFloat),
                                                        weights_.texels(kFloat), base_.texels(kWord)});
     }
-    const LevelBuffers& last = buffers_.back();
+    const LevelBuffers& last = buffers_.back();  // its points only
     if (s_.project) {
       limit_.emplace(*ctx_, s_.limit);
-      limit_->bind(last.points, last.vert, last.twin, positions_, normals_);
+      limit_->bind(last.points, positions_, normals_);
     } else {
       output_ = gpu::shared_compute_pipeline(
           *ctx_, {shaders::get("points_out.comp"), {gpu::Binding::UniformTexelBuffer, gpu::Binding::StorageTexelBuffer},

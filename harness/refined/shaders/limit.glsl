@@ -6,19 +6,17 @@
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0) uniform samplerBuffer points;           // the level's points, xyz of rgba32f texels
-layout(binding = 1) uniform usamplerBuffer verts;           // the level's corner vertices
-layout(binding = 2) uniform usamplerBuffer twin;            // and twins (kNone at a boundary)
-layout(binding = 3) uniform usamplerBuffer regular_corner;  // per vertex, kNone for a special one
-layout(binding = 4) uniform usamplerBuffer special;         // the special vertices
-layout(binding = 5) uniform usamplerBuffer begin;           // their entries' ranges
-layout(binding = 6) uniform usamplerBuffer ring;            // the entries' vertices
-layout(binding = 7) uniform samplerBuffer weights;          // and weights, three an entry
-layout(binding = 8, r32f) uniform restrict writeonly imageBuffer out_position;  // packed xyz
-layout(binding = 9, r32f) uniform restrict writeonly imageBuffer out_normal;
+layout(binding = 1) uniform usamplerBuffer regular_ring;    // per vertex, ring_size entries (kNone first: special)
+layout(binding = 2) uniform usamplerBuffer special;         // the special vertices
+layout(binding = 3) uniform usamplerBuffer begin;           // their entries' ranges
+layout(binding = 4) uniform usamplerBuffer ring;            // the entries' vertices
+layout(binding = 5) uniform samplerBuffer weights;          // and weights, three an entry
+layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_position;  // packed xyz
+layout(binding = 7, r32f) uniform restrict writeonly imageBuffer out_normal;
 
 layout(push_constant) uniform Push {
   uint count;      // vertices (regular pass) or special vertices (special pass)
-  uint face_size;  // 4 or 3
+  uint ring_size;  // 8 (Catmull-Clark) or 6 (Loop)
   uint pad0, pad1;
   vec4 origin;     // added to every position
   vec4 k;          // the regular masks' constants from the CPU (GLSL's constant division is not C++'s)

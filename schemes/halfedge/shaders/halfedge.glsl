@@ -41,16 +41,21 @@ uint twin(uint h) { return texelFetch(twin_of, int(h)).x; }
 uint vert(uint h) { return texelFetch(vert_of, int(h)).x; }
 uint edge(uint h) { return texelFetch(edge_of, int(h)).x; }
 uint next_h(uint h) {
+  if (pc.face_size == 4u) return (h & ~3u) | ((h + 1u) & 3u);
   if (pc.face_size == 0u) return texelFetch(base, int(pc.base_next + h)).x;
   const uint i = h % pc.face_size;
   return h - i + (i + 1u == pc.face_size ? 0u : i + 1u);
 }
 uint prev_h(uint h) {
+  if (pc.face_size == 4u) return (h & ~3u) | ((h + 3u) & 3u);
   if (pc.face_size == 0u) return texelFetch(base, int(pc.base_prev + h)).x;
   const uint i = h % pc.face_size;
   return h - i + (i == 0u ? pc.face_size - 1u : i - 1u);
 }
-uint face_h(uint h) { return pc.face_size == 0u ? texelFetch(base, int(pc.base_face + h)).x : h / pc.face_size; }
+uint face_h(uint h) {
+  if (pc.face_size == 4u) return h >> 2;
+  return pc.face_size == 0u ? texelFetch(base, int(pc.base_face + h)).x : h / pc.face_size;
+}
 vec3 point(uint v) { return texelFetch(src, int(v)).xyz; }
 vec3 new_point(uint v) { return texelFetch(dst_read, int(v)).xyz; }
 void store(uint v, vec3 p) { imageStore(dst, int(v), vec4(p, 0.0)); }

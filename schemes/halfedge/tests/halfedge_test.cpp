@@ -167,3 +167,30 @@ TEST(Halfedge, BuiltinsEqualFarRefinement) {
 }
 
 }  // namespace
+
+namespace {
+
+// A level past 32-bit indices is refused before anything is made (an Unsupported row, exit 2 at
+// `validate`), not allocated: 81,920 triangles at depth 8 would be 1.6e10 halfedges.
+TEST(Halfedge, DepthsPastIndicesAreRefusedUpFront) {
+  const ControlMesh big = gen::icosphere(6);
+  for (SubdivisionRule rule : {SubdivisionRule::Loop, SubdivisionRule::CatmullClark}) {
+    const SchemeInfo& info = find_scheme(scheme_name(rule))->info();
+    EXPECT_THROW(halfedge::make_evaluation(big, rule, default_request(info, Backend::Cpu, 8), true), Unsupported);
+  }
+}
+
+// Where a semi-sharp crease outlasts the depth the row says so (Far's masks take the sharpness
+// left as infinite: not the limit there); once it has decayed, nothing is said.
+TEST(Halfedge, SemiSharpnessLeftAtTheDepthIsNoted) {
+  const ControlMesh cube = gen::creased_cube(2.0f);
+  const SchemeInfo& info = find_scheme("halfedge-cc")->info();
+  for (int depth = 1; depth <= 3; ++depth) {
+    auto e = halfedge::make_evaluation(cube, SubdivisionRule::CatmullClark, default_request(info, Backend::Cpu, depth), true);
+    const std::string note = e->note();
+    if (depth < 2) EXPECT_NE(note.find("semi-sharp creases outlast depth 1"), std::string::npos) << note;
+    else EXPECT_TRUE(note.empty()) << depth << ": " << note;
+  }
+}
+
+}  // namespace
