@@ -160,7 +160,8 @@ class Evaluation {
   virtual size_t bytes_out() const = 0;
   virtual std::optional<GpuTimes> gpu_times() const { return std::nullopt; }
   // What the row should say besides its figures, one sentence each: how prepare() came by its
-  // input when that is news (a cached geometry image refused and refitted). A scheme never prints.
+  // input when that is news (a cached geometry image refused and refitted), a limit the scheme
+  // could not take exactly (semi-sharp creases left at the depth). A scheme never prints.
   virtual std::vector<std::string> notes() const { return {}; }
 };
 
