@@ -158,7 +158,7 @@ TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
         } catch (const Unsupported& e) {
           std::printf("  %s depth %d: osd-stencil %.2g of the diagonal from osd-uniform; no reference: %s\n", name.c_str(),
                       depth, apart, e.what());
-          ++unjudged;  // OpenSubdiv 3.5.0's Bfr cannot be trusted there (harness/reference/bfr_defect.h)
+          ++unjudged;  // the yardstick refuses faces folded onto each other (harness/reference/README.md)
           continue;
         }
         const double stencil_off = measure_deviation(s, *ref).pos_max_rel_diag;
@@ -186,7 +186,8 @@ TEST(OsdStencil, GivesOsdUniformsOutputVertexForVertexOnTheCorpus) {
   if (on_device) {
     EXPECT_GE(gl_checked, 100);
   }
-  EXPECT_LE(unjudged, 3) << "the shapes OpenSubdiv 3.5.0's Bfr misbuilds (reference_test's BfrDefect)";
+  EXPECT_LE(unjudged, 4) << "the shapes whose faces fold onto each other, where the yardstick has no limit "
+                           "(catmark_nonman_edges, catmark_nonman_quadpole8, 64 and 360)";
   EXPECT_LE(refused, 6) << "non-manifold shapes whose masks overrun OpenSubdiv's (catmark_fan, catmark_nonman_edge100, "
                            "catmark_val2_nonman, loop_nonman_edge100, loop_nonman_edges, loop_val2_interior)";
   EXPECT_GT(same, 60);
@@ -233,16 +234,22 @@ TEST(OsdGlCompute, GivesOsdStencilsOutputOnTheDevice) {
 
 TEST(OsdBfrLoop, LiesOnTheLoopLimitOfTheCorpus) {
   if (!corpus_dir()) GTEST_SKIP() << "shared corpus not found beside the checkout";
-  int meshes = 0;
+  int meshes = 0, refused = 0;
   for (const std::string& name : corpus_shapes(SubdivisionRule::Loop)) {
     const ControlMesh mesh = load_mesh(name);
-    if (bfr_overlapping_patch_defect(mesh)) continue;  // neither the reference nor osd-bfr-loop takes it
-    const LimitEvaluator ref(mesh, SubdivisionRule::Loop);
-    for (int rate : {5, 17})
-      EXPECT_LE(measure_deviation(run("osd-bfr-loop", mesh, Backend::CpuMt, rate), ref).pos_max_rel_diag, 1e-5)
-          << name << " N=" << rate;
-    ++meshes;
+    try {
+      const LimitEvaluator ref(mesh, SubdivisionRule::Loop);
+      for (int rate : {5, 17})
+        EXPECT_LE(measure_deviation(run("osd-bfr-loop", mesh, Backend::CpuMt, rate), ref).pos_max_rel_diag, 1e-5)
+            << name << " N=" << rate;
+      ++meshes;
+    } catch (const std::exception& e) {  // refused up front, with the reason, by osd-bfr-loop or the yardstick
+      if (!dynamic_cast<const InputError*>(&e) && !dynamic_cast<const Unsupported*>(&e)) throw;
+      std::printf("  %s refused: %s\n", name.c_str(), e.what());
+      ++refused;
+    }
   }
+  std::printf("osd-bfr-loop on the Loop limit of %d corpus shapes, %d refused\n", meshes, refused);
   EXPECT_GE(meshes, 20);
 }
 
