@@ -24,6 +24,7 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, D
     compile_primitives(m_.atlas, m_.lod, depth, out_);
   }
   a_.resize(inner_nodes), b_.resize(inner_nodes);
+  if (m_.base_tangents.level >= 0) base_.resize(control_.size());
   if (!m_.pick.empty()) limit_.resize(inner_nodes);
   // A triangle's (u, v) is Loop's parametrization, which names no point of the Catmull-Clark
   // reference (whose ptex faces split a triangle in three): quad/triangle rows carry none.
@@ -35,6 +36,7 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, D
 void CpuMipghEvaluation::run() {
   const float* o = m_.origin;
   for (size_t v = 0; v < control_.size(); ++v) a_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2]};
+  if (m_.base_tangents.level >= 0) std::copy_n(a_.begin(), control_.size(), base_.begin());  // level 0, kept
   V3 *src = a_.data(), *dst = b_.data();
   if (m_.lod.adaptive()) {
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) {
@@ -55,13 +57,14 @@ void CpuMipghEvaluation::run() {
   // The limit is written straight into the output, moved back by the origin there; or over the
   // spare buffer and limit_ where the depth's grid points are picked from a deeper level.
   const std::vector<uint32_t>& pick = m_.pick;
+  const BaseLevel base{m_.base_tangents, base_.data()};
   if (pick.empty()) {
     const V3 origin{o[0], o[1], o[2]};
     m_.processor.project(m_.inner_depth(), src, reinterpret_cast<V3*>(out_.positions.data()),
-                         reinterpret_cast<V3*>(out_.normals.data()), multithreaded_, &origin);
+                         reinterpret_cast<V3*>(out_.normals.data()), multithreaded_, &origin, &base);
     return;
   }
-  m_.processor.project(m_.inner_depth(), src, dst, limit_.data(), multithreaded_);
+  m_.processor.project(m_.inner_depth(), src, dst, limit_.data(), multithreaded_, nullptr, &base);
   for (size_t i = 0; i < n; ++i) {
     const size_t k = pick[i];
     out_.positions[i] = {dst[k].x + o[0], dst[k].y + o[1], dst[k].z + o[2]};

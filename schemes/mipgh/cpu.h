@@ -32,6 +32,7 @@ class CpuMipghEvaluation final : public Evaluation {
   bool multithreaded_;
   std::unique_ptr<tbb::task_arena> arena_;
   std::vector<V3> a_, b_, limit_;
+  std::vector<V3> base_;  // level 0, for the D-vertices' tangents (vertex_tangents.h)
   AdaptiveOutput adaptive_;
   Tessellation out_;
 };

@@ -49,6 +49,9 @@ MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topo
       shader(make_shader(rule, sdc_options(mesh))),
       processor(atlas, lod, tags, *shader),
       pick(inner > depth && render.empty() ? same_points_at(atlas, lod, depth, inner) : std::vector<uint32_t>{}),
+      base_tangents(project && render.empty() && rule != MeshRule::QuadTri
+                        ? compose_base_tangents(processor, *shader, atlas.num_vertices, inner)
+                        : BaseTangents{}),
       depth_(depth),
       project_(project) {
   for (int v = 0; v < atlas.num_vertices; ++v)

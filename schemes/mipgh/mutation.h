@@ -43,6 +43,8 @@ class MeshMutation {
   // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
   // depth's grid points: output node i is inner node pick[i] (empty: the same level, or adaptive).
   const std::vector<uint32_t> pick;
+  // Uniform projection: the D-vertices' limit tangents as weights on level 0 (vertex_tangents.h).
+  const BaseTangents base_tangents;
   float origin[3];  // levels are refined relative to the control box's centre: float keeps its precision
 
  private:

@@ -295,28 +295,34 @@ void MeshProcessor::visit_edge(int sigma, int e, const V3* src, V3* dst) const {
   }
 }
 
-void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk) const {
+void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk,
+                                  std::vector<float>* far_half) const {
   const int n = lod_.layout(sigma).n;
   const int begin = atlas_.ring_offsets[v], faces = atlas_.ring_offsets[v + 1] - begin;
   const bool boundary = atlas_.vertex_boundary[v];
   disk.resize(faces + boundary, faces);
   disk.sided = true;
-  disk.c = src[v];
+  // No positions (src null): the disk's tags alone, for vertex_tangents.cpp.
+  const V3 none{0, 0, 0};
+  auto at = [&](uint32_t node) { return src ? src[node] : none; };
+  disk.c = at(v);
   const int last = (1 << sigma) - 1;
   const bool child = sigma < lod_.depth() && tags_.any;
   // The micro-edge of the side next to v: index 0 from the major halfedge's start.
-  auto sharpness = [&](int level, int facet, int side, bool v_at_start) {
+  // far: the one after it (at sigma + 1, the other half of the level-sigma micro-edge).
+  auto sharpness = [&](int level, int facet, int side, bool v_at_start, bool far = false) {
     const int e = atlas_.facet_edges[facet][side];
     const bool at_major_start = v_at_start != bool(atlas_.facet_side_minor[facet][side]);
-    return tags_.micro_edge(level, e, at_major_start ? 0 : (level == sigma ? last : 2 * last + 1));
+    const int end = level == sigma ? last : 2 * last + 1;
+    return tags_.micro_edge(level, e, at_major_start ? int(far) : end - int(far));
   };
   for (int i = 0; i < faces; ++i) {
     const HalfEdge& h = atlas_.ring[begin + i];
     const uint32_t* idx = lod_.facet(sigma, h.facet);
     const int size = atlas_.facet_size[h.facet];
-    disk.e[i] = src[idx[side_rows(sigma, size, h.side, 0)[1]]];
+    disk.e[i] = at(idx[side_rows(sigma, size, h.side, 0)[1]]);
     // a quad's corner across from v (a triangle has none: Loop's masks weigh no faces)
-    disk.d[i] = size == 4 ? src[idx[side_rows(sigma, 4, h.side, 1)[1]]] : disk.c;
+    disk.d[i] = size == 4 ? at(idx[side_rows(sigma, 4, h.side, 1)[1]]) : disk.c;
     disk.face_size[i] = uint8_t(size);
   }
   if (!tags_.any) {
@@ -332,9 +338,17 @@ void MeshProcessor::gather_vertex(int sigma, int v, const V3* src, VertexDisk& d
   if (boundary) {
     const HalfEdge& h = atlas_.ring[begin + faces - 1];
     const int size = atlas_.facet_size[h.facet], side = atlas_.prev(h.facet, h.side);
-    disk.e[faces] = src[lod_.facet(sigma, h.facet)[facet_side_offset(size, side, n, n - 2, 0)]];
+    disk.e[faces] = at(lod_.facet(sigma, h.facet)[facet_side_offset(size, side, n, n - 2, 0)]);
     disk.edge_sharpness[faces] = tags_.any ? sharpness(sigma, h.facet, side, false) : 0.0f;
     disk.child_edge_sharpness[faces] = child ? sharpness(sigma + 1, h.facet, side, false) : 0.0f;
+  }
+  if (far_half) {
+    far_half->assign(disk.edges, 0.0f);
+    for (int i = 0; child && i < disk.edges; ++i) {
+      const HalfEdge& h = atlas_.ring[begin + std::min(i, faces - 1)];
+      if (i < faces) (*far_half)[i] = sharpness(sigma + 1, h.facet, h.side, true, true);
+      else (*far_half)[i] = sharpness(sigma + 1, h.facet, atlas_.prev(h.facet, h.side), false, true);
+    }
   }
   disk.sharpness = tags_.any ? tags_.vertex[sigma][v] : 0.0f;
   disk.child_sharpness = child ? tags_.vertex[sigma + 1][v] : 0.0f;
@@ -483,21 +497,25 @@ void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, 
   }
 }
 
-void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset) const {
+void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset,
+                            const BaseLevel* base) const {
   for_each(int(tiles_.size()), parallel, 32, [&](int i) {
     project_facets(sigma, tiles_[i], src, position, normal, offset);
     for (int32_t e : tile_edges_.of(i)) project_edge(sigma, e, src, position, normal, offset);
-    for (int32_t v : tile_vertices_.of(i)) project_vertex(sigma, v, src, position, normal, offset);
+    for (int32_t v : tile_vertices_.of(i)) project_vertex(sigma, v, src, position, normal, offset, base);
   });
 }
 
-void MeshProcessor::project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset) const {
+void MeshProcessor::project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset,
+                                   const BaseLevel* base) const {
   if (atlas_.valence(v) == 0) {
     position[v] = src[v], normal[v] = {0, 0, 0};
   } else {
     VertexDisk& disk = t_disk;
     gather_vertex(sigma, v, src, disk);
     shader_.limit(disk, position[v], normal[v]);
+    // The tangents from level 0 (vertex_tangents.h: float's rounding at this level's spacing).
+    if (base && base->tangents.level == sigma && base->tangents.has(v)) normal[v] = base->tangents.normal(v, base->points);
   }
   if (offset) position[v] = placed(position[v].x, position[v].y, position[v].z, offset);
 }

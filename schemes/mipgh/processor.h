@@ -18,6 +18,7 @@
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/lod.h"
 #include "schemes/mipgh/shader.h"
+#include "schemes/mipgh/vertex_tangents.h"
 
 namespace sdb::mipgh {
 
@@ -29,7 +30,9 @@ class MeshProcessor {
   void step(int sigma, const V3* src, V3* dst, bool parallel) const;
   // Limit positions and unit normals of level sigma's nodes; the positions moved by `offset` where
   // one is given (the output's origin, so that they are written once, where they end).
-  void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset = nullptr) const;
+  // `base`, where given, takes the D-vertices' normals from level 0's nodes (vertex_tangents.h).
+  void project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset = nullptr,
+               const BaseLevel* base = nullptr) const;
   // Adaptive (DLoD's labels): the limit of the nodes whose home is level sigma only: the
   // interiors of these D-facets, the nodes of these D-edges and these D-vertices.
   using Homes = LevelHomes;
@@ -79,14 +82,18 @@ class MeshProcessor {
   bool edge_readable(int sigma, int e) const;
   bool vertex_readable(int sigma, int v) const;
   void copy_edge(int sigma, int e, const V3* src, V3* dst) const;
+  // D-vertex v's 1-disk at level sigma (and its tags at sigma and sigma + 1); where `far_half` is
+  // given, the sharpness at sigma + 1 of the half of each of its edges away from v (Sdc's edge
+  // rule reads both halves under Chaikin: vertex_tangents.cpp rebuilds the edges' rules).
+  void gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk, std::vector<float>* far_half = nullptr) const;
+  // Whether D-vertex v's limit comes from its 1-disk (not a bare vertex, nor a corner of several fans).
+  bool vertex_has_disk(int v) const { return atlas_.valence(v) > 0 && atlas_.vertex_fans[v] == 1; }
 
  private:
   // The nodes copy_edge makes of D-edge e at level sigma + 1, each as node(target, i, j) with the
   // level-sigma nodes i and j it is the midpoint of (i == j: a copy of i).
   template <class F>
   void copied_edge_nodes(int sigma, int e, F&& node) const;
-  // D-vertex v's 1-disk at level sigma (and its tags at sigma and sigma + 1).
-  void gather_vertex(int sigma, int v, const V3* src, VertexDisk& disk) const;
   // The 1-disk of the strip's node t on D-edge e (1 <= t <= n - 2), tags included; after
   // load_strip.
   void strip_disk(int sigma, int e, int t, VertexDisk& disk) const;
@@ -106,10 +113,13 @@ class MeshProcessor {
   const int32_t* side_rows(int sigma, int size, int side, int depth) const;
   void project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal, const V3* offset) const;
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const;
-  void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset) const;
+  void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset,
+                      const BaseLevel* base = nullptr) const;
   void step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const;
   // tiles_, and the D-edges and D-vertices each tile's visit takes along.
   void plan_tiles();
+
+ private:
   // shader_disks' parts: D-vertex v's node, and D-edge e's nodes.
   void vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const;
   void edge_shader_disks(int sigma, int e, const V3* src, bool limit, const DiskVisitor& visit) const;

@@ -166,12 +166,25 @@ class VulkanMipghEvaluation final : public Evaluation {
     for (size_t v = 0; v < control_.size(); ++v)
       level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2], 0.0f};
     control_staging_.write(level0_);
+    if (m_.base_tangents.level >= 0) {
+      base_points_.resize(control_.size());
+      for (size_t v = 0; v < control_.size(); ++v) base_points_[v] = {level0_[v][0], level0_[v][1], level0_[v][2]};
+    }
     ctx_->submit(*frame_);
     readback_->invalidate();
   }
 
   const Tessellation& result() override {
     readback_->read_into(out_);
+    // The D-vertices' normals from level 0 as the cpu's (vertex_tangents.h), applied here on the
+    // host: a device pass reading level 0 is not written yet (issue 39d). Output node v is D-vertex v.
+    const BaseTangents& base = m_.base_tangents;
+    if (base.level >= 0)
+      for (int v = 0; v < m_.atlas.num_vertices; ++v)
+        if (base.has(v)) {
+          const V3 n = base.normal(v, base_points_.data());
+          out_.normals[size_t(v)] = {n.x, n.y, n.z};
+        }
     return out_;
   }
 
@@ -472,6 +485,7 @@ class VulkanMipghEvaluation final : public Evaluation {
 
   std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
   std::vector<Point3> control_;
+  std::vector<V3> base_points_;  // level 0 for the D-vertices' normals (result())
   MeshMutation m_;
   bool has_quads_ = false, has_triangles_ = false;
   bool node_vec4_ = true;    // the levels written as storage buffers of vec4 (a binding covers them)
