@@ -103,11 +103,12 @@ TEST(Peers, OsdUniformHonoursCreasesAndHolesBeyondTheirSharpness) {
                 .pos_max_rel_diag,
             1e-3);
   // Chaikin creases: Far's uniform path and Bfr disagree by a steady ~4.5e-4 of the diagonal at
-  // depths 5..7 (measured; Bfr matches the reference to 1e-7). Kept as a bound, reported in README.
+  // depths 5..7 (measured). Kept as a bound, reported in README. Bfr is not the limit there either
+  // (5.2e-4 off Far's refinement next to the corners the creases meet): osd-bfr refuses the mesh.
   const ControlMesh chaikin = load_mesh("opensubdiv/catmark_chaikin1");
   const LimitEvaluator ref(chaikin, SubdivisionRule::CatmullClark);
   EXPECT_LE(measure_deviation(run_peer("osd-uniform", chaikin, 6), ref).pos_max_rel_diag, 1e-3);
-  EXPECT_LE(measure_deviation(run_peer("osd-bfr", chaikin, 9), ref).pos_max_rel_diag, 1e-6);
+  EXPECT_THROW(run_peer("osd-bfr", chaikin, 9), Unsupported);
 }
 
 // Issue 39: below the largest semi-sharp crease's sharpness a row of osd-uniform(-loop) says it
@@ -162,8 +163,8 @@ TEST(Peers, OsdBfrIsExactAtItsSamplesNearExtraordinaryVertices) {
     }
 }
 
-// The anchors' verdicts on every OpenSubdiv regression shape, Catmull-Clark and Loop, at rates 5
-// and 9 (issue 39): positions and normals within the scheme's own bound at every vertex, or the
+// The anchors' verdicts on every OpenSubdiv regression shape, Catmull-Clark and Loop, at rates 5,
+// 9 and 17 (issue 39): positions and normals within the scheme's own bound at every vertex, or the
 // mesh refused up front with the reason (prepare's Unsupported). The vertices where the scheme
 // gives no normal (its zero normal: infinitely sharp corners, degenerate tangents) are counted
 // and printed, per shape where there are any. Before issue 39c: darts left at the rate's
@@ -180,7 +181,7 @@ TEST(OsdBfr, WithinItsBoundOrRefusedOnEveryOpenSubdivShape) {
     for (const auto& e : list_meshes()) {
       if (e.kind != "corpus" || e.name.rfind(loop ? "opensubdiv/loop_" : "opensubdiv/catmark_", 0) != 0) continue;
       const ControlMesh m = placed_mesh(load_mesh(e.name));
-      for (int rate : {5, 9}) {
+      for (int rate : {5, 9, 17}) {
         Tessellation t;
         try {
           t = run_peer(scheme, m, rate);
@@ -210,7 +211,7 @@ TEST(OsdBfr, WithinItsBoundOrRefusedOnEveryOpenSubdivShape) {
     }
     std::printf("%s: %ld runs judged (%ld vertices, %ld without a normal given), %ld refused, %ld without a "
                 "yardstick\n", scheme, ok, vertices, declared, refused, no_yardstick);
-    EXPECT_GE(ok, loop ? 40 : 120) << scheme;
+    EXPECT_GE(ok, loop ? 60 : 180) << scheme;
   }
 }
 
