@@ -14,6 +14,7 @@
 #include "harness/core/errors.h"
 #include "harness/reference/bfr_defect.h"
 #include "harness/reference/local_mesh.h"
+#include "harness/reference/surface_normal.h"
 #include "harness/reference/vertex_limit.h"
 
 namespace sdb {
@@ -101,22 +102,11 @@ Point3d cross3(const Point3d& a, const Point3d& b) {
 }
 double norm3(const Point3d& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
-// du x dv has no direction where the parametrization degenerates (a derivative vanishes, or the
-// tangents are nearly parallel): along the fold of a face folded over onto its neighbour
-// (catmark_val2_back2back), of a flat closed mesh or of a two-sided pillow, where the surface is
-// no regular surface and the normals from its two sheets point opposite ways. Below 1e-6 of the
-// longer tangent's square the cross product is rounding and approximation residue whose direction,
-// up to 180 degrees off, judges nothing: no normal there. Relative, so the same at every scale.
-bool degenerate(const Point3d& du, const Point3d& dv) {
-  const double scale = std::max(norm3(du), norm3(dv));
-  return !(norm3(cross3(du, dv)) > 1e-6 * scale * scale);
-}
-
 // Bfr at (u, v) of its face's parametrization; the normal zero where it degenerates.
 void evaluate_surface(const Bfr::Surface<double>& s, const double* patch, UV uv, Point3d& p, Point3d& du, Point3d& dv,
                       Point3d& n) {
   s.Evaluate(uv.data(), patch, 3, p.data(), du.data(), dv.data());
-  n = degenerate(du, dv) ? Point3d{0, 0, 0} : cross3(du, dv);
+  n = tangents_degenerate(du.data(), dv.data()) ? Point3d{0, 0, 0} : cross3(du, dv);
 }
 
 Point3d unit3(const Point3d& n) {

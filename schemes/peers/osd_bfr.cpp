@@ -19,10 +19,48 @@ namespace {
 namespace Bfr = OpenSubdiv::Bfr;
 namespace Far = OpenSubdiv::Far;
 
-// Bfr's approximation level for a mesh and rate (below).
-int approximation_level(const ControlMesh& mesh, int rate) {
-  if (has_sharp_features(mesh)) return 10;
-  return std::min(10, 2 + static_cast<int>(std::ceil(std::log2(std::max(1, rate - 1)))));
+// Bfr's default approximation (level 2) misses the limit near extraordinary vertices by
+// 2e-3..8e-3 of the diagonal at 1/32 of a face (measured); raise it to what the rate samples:
+// level L is exact at ptex distance >= 2^-(L-1) from the corner, so L = log2(segments) + 2.
+int rate_level(int rate) { return std::min(10, 2 + static_cast<int>(std::ceil(std::log2(std::max(1, rate - 1))))); }
+
+// Bfr's deepest approximation level for a mesh and rate (below).
+int approximation_level(const ControlMesh& mesh, int rate) { return has_sharp_features(mesh) ? 10 : rate_level(rate); }
+
+// Far's adaptive refinement, which Bfr's irregular patches come from, isolates an interior vertex
+// with an infinitely sharp edge (a dart, or a crease of irregular valence) only to the smooth
+// level, whatever the sharp level says (Far's FeatureMask::ReduceFeatures, with inf-sharp patches,
+// drops them past the secondary level), and the patch it ends a dart with misses the limit at the
+// dart's own corner: 4.8e-5 of the diagonal at level 4 (rate 5) and 1.6e-5 at 5 (rate 9) on
+// loop_cubes_infsharp, 1.2e-4 and 5.9e-5 on loop_icos_infsharp. A face with such a corner gets
+// level 10 as smooth level too (then 5.3e-8 and 1.5e-6).
+bool corner_isolated_at_smooth_level(const Far::TopologyLevel& l, int f) {
+  for (int v : l.GetFaceVertices(f)) {
+    if (l.IsVertexBoundary(v)) continue;
+    for (int e : l.GetVertexEdges(v))
+      if (l.IsEdgeInfSharp(e)) return true;
+  }
+  return false;
+}
+
+// At an infinitely sharp corner (a vertex of infinite sharpness, or where three infinitely sharp
+// edges meet) Bfr ends its deepest level with patches whose normal at the vertex is that level's
+// face's, and the faces' normals reach the limit's only as about 0.8 to 0.85 a level (Far's
+// refinement, measured: 45 degrees at level 0, 5.63 at 10, 3.61 at 12 on the cone point of
+// loop_cubes_infsharp; 7.02 at 10 where three creases meet on catmark_inf_crease1): so Bfr's normal
+// at level 10, the deepest it takes, is not the limit's: the peer gives no normal there. Where
+// the face is a sector of its own (both its edges at the vertex infinitely sharp: a corner patch)
+// Bfr's is the limit's (within the bound on every corpus shape). Corner k of face f.
+bool normal_is_deepest_face(const Far::TopologyLevel& l, int f, int k) {
+  const int v = l.GetFaceVertices(f)[k];
+  if (l.GetVertexRule(v) != OpenSubdiv::Sdc::Crease::RULE_CORNER) return false;
+  int inf_edges = 0;
+  for (int e : l.GetVertexEdges(v)) inf_edges += l.IsEdgeInfSharp(e) || l.IsEdgeBoundary(e);
+  if (!l.IsVertexInfSharp(v) && inf_edges < 3) return false;  // a semi-sharp corner: decayed at level 10
+  const Far::ConstIndexArray fe = l.GetFaceEdges(f);
+  const int before = fe[(k + fe.size() - 1) % fe.size()], after = fe[k];
+  const auto sharp = [&](int e) { return l.IsEdgeInfSharp(e) || l.IsEdgeBoundary(e); };
+  return !(sharp(before) && sharp(after));
 }
 
 // Real: float, or double where the approximation level is deep (below).
@@ -37,11 +75,8 @@ class OsdBfrEvaluation final : public Evaluation {
     SharedLayout layout = make_shared_layout(*refiner_, rule, rate - 1);
     out_ = std::move(layout.topology);
     owned_ = std::move(layout.owned_by_face);
-    // Bfr's default approximation (level 2) misses the limit near extraordinary vertices by
-    // 2e-3..8e-3 of the diagonal at 1/32 of a face (measured); raise it to what the rate samples:
-    // level L is exact at ptex distance >= 2^-(L-1) from the corner, so L = log2(segments) + 2.
-    Bfr::RefinerSurfaceFactory<>::Options options;
-    const int level = std::min(10, 2 + static_cast<int>(std::ceil(std::log2(std::max(1, rate - 1)))));
+    Bfr::RefinerSurfaceFactory<>::Options options, deepest;
+    const int level = rate_level(rate);
     // Next to creases, corners and boundaries Bfr's irregular patches converge only as 2^-L with
     // the level (measured: 3.8e-4 of the diagonal at L = 4 on catmark_cubes_infsharp, 1.3e-5 at
     // 8, 9e-8 at 10; Loop's semi-sharp cube needs the sharp level 8): such meshes' sharp faces
@@ -51,18 +86,30 @@ class OsdBfrEvaluation final : public Evaluation {
     // (pmp/suzanne, placed at unit size: failed, its copy scaled by 1e-6 passed).
     const bool sharp = has_sharp_features(mesh);
     options.SetApproxLevelSmooth(level).SetApproxLevelSharp(sharp ? 10 : std::max(level, 6));
-    const Bfr::RefinerSurfaceFactory<> factory(*refiner_, options);
+    deepest.SetApproxLevelSmooth(10).SetApproxLevelSharp(10);
+    const Bfr::RefinerSurfaceFactory<> factory(*refiner_, options), deepest_factory(*refiner_, deepest);
     const int nf = num_faces(mesh);
     surfaces_.resize(nf);
     patch_points_.resize(nf);
     for (int f = 0; f < nf; ++f) {
-      if (owned_[f].empty() || !factory.InitVertexSurface(f, &surfaces_[f])) continue;
+      const bool deep = corner_isolated_at_smooth_level(refiner_->GetLevel(0), f);
+      if (owned_[f].empty() || !(deep ? deepest_factory : factory).InitVertexSurface(f, &surfaces_[f])) continue;
       patch_points_[f].resize(3 * surfaces_[f].GetNumPatchPoints());
     }
     out_.positions.resize(out_.coords.size());
     out_.normals.resize(out_.coords.size());
     offsets_ = face_offsets(mesh);
     origins_.resize(nf);
+    corner_without_normal_.assign(mesh.face_vertices.size(), 0);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < mesh.face_sizes[f]; ++k)
+        corner_without_normal_[offsets_[f] + k] = normal_is_deepest_face(refiner_->GetLevel(0), f, k);
+    for (int f = 0; f < nf; ++f)
+      if (surfaces_[f].IsValid() && !surfaces_[f].IsRegular())
+        for (const auto& o : owned_[f]) {
+          const int corner = corner_of(surfaces_[f].GetParameterization(), o.u, o.v);
+          sharp_corners_ += corner >= 0 && corner_without_normal_[offsets_[f] + corner];
+        }
   }
 
   void execute() override {
@@ -78,6 +125,11 @@ class OsdBfrEvaluation final : public Evaluation {
 
   const Tessellation& result() override { return out_; }
   size_t bytes_out() const override { return out_.positions.size() * 2 * sizeof(Point3); }
+  std::vector<std::string> notes() const override {
+    if (sharp_corners_ == 0) return {};
+    return {"no normal at " + std::to_string(sharp_corners_) +
+            " infinitely sharp corners, where Bfr's is its deepest level's face's, not the limit's"};
+  }
 
  private:
   // The patch points relative to a control point near the samples: at approximation level 10
@@ -90,21 +142,21 @@ class OsdBfrEvaluation final : public Evaluation {
     const Bfr::Surface<Real>& s = surfaces_[f];
     if (!s.IsValid()) return;
     const Bfr::Parameterization param = s.GetParameterization();
-    const float centre = param.GetType() == Bfr::Parameterization::TRI ? 1.0f / 3 : 0.5f;
     prepare_relative(f, control_.positions[control_.face_vertices[offsets_[f]]]);
     std::vector<std::pair<SharedLayout::Owned, int>> corners;  // (sample, corner)
     for (const auto& o : owned_[f]) {
       const int corner = s.IsRegular() ? -1 : corner_of(param, o.u, o.v);
       if (corner >= 0) corners.push_back({o, corner});
-      else evaluate(s, f, o, centre);
+      else evaluate(s, f, o);
     }
     for (const auto& [o, corner] : corners) {
       // Relative to the limit point itself (an extraordinary vertex's limit can lie far from its
       // control point: 0.3 of a 2.4 wide mesh on loop_xord_interior), found relative to the corner.
       prepare_relative(f, control_.positions[control_.face_vertices[offsets_[f] + corner]]);
-      evaluate(s, f, o, centre);
+      evaluate(s, f, o);
       prepare_relative(f, out_.positions[o.vertex]);
-      evaluate(s, f, o, centre);
+      evaluate(s, f, o);
+      if (corner_without_normal_[offsets_[f] + corner]) out_.normals[o.vertex] = {0, 0, 0};
     }
   }
 
@@ -128,36 +180,24 @@ class OsdBfrEvaluation final : public Evaluation {
     return -1;
   }
 
-  void evaluate(const Bfr::Surface<Real>& s, int f, const SharedLayout::Owned& o, float centre) {
+  void evaluate(const Bfr::Surface<Real>& s, int f, const SharedLayout::Owned& o) {
     const Real* patch = patch_points_[f].data();
     const Point3& origin = origins_[f];
     const Real uv[2] = {o.u, o.v};
     Real p[3], du[3], dv[3];
     s.Evaluate(uv, patch, 3, p, du, dv);
     out_.positions[o.vertex] = {float(p[0] + origin[0]), float(p[1] + origin[1]), float(p[2] + origin[2])};
-    if (degenerate(du, dv)) {
-      // Where a derivative vanishes (a face folded onto an edge of valence 2) du x dv has no
-      // direction: the face's own side is the limit of its normals inside, taken 1e-3 of the way
-      // to the centre of the (sub-)face.
-      float mid[2] = {centre, centre};
-      const Bfr::Parameterization param = s.GetParameterization();
-      if (param.HasSubFaces()) {
-        float sub[2];
-        const float at[2] = {o.u, o.v}, half[2] = {0.5f, 0.5f};
-        param.ConvertNormalizedSubFaceToCoord(param.ConvertCoordToNormalizedSubFace(at, sub), half, mid);
-      }
-      const Real inside[2] = {uv[0] + Real(1e-3) * (mid[0] - uv[0]), uv[1] + Real(1e-3) * (mid[1] - uv[1])};
-      Real q[3];
-      s.Evaluate(inside, patch, 3, q, du, dv);
+    // Where a derivative vanishes (a face folded onto an edge of valence 2) or the two are parallel
+    // (a boundary vertex of one face under edge-only interpolation, where du = -dv) du x dv has no
+    // direction, and Bfr's patches next to it are no guide to the one-sided limit either (its
+    // normal 1e-3 of the way inside was 6.6 degrees off on catmark_gregory_test5, where the face
+    // is flat): the peer gives no normal there (45 degrees off on loop_saddle_edgeonly before).
+    if (tangents_degenerate(du, dv)) {
+      out_.normals[o.vertex] = {0, 0, 0};
+      return;
     }
     const float a[3] = {float(du[0]), float(du[1]), float(du[2])}, b[3] = {float(dv[0]), float(dv[1]), float(dv[2])};
     out_.normals[o.vertex] = unit_cross(a, b);
-  }
-
-  static bool degenerate(const Real du[3], const Real dv[3]) {
-    const double a = std::sqrt(double(du[0]) * du[0] + double(du[1]) * du[1] + double(du[2]) * du[2]);
-    const double b = std::sqrt(double(dv[0]) * dv[0] + double(dv[1]) * dv[1] + double(dv[2]) * dv[2]);
-    return !(std::min(a, b) >= 1e-5 * std::max(a, b));
   }
 
   const ControlMesh control_;
@@ -168,6 +208,8 @@ class OsdBfrEvaluation final : public Evaluation {
   std::vector<Bfr::Surface<Real>> surfaces_;
   std::vector<std::vector<Real>> patch_points_;
   std::vector<int> offsets_;     // per face, into control_.face_vertices
+  std::vector<char> corner_without_normal_;  // per face corner (control_.face_vertices)
+  long sharp_corners_ = 0;                   // output vertices at such corners
   std::vector<Point3> origins_;  // per face: what its patch points are relative to
   Tessellation out_;
 };

@@ -1,7 +1,6 @@
 // OpenSubdiv's fast paths and OpenMesh against OpenSubdiv's uniform refinement:
 //   - osd-stencil (limit stencil tables, CPU) gives osd-uniform's output vertex for vertex, and
 //     osd-glcompute (the same tables on the GL compute evaluator) gives osd-stencil's;
-//   - osd-bfr-loop lies on the Loop limit;
 //   - OpenMesh's subdividers give OpenSubdiv's refined control points where the rules agree.
 #include <gtest/gtest.h>
 
@@ -22,7 +21,6 @@
 #include "harness/mesh/acceptance.h"
 #include "harness/mesh/facts.h"
 #include "harness/mesh/osd_topology.h"
-#include "harness/reference/bfr_defect.h"
 #include "harness/reference/limit_evaluator.h"
 #include "harness/validate/deviation.h"
 
@@ -230,27 +228,6 @@ TEST(OsdGlCompute, GivesOsdStencilsOutputOnTheDevice) {
       EXPECT_EQ(cpu.triangles, gpu.triangles);
     }
   }
-}
-
-TEST(OsdBfrLoop, LiesOnTheLoopLimitOfTheCorpus) {
-  if (!corpus_dir()) GTEST_SKIP() << "shared corpus not found beside the checkout";
-  int meshes = 0, refused = 0;
-  for (const std::string& name : corpus_shapes(SubdivisionRule::Loop)) {
-    const ControlMesh mesh = load_mesh(name);
-    try {
-      const LimitEvaluator ref(mesh, SubdivisionRule::Loop);
-      for (int rate : {5, 17})
-        EXPECT_LE(measure_deviation(run("osd-bfr-loop", mesh, Backend::CpuMt, rate), ref).pos_max_rel_diag, 1e-5)
-            << name << " N=" << rate;
-      ++meshes;
-    } catch (const std::exception& e) {  // refused up front, with the reason, by osd-bfr-loop or the yardstick
-      if (!dynamic_cast<const InputError*>(&e) && !dynamic_cast<const Unsupported*>(&e)) throw;
-      std::printf("  %s refused: %s\n", name.c_str(), e.what());
-      ++refused;
-    }
-  }
-  std::printf("osd-bfr-loop on the Loop limit of %d corpus shapes, %d refused\n", meshes, refused);
-  EXPECT_GE(meshes, 20);
 }
 
 namespace {
