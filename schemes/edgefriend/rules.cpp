@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "harness/refined/vertex_rule.h"
+
 namespace sdb::edgefriend {
 namespace {
 
@@ -18,12 +20,7 @@ inline void store(const Step& s, uint32_t i, P3 v) {
   if (j != kNone) s.dst[j] = {v.x, v.y, v.z};
 }
 
-// Sdc::Crease::Rule, as DetermineVertexVertexRule gives it.
-enum Rule : int { kSmooth = 1, kDart = 2, kCrease = 4, kCorner = 8 };
-inline int vertex_rule(float vertex_sharpness, int sharp_edges) {
-  if (vertex_sharpness > 0.0f || sharp_edges > 2) return kCorner;
-  return 1 << sharp_edges;
-}
+using refined::kCornerRule, refined::kCreaseRule, refined::kDartRule, refined::kSmoothRule, refined::vertex_rule;
 
 // What the vertex rules read of a ring, in one walk through the friends (the paper's valence
 // loop): the sums of the edges' other ends and of the diagonals, and the other ends of the sharp
@@ -68,9 +65,9 @@ struct Coefficients {
 
 Coefficients mask_of(int rule, bool parent, const SmoothWeights& w, uint32_t n) {
   Coefficients k;
-  if (rule == kSmooth || rule == kDart) {
+  if (rule == kSmoothRule || rule == kDartRule) {
     k.vertex = w.vertex[n], k.edges = w.edge[n], k.diagonals = w.diagonal[n];
-  } else if (rule == kCrease) {
+  } else if (rule == kCreaseRule) {
     k.vertex = 0.75f;
     (parent ? k.parent_ends : k.child_ends) = 0.125f;
   } else {
@@ -84,13 +81,8 @@ Coefficients vertex_mask(const Ring& r, float parent_vs, const SmoothWeights& w)
   const float child_vs = decay(parent_vs);
   const int prule = vertex_rule(parent_vs, r.parent_sharp), crule = vertex_rule(child_vs, r.child_sharp);
   const Coefficients parent = mask_of(prule, true, w, n);
-  if (prule == kSmooth || prule == kDart || crule == prule) return parent;
-  // Crease::ComputeFractionalWeightAtVertex: the mean sharpness of what decays to smooth.
-  int count = r.transitions;
-  float sum = r.transition_sum;
-  if (parent_vs > 0.0f && child_vs <= 0.0f) ++count, sum += parent_vs;
-  float pw = count == 0 ? 0.0f : sum / float(count);
-  if (pw > 1.0f) pw = 1.0f;
+  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
+  const float pw = refined::parent_mask_weight(r.transitions, r.transition_sum, parent_vs, child_vs);
   const float cw = 1.0f - pw;
   const Coefficients child = mask_of(crule, false, w, n);
   Coefficients k;

@@ -37,8 +37,7 @@ void store(uint i, vec3 p) {
 uint child_of_vertex(uint v) { return v < pc.quads ? 4u * v : 3u * pc.quads + v; }
 float decay(float s) { return s >= kInfinite ? s : (s > 1.0 ? s - 1.0 : 0.0); }
 
-const int kSmooth = 1, kDart = 2, kCrease = 4, kCorner = 8;
-int vertex_rule(float vs, int sharp) { return vs > 0.0 || sharp > 2 ? kCorner : 1 << sharp; }
+#include "vertex_rule.glsl"
 
 struct Ring {
   vec3 edges, diagonals, parent_ends, child_ends;
@@ -85,11 +84,11 @@ struct Coefficients {
 
 Coefficients mask_of(int rule, bool parent, uint n) {
   Coefficients k = Coefficients(0.0, 0.0, 0.0, 0.0, 0.0);
-  if (rule == kSmooth || rule == kDart) {
+  if (rule == kSmoothRule || rule == kDartRule) {
     k.vertex = texelFetch(weights, int(n)).x;
     k.edges = texelFetch(weights, int(kTable + n)).x;
     k.diagonals = texelFetch(weights, int(2u * kTable + n)).x;
-  } else if (rule == kCrease) {
+  } else if (rule == kCreaseRule) {
     k.vertex = 0.75;
     if (parent) k.parent_ends = 0.125;
     else k.child_ends = 0.125;
@@ -104,12 +103,8 @@ Coefficients vertex_mask(Ring r, float pvs) {
   const float cvs = decay(pvs);
   const int prule = vertex_rule(pvs, r.parent_sharp), crule = vertex_rule(cvs, r.child_sharp);
   const Coefficients parent = mask_of(prule, true, n);
-  if (prule == kSmooth || prule == kDart || crule == prule) return parent;
-  int count = r.transitions;
-  precise float sum = r.transition_sum;
-  if (pvs > 0.0 && cvs <= 0.0) ++count, sum = sum + pvs;
-  precise float pw = count == 0 ? 0.0 : sum / float(count);
-  if (pw > 1.0) pw = 1.0;
+  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
+  precise float pw = parent_mask_weight(r.transitions, r.transition_sum, pvs, cvs);
   precise float cw = 1.0 - pw;
   const Coefficients child = mask_of(crule, false, n);
   precise Coefficients k;
