@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace sdb::refined {
@@ -285,6 +286,16 @@ void project(const LimitPlan& plan, const Projection& p, bool parallel) {
                     [&](const tbb::blocked_range<uint32_t>& r) { project_regular(plan, p, r.begin(), r.end()); });
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, specials, 256),
                     [&](const tbb::blocked_range<uint32_t>& r) { project_special(plan, p, r.begin(), r.end()); });
+}
+
+std::string semi_sharp_note(const LimitPlan& plan, int depth) {
+  if (plan.semi_sharp_vertices == 0) return {};
+  char note[240];
+  std::snprintf(note, sizeof note,
+                "semi-sharp creases outlast depth %d (sharpness up to %.3g left at %llu vertices): projected with "
+                "Far's limit masks there, which take it as infinite (not the limit)",
+                depth, double(plan.largest_sharpness_left), static_cast<unsigned long long>(plan.semi_sharp_vertices));
+  return note;
 }
 
 }  // namespace sdb::refined

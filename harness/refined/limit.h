@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "harness/core/control_mesh.h"
@@ -47,6 +48,11 @@ struct RegularConstants {
   float k[3];
 };
 RegularConstants regular_constants(uint32_t face_size);
+
+// The note a row carries where a semi-sharp crease outlasts the depth: Far's limit masks, which
+// the projection applies, take the sharpness left as infinite there, so the projected points are
+// not on the limit surface. Empty where none is left.
+std::string semi_sharp_note(const LimitPlan& plan, int depth);
 
 // Throws std::invalid_argument for a rule other than Catmull-Clark (quads) or Loop (triangles).
 LimitPlan plan_limit(const FaceLevel& level, SubdivisionRule rule);

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "harness/refined/vertex_rule.h"
+
 namespace sdb::halfedge {
 namespace {
 
@@ -16,12 +18,7 @@ inline P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline P3 operator*(P3 a, float w) { return {a.x * w, a.y * w, a.z * w}; }
 inline void store(Point3* p, uint32_t i, P3 v) { p[i] = {v.x, v.y, v.z}; }
 
-// Sdc::Crease::Rule, as DetermineVertexVertexRule gives it.
-enum Rule : int { kSmooth = 1, kDart = 2, kCrease = 4, kCorner = 8 };
-inline int vertex_rule(float vertex_sharpness, int sharp_edges) {
-  if (vertex_sharpness > 0.0f || sharp_edges > 2) return kCorner;
-  return 1 << sharp_edges;
-}
+using refined::kCornerRule, refined::kCreaseRule, refined::kDartRule, refined::kSmoothRule, refined::vertex_rule;
 
 // What the vertex rules read of a ring, in one walk: sums of the new face points and of the other
 // ends of the edges, and the other ends of the sharp edges before and after the step.
@@ -73,9 +70,9 @@ struct Coefficients {
 // One rule's mask as coefficients; a crease's ends are the parent's or the child's sharp edges.
 Coefficients mask_of(int rule, bool parent, float centre, float ring, bool catmark) {
   Coefficients k;
-  if (rule == kSmooth || rule == kDart) {
+  if (rule == kSmoothRule || rule == kDartRule) {
     k.vertex = centre, k.edges = ring, k.faces = catmark ? ring : 0.0f;
-  } else if (rule == kCrease) {
+  } else if (rule == kCreaseRule) {
     k.vertex = 0.75f;
     (parent ? k.parent_ends : k.child_ends) = 0.125f;
   } else {
@@ -87,13 +84,8 @@ Coefficients mask_of(int rule, bool parent, float centre, float ring, bool catma
 Coefficients vertex_mask(const Ring& r, float parent_vs, float child_vs, float centre, float ring, bool catmark) {
   const int prule = vertex_rule(parent_vs, r.parent_sharp), crule = vertex_rule(child_vs, r.child_sharp);
   const Coefficients parent = mask_of(prule, true, centre, ring, catmark);
-  if (prule == kSmooth || prule == kDart || crule == prule) return parent;
-  // Crease::ComputeFractionalWeightAtVertex: the mean sharpness of what decays to smooth.
-  int count = r.transitions;
-  float sum = r.transition_sum;
-  if (parent_vs > 0.0f && child_vs <= 0.0f) ++count, sum += parent_vs;
-  float pw = count == 0 ? 0.0f : sum / float(count);
-  if (pw > 1.0f) pw = 1.0f;
+  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
+  const float pw = refined::parent_mask_weight(r.transitions, r.transition_sum, parent_vs, child_vs);
   const float cw = 1.0f - pw;
   // CombineVertexVertexMasks: the parent's weights times pw plus the child's times cw.
   const Coefficients child = mask_of(crule, false, centre, ring, catmark);

@@ -52,14 +52,6 @@ Surface::Surface(const ControlMesh& mesh, SubdivisionRule r, int d, bool p)
   for (auto* v : {&kept.twin, &kept.vert, &kept.edge, &kept.edge_corner, &kept.vertex_corner}) std::vector<uint32_t>().swap(*v);
 }
 
-std::string semi_sharp_note(const Surface& s) {
-  if (!s.project || s.limit.semi_sharp_vertices == 0) return {};
-  char note[240];
-  std::snprintf(note, sizeof note,
-                "semi-sharp creases outlast depth %d (sharpness up to %.3g left at %llu vertices): projected with "
-                "Far's limit masks there, which take it as infinite (not the limit)",
-                s.depth, double(s.limit.largest_sharpness_left), static_cast<unsigned long long>(s.limit.semi_sharp_vertices));
-  return note;
-}
+std::string semi_sharp_note(const Surface& s) { return s.project ? refined::semi_sharp_note(s.limit, s.depth) : std::string(); }
 
 }  // namespace sdb::halfedge

@@ -6,6 +6,7 @@
 #include "harness/gpu/gpu.h"
 #include "harness/refined/limit_vulkan.h"
 #include "schemes/halfedge/surface.h"
+#include "sdb_refined_shaders.h"
 #include "sdb_scheme_halfedge_shaders.h"
 
 namespace sdb::halfedge {
@@ -168,7 +169,7 @@ class VulkanEvaluation final : public Evaluation {
       limit_->bind(last.points, positions_, normals_);
     } else {
       output_ = gpu::shared_compute_pipeline(
-          *ctx_, {shaders::get("points_out.comp"), {gpu::Binding::UniformTexelBuffer, gpu::Binding::StorageTexelBuffer},
+          *ctx_, {sdb_refined_shaders::get("points_out.comp"), {gpu::Binding::UniformTexelBuffer, gpu::Binding::StorageTexelBuffer},
                   sizeof(OutputPush), {{0, kLocalSize}}});
       output_set_ = gpu::DescriptorSet(*output_, {last.points.texels(kPoint), positions_.texels(kFloat)});
     }

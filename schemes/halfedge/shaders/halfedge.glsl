@@ -92,8 +92,7 @@ precise vec3 edge_point(uint e, bool catmark) {
 }
 
 // rules.cpp's walk, vertex_rule, mask_of, vertex_mask and apply.
-const int kSmooth = 1, kDart = 2, kCrease = 4, kCorner = 8;
-int vertex_rule(float vs, int sharp) { return vs > 0.0 || sharp > 2 ? kCorner : 1 << sharp; }
+#include "vertex_rule.glsl"
 
 struct Ring {
   vec3 faces, edges, parent_ends, child_ends;
@@ -138,9 +137,9 @@ struct Coefficients {
 
 Coefficients mask_of(int rule, bool parent, float centre, float ring, bool catmark) {
   Coefficients k = Coefficients(0.0, 0.0, 0.0, 0.0, 0.0);
-  if (rule == kSmooth || rule == kDart) {
+  if (rule == kSmoothRule || rule == kDartRule) {
     k.vertex = centre, k.edges = ring, k.faces = catmark ? ring : 0.0;
-  } else if (rule == kCrease) {
+  } else if (rule == kCreaseRule) {
     k.vertex = 0.75;
     if (parent) k.parent_ends = 0.125;
     else k.child_ends = 0.125;
@@ -153,12 +152,8 @@ Coefficients mask_of(int rule, bool parent, float centre, float ring, bool catma
 Coefficients vertex_mask(Ring r, float pvs, float cvs, float centre, float ring, bool catmark) {
   const int prule = vertex_rule(pvs, r.parent_sharp), crule = vertex_rule(cvs, r.child_sharp);
   const Coefficients parent = mask_of(prule, true, centre, ring, catmark);
-  if (prule == kSmooth || prule == kDart || crule == prule) return parent;
-  int count = r.transitions;
-  precise float sum = r.transition_sum;
-  if (pvs > 0.0 && cvs <= 0.0) ++count, sum = sum + pvs;
-  precise float pw = count == 0 ? 0.0 : sum / float(count);
-  if (pw > 1.0) pw = 1.0;
+  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
+  precise float pw = parent_mask_weight(r.transitions, r.transition_sum, pvs, cvs);
   precise float cw = 1.0 - pw;
   const Coefficients child = mask_of(crule, false, centre, ring, catmark);
   precise Coefficients k;

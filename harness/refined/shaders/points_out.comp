@@ -1,6 +1,6 @@
 #version 450
-// Without the limit projection (the tests' comparison with Far's refinement): the last level's
-// points moved back from the control box's centre, as packed xyz into the output.
+// Without the limit projection (the uniform-refinement peers' tests compare the refined level with
+// Far's refinement): the last level's points moved back from the control box's centre, as packed xyz into the output.
 #extension GL_GOOGLE_include_directive : require
 #include "sdb/dispatch.glsl"
 

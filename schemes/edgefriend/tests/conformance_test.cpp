@@ -1,0 +1,3 @@
+#include "harness/conformance/conformance.h"
+
+SDB_CONFORMANCE_SUITE("edgefriend-cc");
