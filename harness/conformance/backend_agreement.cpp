@@ -50,8 +50,11 @@ void vulkan_sweep(SubdivisionRule rule, const std::string& scheme,
     try {
       accepted = sweep_mesh(name, rule, scheme);
       cpu_prepare(accepted);
-    } catch (const InputError&) {
-      continue;  // refused on the cpu too (the scheme's own tests list them)
+    } catch (const std::exception& e) {  // refused on the cpu too, with the reason (the scheme's own tests list them)
+      if (!dynamic_cast<const InputError*>(&e) && !dynamic_cast<const Unsupported*>(&e)) throw;
+      std::printf("  refused %s: %s\n", name.c_str(), e.what());
+      ++refused;
+      continue;
     }
     const long faces = num_faces(accepted) - static_cast<long>(accepted.holes.size());
     for (int depth = 1; depth <= 5; ++depth) {

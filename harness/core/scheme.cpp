@@ -71,7 +71,7 @@ long Scheme::estimated_triangles(const ControlMesh& accepted, const RunRequest& 
 }
 
 double Scheme::estimated_peak_bytes(const ControlMesh& accepted, const RunRequest& request) const {
-  return double(estimated_triangles(accepted, request)) * kPeakBytesPerTriangle;
+  return double(estimated_triangles(accepted, request)) * info().peak_bytes_per_triangle;
 }
 
 }  // namespace sdb

@@ -131,6 +131,11 @@ struct SchemeInfo {
   // at a moderate level. Empty: its headline runs' meshes, then its default meshes.
   std::vector<std::string> large_meshes;
   std::vector<ParameterSpec> parameters;
+  // Peak memory per output triangle of a validated run (Scheme::estimated_peak_bytes): the
+  // largest measured over the CPU schemes unless the scheme measured its own (fragments, MiPGH:
+  // 171 and 181 bytes, harness/bench/notes/limits-2026-12-07.md). At the default the sword's
+  // 45.8 M-triangle depth 4, the issues' headline size, was refused on a 24 GB machine.
+  double peak_bytes_per_triangle = 512;
 };
 
 struct RunRequest {
@@ -180,14 +185,10 @@ class Scheme {
   virtual long estimated_triangles(const ControlMesh& accepted, const RunRequest& request) const;
   // Memory a run of the request takes at its peak, prepare and validation included, for run
   // budgets: a run refused up front instead of ending in bad_alloc. The default: the output's
-  // estimated triangles at kPeakBytesPerTriangle; a scheme whose preparation allocates more (a
-  // geometry image's fit) says so here.
+  // estimated triangles at SchemeInfo::peak_bytes_per_triangle; a scheme whose preparation
+  // allocates more (a geometry image's fit) says so here.
   virtual double estimated_peak_bytes(const ControlMesh& accepted, const RunRequest& request) const;
 };
 
-// Peak memory per output triangle of a validated run, the largest measured over the CPU schemes
-// (harness/bench/README.md, "Memory"): the output, validation's weld and Embree scene, and each
-// library's own (Far keeps every level of a uniform refinement, the stencil tables theirs).
-inline constexpr double kPeakBytesPerTriangle = 512;
 
 }  // namespace sdb

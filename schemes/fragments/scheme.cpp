@@ -28,6 +28,9 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.role = SchemeRole::Method;
   info.reference = rule;
   info.level_kind = LevelKind::Depth;
+  // Measured 171 (fragments-cc) and 181 (mipgh-cc) bytes per output triangle at a validated run's
+  // peak (harness/bench/notes/limits-2026-12-07.md); 256 leaves two fifths to spare.
+  info.peak_bytes_per_triangle = 256;
   info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
   info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::QuadsOnly;
