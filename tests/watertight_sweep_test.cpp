@@ -70,6 +70,8 @@ TEST_P(WatertightSweep, EveryClosedCorpusMeshItTakes) {
         e = scheme.prepare(accepted, request);
       } catch (const InputError&) {
         break;  // embree-subdiv refuses Chaikin creases
+      } catch (const Unsupported&) {
+        break;  // osd-bfr(-loop) refuses semi-sharp Chaikin creases, where Bfr is not the limit
       }
       e->execute();
       const Tessellation& t = e->result();
