@@ -288,14 +288,14 @@ void project(const LimitPlan& plan, const Projection& p, bool parallel) {
                     [&](const tbb::blocked_range<uint32_t>& r) { project_special(plan, p, r.begin(), r.end()); });
 }
 
-std::string semi_sharp_note(const LimitPlan& plan, int depth) {
+std::vector<std::string> semi_sharp_notes(const LimitPlan& plan, int depth) {
   if (plan.semi_sharp_vertices == 0) return {};
   char note[240];
   std::snprintf(note, sizeof note,
                 "semi-sharp creases outlast depth %d (sharpness up to %.3g left at %llu vertices): projected with "
                 "Far's limit masks there, which take it as infinite (not the limit)",
                 depth, double(plan.largest_sharpness_left), static_cast<unsigned long long>(plan.semi_sharp_vertices));
-  return note;
+  return {note};
 }
 
 }  // namespace sdb::refined

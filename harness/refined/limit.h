@@ -51,8 +51,8 @@ RegularConstants regular_constants(uint32_t face_size);
 
 // The note a row carries where a semi-sharp crease outlasts the depth: Far's limit masks, which
 // the projection applies, take the sharpness left as infinite there, so the projected points are
-// not on the limit surface. Empty where none is left.
-std::string semi_sharp_note(const LimitPlan& plan, int depth);
+// not on the limit surface. As Evaluation::notes() carries it: none where no sharpness is left.
+std::vector<std::string> semi_sharp_notes(const LimitPlan& plan, int depth);
 
 // Throws std::invalid_argument for a rule other than Catmull-Clark (quads) or Loop (triangles).
 LimitPlan plan_limit(const FaceLevel& level, SubdivisionRule rule);

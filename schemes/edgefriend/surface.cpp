@@ -72,8 +72,7 @@ Surface::Surface(const ControlMesh& mesh, int d, bool p) : depth(d), project(p),
 }
 
 std::vector<std::string> Surface::notes() const {
-  const std::string note = project ? refined::semi_sharp_note(limit, depth) : std::string();
-  return note.empty() ? std::vector<std::string>{} : std::vector<std::string>{note};
+  return project ? refined::semi_sharp_notes(limit, depth) : std::vector<std::string>{};
 }
 
 }  // namespace sdb::edgefriend

@@ -23,10 +23,7 @@ class CpuEvaluation final : public Evaluation {
   }
   const Tessellation& result() override { return s_.out; }
   size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::vector<std::string> notes() const override {
-    std::string note = semi_sharp_note(s_);
-    return note.empty() ? std::vector<std::string>{} : std::vector<std::string>{note};
-  }
+  std::vector<std::string> notes() const override { return semi_sharp_notes(s_); }
 
  private:
   void run() {

@@ -52,6 +52,8 @@ Surface::Surface(const ControlMesh& mesh, SubdivisionRule r, int d, bool p)
   for (auto* v : {&kept.twin, &kept.vert, &kept.edge, &kept.edge_corner, &kept.vertex_corner}) std::vector<uint32_t>().swap(*v);
 }
 
-std::string semi_sharp_note(const Surface& s) { return s.project ? refined::semi_sharp_note(s.limit, s.depth) : std::string(); }
+std::vector<std::string> semi_sharp_notes(const Surface& s) {
+  return s.project ? refined::semi_sharp_notes(s.limit, s.depth) : std::vector<std::string>{};
+}
 
 }  // namespace sdb::halfedge

@@ -34,8 +34,8 @@ void check_size(const ControlMesh& mesh, SubdivisionRule rule, int depth);
 // The note a row carries where a semi-sharp crease outlasts the depth: Far's limit masks, which
 // the projection applies, take the sharpness left as infinite there, so the projected points are
 // not on the limit surface (issue 39 part A's rule, projecting from a level deep enough, is where
-// this goes once it lands). Empty where none is left.
-std::string semi_sharp_note(const Surface& s);
+// this goes once it lands). None where none is left.
+std::vector<std::string> semi_sharp_notes(const Surface& s);
 
 // cpu and cpu-mt (TBB, `threads` 0: TBB's default): each level's passes as parallel loops.
 std::unique_ptr<Evaluation> make_cpu_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,
