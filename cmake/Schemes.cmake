@@ -22,6 +22,11 @@
 #
 # A gtest executable of the scheme's tests/ (sdb_add_test), linked to the scheme whole and to the
 # conformance suite (harness/conformance), so that `SDB_CONFORMANCE_SUITE(...)` is one line.
+#
+#   sdb_add_scheme_dirs(<dir>...)
+#
+# Each folder a plug-in as above, wherever it lives (SUBDIVBENCH_SCHEME_DIRS: schemes from
+# outside the tree, schemes/README.md).
 
 define_property(GLOBAL PROPERTY SDB_SCHEME_LIBRARIES
   BRIEF_DOCS "scheme libraries linked into subdivbench"
@@ -83,7 +88,25 @@ function(sdb_add_scheme_test name family)
                PROPERTIES ${T_PROPERTIES} ${batched})
 endfunction()
 
-# sdb_write_scheme_links(<file>): each scheme algorithm library (sdb_add_scheme) and every target it links, transitively, one library a line
+function(sdb_add_scheme_dirs)
+  set(index 0)
+  foreach(dir ${ARGN})
+    if(NOT IS_ABSOLUTE ${dir})
+      message(FATAL_ERROR "SUBDIVBENCH_SCHEME_DIRS: ${dir} is not an absolute path")
+    endif()
+    if(NOT EXISTS ${dir}/CMakeLists.txt)
+      message(FATAL_ERROR "SUBDIVBENCH_SCHEME_DIRS: ${dir}/CMakeLists.txt does not exist (a scheme folder holds one "
+                          "calling sdb_add_scheme, as schemes/<scheme>/ does)")
+    endif()
+    get_filename_component(folder ${dir} NAME)
+    math(EXPR index "${index} + 1")
+    # A folder outside the source tree needs a build folder of its own.
+    add_subdirectory(${dir} ${CMAKE_BINARY_DIR}/scheme-dirs/${index}-${folder})
+  endforeach()
+endfunction()
+
+# sdb_write_scheme_links(<file>): each scheme algorithm library (sdb_add_scheme, in-tree or from
+# SUBDIVBENCH_SCHEME_DIRS) and every target it links, transitively, one library a line
 # ("sdb_scheme_cpatch: sdb_core sdb_mesh ..."): what tests/layering/check_scheme_links.cmake
 # reads to hold the algorithms to cmake/module_graph.txt at link level too. Called once every
 # target exists (the end of the top CMakeLists.txt).
