@@ -12,7 +12,6 @@
 #include <regex>
 
 #include "harness/bench/mann_whitney.h"
-#include "harness/bench/measure.h"
 #include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 

@@ -105,16 +105,6 @@ std::optional<std::string> declined(const Scheme& scheme, const RunRequest& requ
   return scheme.info().name + " runs on " + names + " only";
 }
 
-ResolvedScheme resolve_scheme(const std::string& spelled) {
-  const SchemeSpec spec = parse_scheme_spec(spelled);
-  ResolvedScheme r;
-  r.scheme = find_scheme(spec.name);
-  if (!r.scheme) throw InputError(spec.name, "no such scheme (see `subdivbench list schemes`)");
-  r.parameters = Parameters::resolve(r.scheme->info().parameters, spec);
-  r.spec = spec.name + r.parameters.suffix();
-  return r;
-}
-
 std::optional<Backend> peer_backend_for(const SchemeInfo& info, Backend backend) {
   const Scheme* peer = info.peer.empty() ? nullptr : find_scheme(info.peer);
   if (!peer || peer->info().backends.empty()) return std::nullopt;

@@ -8,11 +8,10 @@
 #include <string>
 #include <vector>
 
-#include <benchmark/benchmark.h>
-
 #include "harness/bench/machine.h"
 #include "harness/bench/results.h"
 #include "harness/bench/run_spec.h"
+#include "harness/core/registry.h"
 #include "harness/core/scheme.h"
 #include "harness/mesh/placement.h"
 #include "harness/reference/dense_limit.h"
@@ -20,16 +19,11 @@
 #include "harness/validate/limit_distance.h"
 #include "harness/validate/limit_projector.h"
 
-namespace sdb {
+namespace benchmark {
+class BenchmarkReporter;  // Google Benchmark's, seen by measure.cpp only: bench_runs' display
+}  // namespace benchmark
 
-// A scheme as spelled on the command line, looked up and its parameters resolved.
-struct ResolvedScheme {
-  const Scheme* scheme = nullptr;
-  Parameters parameters;
-  std::string spec;  // canonical: the name and the non-default parameters
-};
-// InputError for an unknown scheme or a bad parameter.
-ResolvedScheme resolve_scheme(const std::string& spelled);
+namespace sdb {
 
 // Why a request does not run: the scheme's own reason (Scheme::unsupported), else a backend it
 // does not declare; nullopt when it runs.
@@ -38,9 +32,6 @@ std::optional<std::string> declined(const Scheme& scheme, const RunRequest& requ
 // The backend a row on `backend` reads its peer's row from: the same one where the peer has it,
 // else the peer's last (fastest) CPU backend; nullopt without a peer.
 std::optional<Backend> peer_backend_for(const SchemeInfo& info, Backend backend);
-
-// The scheme of the calibration probe's rows (bench --rounds): the gate's unit for rows without a peer.
-inline constexpr const char* kCalibrationScheme = "calibration";
 
 struct MeasureOptions {
   int reps = 5;

@@ -16,6 +16,9 @@ namespace sdb {
 
 inline constexpr int kResultsSchema = 1;
 
+// The scheme of the calibration probe's rows (bench --rounds): the gate's unit for rows without a peer.
+inline constexpr const char* kCalibrationScheme = "calibration";
+
 struct TimeStats {
   double median = 0, min = 0, max = 0;
   int reps = 0;

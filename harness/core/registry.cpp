@@ -1,5 +1,7 @@
 #include "harness/core/registry.h"
 
+#include "harness/core/errors.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -61,6 +63,16 @@ const Scheme* find_scheme(std::string_view name) {
   for (const auto& s : all_schemes())
     if (s->info().name == name) return s.get();
   return nullptr;
+}
+
+ResolvedScheme resolve_scheme(const std::string& spelled) {
+  const SchemeSpec spec = parse_scheme_spec(spelled);
+  ResolvedScheme r;
+  r.scheme = find_scheme(spec.name);
+  if (!r.scheme) throw InputError(spec.name, "no such scheme (see `subdivbench list schemes`)");
+  r.parameters = Parameters::resolve(r.scheme->info().parameters, spec);
+  r.spec = spec.name + r.parameters.suffix();
+  return r;
 }
 
 const std::vector<PaperTable>& paper_tables() {

@@ -28,6 +28,16 @@ namespace sdb {
 const std::vector<std::unique_ptr<Scheme>>& all_schemes();
 const Scheme* find_scheme(std::string_view name);  // nullptr when unknown
 
+// A scheme as spelled on the command line ("geometry-image:fit=129"), looked up and its parameters
+// resolved against their declaration.
+struct ResolvedScheme {
+  const Scheme* scheme = nullptr;
+  Parameters parameters;
+  std::string spec;  // canonical: the name and the non-default parameters
+};
+// InputError for an unknown scheme or a bad parameter.
+ResolvedScheme resolve_scheme(const std::string& spelled);
+
 const std::vector<PaperTable>& paper_tables();
 
 // Named meshes a scheme folder provides (the analytic geometry images, say), beside the

@@ -1,27 +1,13 @@
-// Image: RGBA8 pixels on the host, and PNG files through OpenImageIO (opened at run time:
-// harness/images/image_io.h).
+// The host image a render target reads back into: harness/images' Image, under the name the
+// Vulkan code and its callers use.
 #pragma once
 
-#include <array>
-#include <cstdint>
-#include <string>
-#include <vector>
+#include "harness/images/image.h"
 
 namespace sdb::gpu {
 
-struct Image {
-  uint32_t width = 0;
-  uint32_t height = 0;
-  std::vector<uint8_t> rgba;  // rows top to bottom, 4 bytes a pixel
-
-  std::array<uint8_t, 4> pixel(uint32_t x, uint32_t y) const {
-    const size_t i = (size_t(y) * width + x) * 4;
-    return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
-  }
-};
-
-// Throws std::runtime_error naming the path when OpenImageIO cannot write or read it.
-void write_png(const Image& image, const std::string& path);
-Image read_image(const std::string& path);  // any format OpenImageIO reads, as RGBA8
+using images::Image;
+using images::read_image;
+using images::write_png;
 
 }  // namespace sdb::gpu

@@ -33,4 +33,8 @@ const ImageCodec& image_codec() {
   return *codec;
 }
 
+void write_png(const Image& image, const std::string& path) { image_codec().write_rgba8(image, path); }
+
+Image read_image(const std::string& path) { return image_codec().read_rgba8(path); }
+
 }  // namespace sdb::images

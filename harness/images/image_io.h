@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/gpu/image.h"
+#include "harness/images/image.h"
 
 namespace sdb::images {
 
@@ -27,10 +27,10 @@ struct FloatImage {
 // The module's table of entry points (sdb_image_codec() in the module returns it).
 struct ImageCodec {
   // std::runtime_error naming the path when the file cannot be written.
-  void (*write_rgba8)(const gpu::Image& image, const std::string& path);
+  void (*write_rgba8)(const Image& image, const std::string& path);
   // Any format OpenImageIO reads, as RGBA8; std::runtime_error naming the path when it cannot be
   // read or its header announces more than 2^30 values (checked before anything is allocated).
-  gpu::Image (*read_rgba8)(const std::string& path);
+  Image (*read_rgba8)(const std::string& path);
   // The file's float samples when it holds exactly width x height x channels; nullopt otherwise
   // (missing, unreadable, another size).
   std::optional<FloatImage> (*read_float)(const std::string& path, int width, int height, int channels);

@@ -9,7 +9,7 @@
 namespace sdb::images {
 namespace {
 
-void write_rgba8(const gpu::Image& image, const std::string& path) {
+void write_rgba8(const Image& image, const std::string& path) {
   if (image.rgba.size() != size_t(image.width) * image.height * 4)
     throw std::invalid_argument("write_png " + path + ": pixel data does not match the image size");
   auto out = OIIO::ImageOutput::create(path);
@@ -19,7 +19,7 @@ void write_rgba8(const gpu::Image& image, const std::string& path) {
     throw std::runtime_error(path + ": " + out->geterror());
 }
 
-gpu::Image read_rgba8(const std::string& path) {
+Image read_rgba8(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error(path + ": cannot read (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec& spec = in->spec();
@@ -28,7 +28,7 @@ gpu::Image read_rgba8(const std::string& path) {
       double(spec.width) * spec.height * spec.nchannels > double(1 << 30))
     throw std::runtime_error(path + ": announces " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                              " pixels of " + std::to_string(spec.nchannels) + " channels, past 2^30 values");
-  gpu::Image image;
+  Image image;
   image.width = static_cast<uint32_t>(spec.width);
   image.height = static_cast<uint32_t>(spec.height);
   std::vector<uint8_t> pixels(size_t(spec.width) * spec.height * spec.nchannels);

@@ -1,7 +1,6 @@
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "schemes/cpatch/cpatch.h"
-#include "schemes/cpatch/paper/paper.h"
 
 #include "schemes/cpatch/cpu.h"
 #include "schemes/cpatch/vulkan.h"
@@ -131,6 +130,5 @@ std::vector<std::unique_ptr<Scheme>> make_cpatch_schemes() {
 }
 
 SDB_REGISTER_SCHEMES(cpatch, make_cpatch_schemes);
-SDB_REGISTER_PAPER_TABLES(cpatch, cpatch_paper_tables);
 
 }  // namespace sdb

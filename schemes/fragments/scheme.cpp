@@ -8,10 +8,6 @@
 #include "schemes/fragments/vulkan.h"
 
 namespace sdb::fragments {
-std::vector<PaperTable> fragment_paper_tables();  // paper/table1.cpp
-}
-
-namespace sdb::fragments {
 namespace {
 
 constexpr int kMaxDepth = 8;
@@ -84,7 +80,6 @@ std::vector<std::unique_ptr<Scheme>> make_fragment_schemes() {
 }
 
 SDB_REGISTER_SCHEMES(fragments, make_fragment_schemes);
-SDB_REGISTER_PAPER_TABLES(fragments, fragment_paper_tables);
 
 }  // namespace
 

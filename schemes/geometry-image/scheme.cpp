@@ -171,10 +171,7 @@ MeshProvider analytic_meshes() {
 
 }  // namespace
 
-std::vector<PaperTable> geometry_image_paper_tables();  // paper/paper.cpp
-
 SDB_REGISTER_SCHEMES(geometry_image, make_geometry_image_schemes);
-SDB_REGISTER_PAPER_TABLES(geometry_image, geometry_image_paper_tables);
 SDB_REGISTER_MESHES(geometry_image, analytic_meshes);
 
 }  // namespace sdb

@@ -114,12 +114,6 @@ class MipghScheme final : public Scheme {
   SchemeInfo info_;
 };
 
-}  // namespace
-
-std::vector<PaperTable> mipgh_paper_tables();  // paper/cost.cpp
-
-namespace {
-
 std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
   std::vector<std::unique_ptr<Scheme>> s;
   s.push_back(std::make_unique<MipghScheme>(MeshRule::CatmullClark));
@@ -129,7 +123,6 @@ std::vector<std::unique_ptr<Scheme>> make_mipgh_schemes() {
 }
 
 SDB_REGISTER_SCHEMES(mipgh, make_mipgh_schemes);
-SDB_REGISTER_PAPER_TABLES(mipgh, mipgh_paper_tables);
 
 }  // namespace
 

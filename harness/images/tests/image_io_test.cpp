@@ -29,18 +29,18 @@ fs::path scratch(const std::string& name) {
 // ctest runs each test in a process of its own; run together, this one comes first.
 TEST(ImageIo, OpenImageIoIsLoadedOnlyWhenAnImageIsFirstReadOrWritten) {
   EXPECT_FALSE(openimageio_loaded());
-  gpu::Image image{3, 2, std::vector<uint8_t>(3 * 2 * 4, 7)};
+  Image image{3, 2, std::vector<uint8_t>(3 * 2 * 4, 7)};
   image_codec().write_rgba8(image, scratch("first.png").string());
   EXPECT_TRUE(openimageio_loaded());
 }
 
 TEST(ImageIo, PngRoundTripsPixelForPixel) {
-  gpu::Image image{5, 3, {}};
+  Image image{5, 3, {}};
   // Opaque: OpenImageIO premultiplies colour by a PNG's alpha, which rounds translucent pixels.
   for (uint32_t i = 0; i < 5 * 3 * 4; ++i) image.rgba.push_back(i % 4 == 3 ? 255 : uint8_t(i * 37 % 256));
   const std::string path = scratch("round.png").string();
   image_codec().write_rgba8(image, path);
-  const gpu::Image back = image_codec().read_rgba8(path);
+  const Image back = image_codec().read_rgba8(path);
   EXPECT_EQ(back.width, 5u);
   EXPECT_EQ(back.height, 3u);
   EXPECT_EQ(back.rgba, image.rgba);

@@ -2,6 +2,7 @@
 // 2-pass and 1-pass variants in render mode, fps.cpp) and ni2008-fig12 (deviation from the
 // Catmull-Clark limit with heat maps, fig12.cpp).
 #include "harness/core/paper_table.h"
+#include "harness/core/registry.h"
 #include "harness/gpu/gpu.h"
 #include "harness/mesh/facts.h"
 #include "schemes/cpatch/paper/paper.h"
@@ -15,6 +16,10 @@ std::vector<PaperTable> cpatch_paper_tables() {
           {"ni2008-fig12", "GPU Smoothing of Quad Meshes, Figure 12: c-patch surface against the Catmull-Clark limit",
            cpatch::run_fig12}};
 }
+
+// The paper tables register here, with the experiments (sdb_scheme_cpatch_paper), not with the
+// algorithm: the plug-in library links no measurement (cmake/Schemes.cmake).
+SDB_REGISTER_PAPER_TABLES(cpatch, cpatch_paper_tables);
 
 namespace cpatch {
 

@@ -219,4 +219,8 @@ std::vector<PaperTable> fragment_paper_tables() {
            run_table1}};
 }
 
+// The paper tables register here, with the experiments (sdb_scheme_fragments_paper), not with the
+// algorithm: the plug-in library links no measurement (cmake/Schemes.cmake).
+SDB_REGISTER_PAPER_TABLES(fragments, fragment_paper_tables);
+
 }  // namespace sdb::fragments

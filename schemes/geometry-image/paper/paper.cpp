@@ -17,6 +17,7 @@
 #include "harness/bench/markdown.h"
 #include "harness/bench/measure.h"
 #include "harness/core/paper_table.h"
+#include "harness/core/registry.h"
 #include "harness/gpu/gpu.h"
 #include "schemes/geometry-image/geometry_image.h"
 
@@ -255,5 +256,9 @@ std::vector<PaperTable> geometry_image_paper_tables() {
   return {{kTableId, "Smooth Geometry Images, Table 2: a 31 x 31 image subdivided k = 1..4 times, cpu and vulkan",
            run_table2}};
 }
+
+// The paper tables register here, with the experiments (sdb_scheme_geometry_image_paper), not with the
+// algorithm: the plug-in library links no measurement (cmake/Schemes.cmake).
+SDB_REGISTER_PAPER_TABLES(geometry_image, geometry_image_paper_tables);
 
 }  // namespace sdb

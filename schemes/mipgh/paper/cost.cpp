@@ -11,6 +11,7 @@
 #include "harness/bench/process.h"
 #include "harness/core/errors.h"
 #include "harness/core/paper_table.h"
+#include "harness/core/registry.h"
 #include "datasets/manifest.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/lod.h"
@@ -77,5 +78,9 @@ std::vector<PaperTable> mipgh_paper_tables() {
            run_cost});
   return tables;
 }
+
+// The paper tables register here, with the experiments (sdb_scheme_mipgh_paper), not with the
+// algorithm: the plug-in library links no measurement (cmake/Schemes.cmake).
+SDB_REGISTER_PAPER_TABLES(mipgh, mipgh_paper_tables);
 
 }  // namespace sdb::mipgh

@@ -1,4 +1,4 @@
-#include "tests/schemes/bilinear/cpu.h"
+#include "cpu.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -4,8 +4,8 @@
 
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
-#include "tests/schemes/bilinear/bilinear.h"
-#include "tests/schemes/bilinear/cpu.h"
+#include "bilinear.h"
+#include "cpu.h"
 
 namespace sdb {
 namespace {
