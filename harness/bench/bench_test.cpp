@@ -97,6 +97,24 @@ TEST(Measure, UnsupportedBackendIsAStatusNotAFailure) {
   EXPECT_FALSE(row.message.empty());
 }
 
+// A run for its verdict only (the corpus scale-invariance test) leaves out the nearest-point
+// deviation where no bound reads it (openmesh-cc declares none), and its verdict is the full run's.
+TEST(Measure, VerdictOnlyRunLeavesOutTheDeviationNoBoundReads) {
+  MeasureContext ctx(describe_machine());
+  MeasureOptions o = quick();
+  o.time = false, o.hausdorff = false;
+  const RunRow full = measure_run({"openmesh-cc", "torus-8x8", Backend::Cpu, 2}, o, ctx);
+  o.unjudged_deviation = false;
+  const RunRow verdict = measure_run({"openmesh-cc", "torus-8x8", Backend::Cpu, 2}, o, ctx);
+  ASSERT_TRUE(full.deviation.measured);
+  EXPECT_EQ(full.deviation.measured_by, "nearest-point");
+  EXPECT_FALSE(verdict.deviation.measured);
+  EXPECT_EQ(verdict.status, full.status) << verdict.message;
+  EXPECT_EQ(verdict.watertight.open_edges, full.watertight.open_edges);
+  // Bounded at its coords, osd-bfr is measured either way.
+  EXPECT_TRUE(measure_run({"osd-bfr", "torus-8x8", Backend::Cpu, 3}, o, ctx).deviation.measured);
+}
+
 // A scheme that only declares what faces it takes (prepare is never called here).
 class FaceRequirement final : public Scheme {
  public:

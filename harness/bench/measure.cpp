@@ -143,10 +143,11 @@ std::shared_ptr<const ControlMesh> MeasureContext::accepted(const std::string& n
       name + "|" + std::to_string(int(a.faces)) + std::to_string(a.quadrangulate) + std::to_string(a.split_polygons);
   auto it = accepted_.find(key);
   if (it != accepted_.end()) {
-    accept_mesh(*it->second, scheme.info());  // the remaining checks still apply per scheme
+    accept_mesh(*it->second, scheme.info(), facts(*it->second));  // the remaining checks still apply per scheme
     return it->second;
   }
-  auto m = std::make_shared<const ControlMesh>(accept_mesh(mesh(name), scheme.info()));
+  const ControlMesh& given = mesh(name);
+  auto m = std::make_shared<const ControlMesh>(accept_mesh(given, scheme.info(), facts(given)));
   accepted_[key] = m;
   return m;
 }
@@ -175,6 +176,13 @@ size_t content_key(const ControlMesh& m) {
 }
 
 }  // namespace
+
+const MeshFacts& MeasureContext::facts(const ControlMesh& m) {
+  const size_t key = content_key(m);
+  auto it = facts_.find(key);
+  if (it == facts_.end()) it = facts_.emplace(key, compute_facts(m)).first;
+  return it->second;
+}
 
 const LimitEvaluator& MeasureContext::reference(const std::shared_ptr<const ControlMesh>& m, SubdivisionRule rule) {
   auto& slot = references_[{content_key(*m), int(rule)}];
@@ -211,6 +219,8 @@ std::string past_bound(const DeviationBound& bound, double position, double norm
             " degrees, past the bound " + std::to_string(bound.normal_deg);
   return past;
 }
+
+bool bounded(const DeviationBound& bound) { return bound.pos_rel_diag >= 0 || bound.normal_deg >= 0; }
 
 // A row past its scheme's declared bound fails, like a crack: the scheme promised the bound.
 void judge_deviation(RunRow& row) {
@@ -285,7 +295,7 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
     return;
   }
   const SubdivisionRule rule = s.rule;
-  const MeshFacts facts = compute_facts(*s.accepted);
+  const MeshFacts& facts = ctx.facts(*s.accepted);
   row.watertight.open_edges = count_open_edges(t);
   row.watertight.seed = o.seed;
   const bool closed = facts.closed && s.accepted->holes.empty();
@@ -303,21 +313,25 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
   const bool own_coords = coords_on_own_mesh(t, *s.accepted);
   const bool at_coords = coords_on_input(t, s);
   const std::shared_ptr<const ControlMesh>& limit_mesh = at_coords ? s.accepted : s.input;
-  if (rule == SubdivisionRule::Loop && !compute_facts(*limit_mesh).all_triangles) return;  // no Loop limit to compare with
+  if (rule == SubdivisionRule::Loop && !ctx.facts(*limit_mesh).all_triangles) return;  // no Loop limit to compare with
   try {
     if (t.triangles.empty()) return;
-    const LimitDistance d = input_limit_distance(t, s, ctx);
+    // By nearest points (no coords on the input) the yardstick is a LimitProjector, the costliest.
+    const bool input_figure = o.unjudged_deviation || at_coords || bounded(row.bound);
+    const LimitDistance d = input_figure ? input_limit_distance(t, s, ctx) : LimitDistance{};
     const DeviationReport& r = d.report;
-    if (!o.deviation_ply.empty()) write_deviation_ply(t, r, o.deviation_ply, ctx.placement(row.mesh));
-    row.deviation = {true, r.pos_max_pct, r.pos_mean_pct, r.pos_rms_pct, r.pos_p95_pct, r.pos_max_rel_diag,
-                     normal_figure(r, r.normal_max_deg), normal_figure(r, r.normal_mean_deg), -1, r.normal_undefined,
-                     d.pos_p95_rel_diag, d.nearest_point ? "nearest-point" : "surface-coords", std::nullopt};
-    if (r.normal_undefined > 0)
-      row.message += std::string(row.message.empty() ? "" : "; ") + std::to_string(r.normal_undefined) + " of " +
-                     std::to_string(r.vertices) + " vertices without a normal to compare (" +
-                     std::to_string(r.normal_undefined - r.normal_declared) + " where the limit has none, " +
-                     std::to_string(r.normal_declared) + " where the scheme gives none)";
-    note_left_out(row, r);
+    if (input_figure) {
+      if (!o.deviation_ply.empty()) write_deviation_ply(t, r, o.deviation_ply, ctx.placement(row.mesh));
+      row.deviation = {true, r.pos_max_pct, r.pos_mean_pct, r.pos_rms_pct, r.pos_p95_pct, r.pos_max_rel_diag,
+                       normal_figure(r, r.normal_max_deg), normal_figure(r, r.normal_mean_deg), -1, r.normal_undefined,
+                       d.pos_p95_rel_diag, d.nearest_point ? "nearest-point" : "surface-coords", std::nullopt};
+      if (r.normal_undefined > 0)
+        row.message += std::string(row.message.empty() ? "" : "; ") + std::to_string(r.normal_undefined) + " of " +
+                       std::to_string(r.vertices) + " vertices without a normal to compare (" +
+                       std::to_string(r.normal_undefined - r.normal_declared) + " where the limit has none, " +
+                       std::to_string(r.normal_declared) + " where the scheme gives none)";
+      note_left_out(row, r);
+    }
     // The scheme's exactness on its own control mesh, the second figure (the first one where that
     // mesh is the input: an image's own g0 given as the mesh).
     if (t.reference && !t.coords.empty()) {
@@ -482,7 +496,7 @@ DescribedRun describe_run(const RunSpec& spec, const MeasureOptions& o, MeasureC
     row.message = *why;
     return d;
   }
-  const MeshFacts facts = compute_facts(ctx.mesh(spec.mesh));
+  const MeshFacts& facts = ctx.facts(ctx.mesh(spec.mesh));
   row.mesh_faces = facts.faces;
   row.mesh_vertices = facts.vertices;
   row.extraordinary_fraction = facts.all_triangles ? facts.extraordinary_vertex_fraction : facts.extraordinary_quad_fraction;

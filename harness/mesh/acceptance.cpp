@@ -23,13 +23,14 @@ void check_sizes(const MeshFacts& facts, const MeshRequirements& req, Refuse ref
 
 }  // namespace
 
-ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) {
+ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info) { return accept_mesh(mesh, info, compute_facts(mesh)); }
+
+ControlMesh accept_mesh(const ControlMesh& mesh, const SchemeInfo& info, const MeshFacts& facts) {
   const MeshRequirements& req = info.accepts;
   auto refuse = [&](const std::string& why) -> void {
     throw InputError(mesh.source, info.name + " cannot take mesh '" + mesh.name + "': " + why);
   };
   if (req.manifold) require_manifold(mesh, info.name);
-  const MeshFacts facts = compute_facts(mesh);
   if (req.closed && facts.boundary_edges > 0)
     refuse("it has " + std::to_string(facts.boundary_edges) + " boundary edges and the scheme needs a closed mesh");
   if (req.genus0 && facts.genus != 0) refuse("genus " + std::to_string(facts.genus) + ", the scheme needs genus 0");
