@@ -63,9 +63,9 @@ std::pair<int, int> parse_shard(const std::string& text);
 // names is index modulo count (every copy of a repeated run goes to the same shard).
 std::vector<RunSpec> shard_runs(const std::vector<RunSpec>& runs, int index, int count);
 
-// The quick set's meshes: a quad mesh and a triangle mesh (built-ins) and one real corpus mesh
-// (a built-in stand-in when the corpus is absent). A scheme runs on the ones of its own rule:
-// Loop schemes on the triangle mesh, Catmull-Clark schemes on the quad meshes.
+// The quick set's meshes: a triangle mesh (a built-in) and one real corpus quad mesh (a built-in
+// stand-in when the corpus is absent). A scheme runs on the one of its own rule: Loop schemes on
+// the triangle mesh, Catmull-Clark schemes on the quad mesh.
 struct QuickMesh {
   std::string name;
   SubdivisionRule rule;
@@ -92,8 +92,9 @@ std::vector<std::pair<int, long>>::const_iterator nearest_level(const std::vecto
                                                                 long target);
 
 // The quick set's two levels of a scheme on an accepted mesh: among the levels it takes, the one
-// whose output is nearest (in ratio) kSummaryTriangles, then of the rest the one nearest
-// kQuickLow. Fewer when the scheme has fewer levels.
+// with the smallest output within kSummaryLow..kSummaryHigh (else the one nearest, in ratio,
+// kSummaryTriangles), then of the rest the one nearest kQuickLow. Fewer when the scheme has fewer
+// levels.
 inline constexpr long kQuickLow = 100'000;
 inline constexpr double kQuickMinTime = 0.02;  // seconds per timed repetition (default 0.05)
 std::vector<int> quick_levels(const std::vector<std::pair<int, long>>& level_triangles);
