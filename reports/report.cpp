@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "harness/bench/output_folder.h"
@@ -14,6 +16,7 @@
 #include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "reports/overview.h"
 #include "reports/report_inputs.h"
 
 namespace fs = std::filesystem;
@@ -106,10 +109,16 @@ void write_report(const std::vector<std::string>& inputs, const std::string& out
     argv.insert(argv.end(), {"--history", "--gate-config", resource_path("ci/gate.json"), "--names"});
     argv.insert(argv.end(), inputs.begin(), inputs.end());
   } else {
-    argv.insert(argv.end(), {"--merged-from", merged_from(read)});
+    // The first screen's figures, computed here once (overview.h); the script lays them out.
+    const std::string overview = (work.path / "overview.json").string();
+    std::ofstream file(overview);
+    file << overview_json(make_overview(staged_files.front())).dump(1);
+    if (!file.flush()) throw InputError(overview, "cannot write the report's overview");
+    argv.insert(argv.end(), {"--merged-from", merged_from(read), "--overview", overview});
   }
   if (pictures) argv.insert(argv.end(), {"--pictures", *pictures});
   for (const auto& p : options.papers) argv.insert(argv.end(), {"--paper", p});
+  if (!options.papers_note.empty()) argv.insert(argv.end(), {"--papers-note", options.papers_note});
   argv.push_back("--");
   argv.insert(argv.end(), staged.begin(), staged.end());
   const ProcessResult r = run_process(argv);

@@ -8,6 +8,8 @@ namespace sdb {
 
 struct ReportOptions {
   std::vector<std::string> papers;  // Markdown written by `subdivbench paper ID`, included as they are
+  // One line in the report's paper section: why it holds no table, or which tables are missing.
+  std::string papers_note;
   // The inputs are one results file per commit, oldest first: the gate's view over commits
   // instead of one merged comparison.
   bool history = false;

@@ -16,8 +16,9 @@ import sys
 import report_html as H
 from report_data import Results, cpu_implementation, load_results, fmt, spec_of
 from report_history import History, read_gate_config, verdict_lines
+from report_overview import load_overview, scheme_table_html, scheme_table_md, tradeoff_figures
 try:
-    from report_plots import cost_growth, deviation_distributions, history_plot, rate_grid
+    from report_plots import cost_growth, deviation_distributions, history_plot, label_backends, rate_grid
     NO_PLOTS = ""
 except ImportError as missing:  # a GPU machine's python3 may lack matplotlib: the report without plots
     NO_PLOTS = (f"No plots: {missing} (python3-matplotlib is not installed here); `subdivbench report --in "
@@ -41,8 +42,12 @@ def comparison(args, plot_dir):
     verdicts = scheme_lines(results, m)
     invalid, validity = validation_sentence(results)
     grid = validation_grid(results)
+    if not NO_PLOTS:
+        label_backends(results.machine)
     plots = [] if NO_PLOTS else [p for p in (rate_grid(results, plot_dir), cost_growth(results, plot_dir),
                                              deviation_distributions(results, plot_dir)) if p]
+    overview = load_overview(args.overview)
+    first = [] if NO_PLOTS else tradeoff_figures(overview, results.schemes, plot_dir)
     manifest = None
     if args.pictures:
         with open(args.pictures) as f:
@@ -52,22 +57,30 @@ def comparison(args, plot_dir):
         with open(path, encoding="utf-8") as f:  # checked UTF-8 by reports/report_inputs.cpp
             papers.append((path, f.read()))
     write_comparison_html(os.path.join(args.out, "report.html"), results, m, fast, verdicts, (invalid, validity), grid,
-                          plots, manifest, args.pictures, papers, args.merged_from)
-    write_comparison_md(os.path.join(args.out, "report.md"), results, m, fast, verdicts, validity, plots, manifest, papers)
+                          plots, manifest, args.pictures, (papers, args.papers_note), args.merged_from,
+                          (overview, first))
+    write_comparison_md(os.path.join(args.out, "report.md"), results, m, fast, verdicts, validity, plots, manifest,
+                        (papers, args.papers_note),
+                        (overview, first))
 
 
 def write_comparison_html(path, results, m, fast, verdicts, validation, grid, plots, manifest, manifest_path, papers,
-                          merged_from):
+                          merged_from, first_screen):
     invalid, validity = validation
+    overview, first = first_screen
+    papers, papers_note = papers
     body = [
+        "<section id='overview'><div class='figures-row'>" + "".join(H.figure(p) for p in first) + "</div>",
+        (f"<p>{H.e(NO_PLOTS)}</p>" if NO_PLOTS else ""),
+        "<h3>Per scheme</h3>", scheme_table_html(overview, results.schemes), "</section>",
         "<section id='summary'><h2>Summary</h2>",
         f"<p class='lede{' bad' if invalid else ''}'>{H.e(validity)}</p>",
         (f"<p class='lede bad'>Part of a sweep only: {H.e(merged_from)}.</p>" if "MISSING" in merged_from else ""),
+        f"<h3>Matrix: meshes &times; schemes, per backend</h3><p class='reading'>{READING}</p>",
+        f"<div id='summary-matrix'>{H.summary_matrix(results, m, fastest)}</div>",
         "<h3>Fastest per mesh</h3>", H.sentences(fast),
         "<h3>Where each scheme wins and loses against its peer</h3>", H.sentences(verdicts, results.schemes),
-        *gpu_section_html(results),
-        f"<h3>Matrix: meshes &times; schemes, per backend</h3><p class='reading'>{READING}</p>",
-        f"<div id='summary-matrix'>{H.summary_matrix(results, m, fastest)}</div></section>",
+        *gpu_section_html(results), "</section>",
         "<section id='validation'><h2>Validation</h2>",
         "<p>One chip per level: <span class='chip good'>ok</span> closed (or open input) with no crack and within the "
         "scheme's deviation bound on every backend; <span class='chip bad'>bad</span> an open edge, a crack, the bound "
@@ -79,12 +92,14 @@ def write_comparison_html(path, results, m, fast, verdicts, validation, grid, pl
         "<section id='plots'><h2>Plots</h2>", *[H.figure(p) for p in plots],
         (f"<p>{H.e(NO_PLOTS)}</p>" if NO_PLOTS else ""), "</section>",
         "<section id='pictures'><h2>Pictures</h2>", H.pictures_section(manifest, manifest_path), "</section>",
-        "<section id='papers'><h2>Paper tables</h2>", H.paper_section(papers, results.machine), "</section>",
-        "<section id='paired'><h2>Paired cells</h2>", H.paired_table(results), "</section>",
+        "<section id='papers'><h2>Paper tables</h2>", H.paper_section(papers, results.machine, papers_note), "</section>",
+        "<section id='paired'><h2>Paired cells</h2>", cpu_implementation_note(results), H.paired_table(results),
+        "</section>",
         "<section id='rows'><h2>Every row</h2>",
         "<p>Ratios here are single pass (each row once); sort by a header, filter by scheme, backend and mesh.</p>",
+        cpu_implementation_note(results),
         H.rows_table(results), "</section>"]
-    nav = [("summary", "Summary"), ("validation", "Validation"), ("plots", "Plots"), ("pictures", "Pictures"),
+    nav = [("overview", "Overview"), ("summary", "Summary"), ("validation", "Validation"), ("plots", "Plots"), ("pictures", "Pictures"),
            ("papers", "Paper tables"), ("paired", "Paired cells"), ("rows", "Every row")]
     with open(path, "w") as f:
         f.write(H.page("subdivbench report", H.machine_words(results.machine, results.created, H.e(merged_from)),
@@ -102,6 +117,13 @@ def gpu_section_html(results):
         return []
     return ["<h3>GPU against the same scheme's CPU</h3>", f"<p class='reading'>{H.e(gpu_reading(results))}</p>",
             H.sentences(lines, results.schemes)]
+
+
+def cpu_implementation_note(results):
+    """One line above a table whose rows name a backend that ran on a CPU implementation of its API."""
+    labels = [f"{b} rows ran on {cpu_implementation(results.machine, b)}" for b in results.backends()
+              if cpu_implementation(results.machine, b)]
+    return f"<p class='reading'>{H.e('; '.join(labels))}.</p>" if labels else ""
 
 
 MD_SPECIAL = re.compile(r"([\\`*_\[\]|~])")
@@ -136,9 +158,14 @@ def md_cell(cell):
     return f"{fmt(cell.rate)} Mtri/s, {ratio}"
 
 
-def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manifest, papers):
+def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manifest, papers, first_screen):
+    overview, first = first_screen
+    papers, papers_note = papers
     out = ["# subdivbench report", "", H.machine_words(results.machine, results.created).replace("<code>", "`")
-           .replace("</code>", "`"), "", "## Summary", "", validity, "", "### Fastest per mesh", ""]
+           .replace("</code>", "`"), ""]
+    out += [f"![{md(p.alt)}](plots/{p.name})\n\n{md(p.caption)}\n" for p in first]
+    out += ["### Per scheme", ""] + scheme_table_md(overview, results.schemes, md)
+    out += ["", "## Summary", "", validity, "", "### Fastest per mesh", ""]
     for mesh, parts in fast:
         out += [f"- **{md(mesh)}**"] + [f"  - {md(p)}" for p in parts]
     out += ["", "### Where each scheme wins and loses against its peer", ""]
@@ -168,7 +195,9 @@ def write_comparison_md(path, results, m, fast, verdicts, validity, plots, manif
         out.append(f"{len(manifest.get('pictures', []))} pictures in pictures/ (see report.html).")
     else:
         out.append("No pictures: " + md((manifest or {}).get("reason") or "the run wrote no pictures/pictures.json") + ".")
-    out += ["", "## Paper tables", ""]
+    out += ["", "## Paper tables", ""] + ([md(papers_note), ""] if papers_note else [])
+    if not papers and not papers_note:
+        out += ["No paper table in this report: `subdivbench report --paper results/paper/ID.md` includes them.", ""]
     for p, text in papers:
         out += [text.replace("\n#", "\n###"), ""]
     out += ["## Every row", "", "| " + " | ".join(c[0] for c in H.ROW_COLUMNS) + " |", "|---" * len(H.ROW_COLUMNS) + "|"]
@@ -223,6 +252,8 @@ def main():
     ap.add_argument("--gate-config", default="", help="ci/gate.json: the history's thresholds")
     ap.add_argument("--names", nargs="*", help="the inputs' names as the user gave them (history)")
     ap.add_argument("--merged-from", default="", help="which files (shards) the one input was merged from")
+    ap.add_argument("--papers-note", default="", help="why the report has no (or not every) paper table, one line")
+    ap.add_argument("--overview", default="", help="the first screen's figures (reports/overview.cpp)")
     ap.add_argument("inputs", nargs="+")
     args = ap.parse_args()
     args.scheme_order = [tuple(s.split("=", 1)) if "=" in s else (s, "") for s in args.schemes.split(",") if s]

@@ -24,8 +24,10 @@ ul.sentences li{margin:.3em 0;font-size:14px}
 table{border-collapse:collapse;font-size:12px}
 td,th{border:1px solid #ccc;padding:3px 6px;vertical-align:top}
 th{background:#f3f3f3;position:sticky;top:0}
-table.matrix td{min-width:78px;text-align:right;white-space:nowrap;line-height:1.25}
-table.matrix th{font-weight:600;font-size:11px;vertical-align:bottom} table.matrix th.mesh{text-align:left;vertical-align:top}
+table.matrix td{min-width:78px;max-width:95px;text-align:right;white-space:nowrap;line-height:1.25}
+table.matrix th{font-weight:600;font-size:11px;vertical-align:bottom;max-width:95px;overflow-wrap:anywhere}
+table.matrix th.mesh{max-width:160px}
+table.schemes td,table.schemes th{font-size:13px} table.schemes td.leaky{color:#c0392b} table.matrix th.mesh{text-align:left;vertical-align:top}
 table.matrix .rate{font-size:15px;font-weight:700} table.matrix .ratio{font-size:13px}
 .range,.tris{color:#666;font-size:10px} p.reading{font-size:12px;color:#444}
 .single{color:#a35a00;font-size:10px;font-weight:600;text-transform:uppercase;letter-spacing:.03em}
@@ -36,6 +38,7 @@ table.validation td{padding:2px 4px} .chip{display:inline-block;min-width:1.6em;
  border-radius:3px;padding:1px 3px;font-size:11px;cursor:default}
 .chip.good{background:#4caf50;color:#fff} .chip.bad{background:#d32f2f;color:#fff} .chip.grey{background:#bbb;color:#fff}
 .chip.na{background:#eee;color:#999}
+.figures-row{display:flex;flex-wrap:wrap;gap:8px 16px} .figures-row figure{flex:0 1 650px;margin-bottom:.6em}
 figure{margin:0 0 1.5em} figcaption{font-size:12px;color:#555;max-width:900px} img.plot{max-width:100%}
 .pictures-row{display:flex;flex-wrap:wrap;gap:14px;margin-bottom:1em}
 .picture{border:1px solid #ddd;padding:6px;background:#fff;flex:0 0 auto} .picture .pair{display:flex;gap:4px}
@@ -141,6 +144,12 @@ def matrix_cell(cell, best):
             f"<div class='tris'>{r['triangles']:,} tri, L{r['level']}</div></td>")
 
 
+# Scheme columns per matrix table: each about 95 px wide and the mesh column 160, so that a
+# 1400-pixel window shows a whole table without scrolling sideways; more schemes wrap into a
+# second table of the same meshes.
+MATRIX_COLUMNS = 11
+
+
 def summary_matrix(results, m, fastest):
     out = []
     for backend, per_mesh in m.items():
@@ -148,21 +157,30 @@ def summary_matrix(results, m, fastest):
         if not specs:
             continue
         label = cpu_implementation(results.machine, backend)
-        out.append(f"<h3>{e(backend)}{' (on ' + e(label) + ')' if label else ''}</h3>"
-                   f"<div class='scroll'><table class='matrix' id='summary-matrix-{e(backend)}' "
-                   f"data-backend='{e(backend)}'><thead><tr><th>mesh</th>")
+        out.append(f"<h3>{e(backend)}{' (on ' + e(label) + ')' if label else ''}</h3>")
+        for part in range(0, len(specs), MATRIX_COLUMNS):
+            out.append(matrix_table(results, backend, per_mesh, specs[part:part + MATRIX_COLUMNS], fastest,
+                                    "" if part == 0 else f"-{part // MATRIX_COLUMNS + 1}"))
+    return "\n".join(out)
+
+
+def matrix_table(results, backend, per_mesh, specs, fastest, suffix):
+    """One table of the backend's matrix: its meshes against `specs`; the fastest is outlined among
+    all the backend's schemes on the mesh, not only these."""
+    out = [f"<div class='scroll'><table class='matrix' id='summary-matrix-{e(backend)}{suffix}' "
+           f"data-backend='{e(backend)}'><thead><tr><th>mesh</th>"]
+    for s in specs:
+        peers = sorted({c.peer.split(" (")[0] for cells in per_mesh.values() for x, c in cells.items() if x == s and c.peer})
+        vs = f"<div class='range'>vs {e(' / '.join(peers))}</div>" if peers else "<div class='range'>anchor</div>"
+        out.append(f"<th>{swatch(results.schemes.colour_of(s))}{e(s)}{vs}</th>")
+    out.append("</tr></thead><tbody>")
+    for mesh, cells in per_mesh.items():
+        best = fastest(cells)
+        out.append(f"<tr><th class='mesh'>{e(mesh)}</th>")
         for s in specs:
-            peers = sorted({c.peer.split(" (")[0] for cells in per_mesh.values() for x, c in cells.items() if x == s and c.peer})
-            vs = f"<div class='range'>vs {e(' / '.join(peers))}</div>" if peers else "<div class='range'>anchor</div>"
-            out.append(f"<th>{swatch(results.schemes.colour_of(s))}{e(s)}{vs}</th>")
-        out.append("</tr></thead><tbody>")
-        for mesh, cells in per_mesh.items():
-            best = fastest(cells)
-            out.append(f"<tr><th class='mesh'>{e(mesh)}</th>")
-            for s in specs:
-                out.append(matrix_cell(cells[s], s == best) if s in cells else "<td class='na'></td>")
-            out.append("</tr>")
-        out.append("</tbody></table></div>")
+            out.append(matrix_cell(cells[s], s == best) if s in cells else "<td class='na'></td>")
+        out.append("</tr>")
+    out.append("</tbody></table></div>")
     return "\n".join(out)
 
 
@@ -205,7 +223,7 @@ def limit_matrix(table, meshes, schemes):
 def figure(plot):
     if plot is None:
         return ""
-    return (f"<figure><img class='plot' alt='{e(plot.title)}' src='{plot.data_uri()}'>"
+    return (f"<figure><img class='plot' alt='{e(getattr(plot, 'alt', plot.title))}' src='{plot.data_uri()}'>"
             f"<figcaption><b>{e(plot.title)}.</b> {e(plot.caption)}</figcaption></figure>")
 
 
@@ -336,12 +354,15 @@ def inline(text, folder):
     return "".join(out)
 
 
-def paper_section(papers, machine):
+def paper_section(papers, machine, note=""):
+    """The papers' tables as `subdivbench paper ID` wrote them (each headed by its ID, the paper's
+    figures beside ours), and `note`: one line saying why there are none, or which are missing."""
+    said = f"<p class='papers-note'>{e(note)}</p>" if note else ""
     if not papers:
-        return ("<p>No paper table in this report: <code>subdivbench report --paper results/paper/ID.md</code> "
-                "includes the Markdown <code>subdivbench paper ID</code> writes.</p>")
+        return said or ("<p class='papers-note'>No paper table in this report: <code>subdivbench report --paper "
+                        "results/paper/ID.md</code> includes the Markdown <code>subdivbench paper ID</code> writes.</p>")
     m = machine or {}
-    out = [f"<p>Paper rows shaded blue, ours white. Ours measured on {e(m.get('cpu_model', '?'))} "
+    out = [said, f"<p>Paper rows shaded blue, ours white. Ours measured on {e(m.get('cpu_model', '?'))} "
            f"({m.get('cores', '?')} cores); Vulkan device: {e(m.get('vulkan_device') or 'none')} "
            f"{e(m.get('vulkan_driver', ''))}. Each table says which device its own rows ran on.</p>"]
     for path, text in papers:

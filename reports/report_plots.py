@@ -12,7 +12,20 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from report_data import BACKEND_STYLE, finite, group, median, spec_of, timing  # noqa: E402
+from report_data import BACKEND_STYLE, cpu_implementation, finite, group, median, spec_of, timing  # noqa: E402
+
+# The machine whose backends the legends and panel titles name (a CPU implementation of a GPU API
+# is labelled in every plot): set by each plot from its results.
+LABELLED = {}
+
+
+def backend_label(b):
+    return f"{b} (on a CPU implementation)" if LABELLED.get(b) else b
+
+
+def label_backends(machine):
+    LABELLED.clear()
+    LABELLED.update({b: bool(cpu_implementation(machine, b)) for b in ("vulkan", "opengl")})
 
 DPI = 90
 
@@ -22,6 +35,7 @@ class Plot:
 
     def __init__(self, name, title, caption, png):
         self.name, self.title, self.caption, self.png = name, title, caption, png
+        self.alt = title  # what the figure shows, for a reader who cannot see it
 
     def data_uri(self):
         return "data:image/png;base64," + base64.b64encode(self.png).decode()
@@ -42,7 +56,8 @@ def style(backend):
 
 def legend_handles(schemes, specs, backends):
     handles = [Line2D([], [], color=schemes.colour_of(s), lw=2.5, label=s) for s in specs]
-    handles += [Line2D([], [], color="#555555", marker=style(b)[0], linestyle=style(b)[1], label=b) for b in backends]
+    handles += [Line2D([], [], color="#555555", marker=style(b)[0], linestyle=style(b)[1], label=backend_label(b))
+                for b in backends]
     return handles
 
 
@@ -100,7 +115,7 @@ def rate_grid(results, plot_dir):
             ax.set_yscale("log")
             ax.grid(True, which="major", alpha=0.3)
             if i == 0:
-                ax.set_title(backend, fontsize=10)
+                ax.set_title(backend_label(backend), fontsize=10)
             if j == 0:
                 ax.set_ylabel(f"{plot_text(mesh)}\nM triangles/s", fontsize=8)
             if i == len(meshes) - 1:
@@ -207,7 +222,7 @@ def deviation_distributions(results, plot_dir):
         ax.grid(True, axis="x", which="major", alpha=0.3)
     axes[0][0].set_yticks(range(1, len(specs) + 1))
     axes[0][0].set_yticklabels([plot_text(s) for s in specs], fontsize=8)
-    handles = [Line2D([], [], color="#555555", marker=style(b)[0], linestyle="none", label=b)
+    handles = [Line2D([], [], color="#555555", marker=style(b)[0], linestyle="none", label=backend_label(b))
                for b in sorted(backends, key=lambda b: list(BACKEND_STYLE).index(b) if b in BACKEND_STYLE else 9)]
     outside_legend(fig, handles, "backend")
     fig.tight_layout()

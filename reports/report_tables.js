@@ -118,8 +118,18 @@
       }
     }
     var out = document.createElement('pre');
+    // The first screen and the matrices fit the window (the test opens it 1400 pixels wide): no
+    // horizontal scrolling, neither of the page nor inside a matrix's scroll box.
+    var wide = [];
+    document.querySelectorAll('table.matrix, table.schemes, #overview img.plot').forEach(function (el) {
+      var right = el.getBoundingClientRect().right;
+      if (right > window.innerWidth) wide.push((el.id || el.className) + ' ends at ' + Math.round(right) + ' px');
+    });
+    if (document.documentElement.scrollWidth > window.innerWidth) wide.push('the page scrolls sideways');
+    if (wide.length) problems.push('wider than the window (' + window.innerWidth + ' px): ' + wide.join(', '));
     out.id = 'selftest';
     out.textContent = (problems.length ? 'selftest failed: ' + problems.join('; ') : 'selftest ok') +
+      '\nwindow width: ' + window.innerWidth + ' px' +
       '\nconsole errors: ' + (window.reportErrors || []).length + '\n' + (window.reportErrors || []).join('\n');
     document.body.appendChild(out);
   }

@@ -124,3 +124,23 @@ TEST(Cli, ValidateOfALevelTheSchemeDeclinesIsBadUsage) {
   EXPECT_EQ(b.exit_code, 2);
   EXPECT_NE(b.err.find("one thread only"), std::string::npos) << b.err;
 }
+
+// Issue 42: `run` without a selection is the quick set (README, "The quick set"), `--full` the
+// default set, and `--plan` counts them without measuring or writing anything.
+TEST(Cli, RunWithoutASelectionPlansTheQuickSetAndFullTheDefaultSet) {
+  const auto quick = run_cli("run --plan");
+  ASSERT_EQ(quick.exit_code, 0) << quick.err;
+  EXPECT_NE(quick.out.find("quick set: "), std::string::npos) << quick.out;
+  const auto full = run_cli("run --full --plan");
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  EXPECT_NE(full.out.find("default set: "), std::string::npos) << full.out;
+  const auto rows = [](const std::string& out) {
+    const size_t at = out.find(" set: ");
+    return at == std::string::npos ? 0L : std::stol(out.substr(at + 6));
+  };
+  EXPECT_GT(rows(full.out), rows(quick.out)) << quick.out << full.out;
+  const auto selected = run_cli("run --scheme osd-uniform --mesh cube --plan");
+  ASSERT_EQ(selected.exit_code, 0) << selected.err;
+  EXPECT_NE(selected.out.find("selection: "), std::string::npos) << selected.out;
+  EXPECT_EQ(run_cli("run --quick --full --plan").exit_code, 2) << "--quick and --full exclude each other";
+}

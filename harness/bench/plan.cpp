@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 #include <set>
 
@@ -36,19 +37,83 @@ std::vector<RunSpec> headline_runs() {
   return runs;
 }
 
-// The levels a run of `r` on `accepted` and backend `b` takes: the selection's, or the scheme's
-// default levels within the output budget (the quick set: two of them, quick_levels).
+// Every level the scheme takes on `accepted` and backend `b` (those its unsupported() does not
+// decline, depths 0..kDeepestDepth, rates 2..kFinestRate), with its predicted output in triangles.
+std::vector<std::pair<int, long>> supported_levels(const ResolvedScheme& r, const ControlMesh& accepted, Backend b) {
+  const SchemeInfo& info = r.scheme->info();
+  const auto [first, last] = info.level_kind == LevelKind::Depth ? std::pair{0, kDeepestDepth} : std::pair{2, kFinestRate};
+  std::vector<std::pair<int, long>> levels;
+  for (int level = first; level <= last; ++level) {
+    const RunRequest request{b, level, 0, r.parameters};
+    if (!r.scheme->unsupported(request)) levels.emplace_back(level, r.scheme->estimated_triangles(accepted, request));
+  }
+  return levels;
+}
+
+// The levels a run of `r` on `accepted` and backend `b` takes: the selection's; else the level whose
+// predicted output is nearest the summary's size (kSummaryTriangles: the cell the report and the
+// paired rounds read), and beside it the quick set's smaller level (quick_levels) or the default
+// set's default levels within the output budget. A scheme that declines every level (a device it
+// lacks) keeps its default levels: their rows say why.
 std::vector<int> levels_for(const Selection& sel, const ResolvedScheme& r, const ControlMesh& accepted, Backend b) {
   if (!sel.levels.empty()) return sel.levels;
-  std::vector<std::pair<int, long>> within;
+  const std::vector<std::pair<int, long>> supported = supported_levels(r, accepted, b);
+  if (supported.empty()) return r.scheme->info().default_levels;
+  if (sel.quick) return quick_levels(supported);
+  std::vector<int> levels = {nearest_level(supported, kSummaryTriangles)->first};
   for (int level : r.scheme->info().default_levels) {
     const long triangles = r.scheme->estimated_triangles(accepted, {b, level, 0, r.parameters});
-    if (triangles <= sel.max_triangles) within.emplace_back(level, triangles);
+    if (triangles <= sel.max_triangles && std::find(levels.begin(), levels.end(), level) == levels.end())
+      levels.push_back(level);
   }
-  if (sel.quick) return quick_levels(within);
-  std::vector<int> levels;
-  for (const auto& [level, triangles] : within) levels.push_back(level);
+  std::sort(levels.begin(), levels.end());
   return levels;
+}
+
+// Whether one of `levels` gives an output within the summary's band (kSummaryLow..kSummaryHigh).
+bool reaches_summary_size(const ResolvedScheme& r, const ControlMesh& accepted, Backend b, const std::vector<int>& levels) {
+  return std::any_of(levels.begin(), levels.end(), [&](int level) {
+    const long triangles = r.scheme->estimated_triangles(accepted, {b, level, 0, r.parameters});
+    return triangles >= kSummaryLow && triangles <= kSummaryHigh;
+  });
+}
+
+// For each scheme, mesh and backend of `runs` none of whose levels is within the summary's band (a
+// headline run alone on its mesh: the sword's 45.8 M triangles), the level nearest
+// kSummaryTriangles too, so that every summary cell is read at a size that means the same.
+void add_summary_levels(std::vector<RunSpec>& runs, MeasureContext& ctx) {
+  std::map<std::string, std::vector<int>> levels;  // spec|mesh|backend
+  std::vector<RunSpec> cells;
+  for (const RunSpec& r : runs) {
+    auto [it, fresh] = levels.emplace(r.scheme + "|" + r.mesh + "|" + std::string(to_string(r.backend)), std::vector<int>{});
+    if (fresh) cells.push_back(r);
+    it->second.push_back(r.level);
+  }
+  for (const RunSpec& c : cells) {
+    const ResolvedScheme r = resolve_scheme(c.scheme);
+    std::shared_ptr<const ControlMesh> accepted;
+    try {
+      accepted = ctx.accepted(c.mesh, *r.scheme);
+    } catch (const InputError&) {
+      continue;  // refused: its rows say so
+    }
+    if (reaches_summary_size(r, *accepted, c.backend, levels[c.scheme + "|" + c.mesh + "|" + std::string(to_string(c.backend))]))
+      continue;
+    const std::vector<std::pair<int, long>> supported = supported_levels(r, *accepted, c.backend);
+    if (supported.empty()) continue;
+    const auto nearest = nearest_level(supported, kSummaryTriangles);
+    runs.push_back({c.scheme, c.mesh, c.backend, nearest->first});
+    if (nearest->second >= kSummaryLow && nearest->second <= kSummaryHigh) continue;
+    // Its levels cannot reach the band on this mesh (osd-bfr's N <= 129 on the 6-quad creased
+    // cube): the mesh's rows stay for what they validate, and the scheme's rule's larger built-in
+    // gives its speed a cell at the summary's size.
+    try {
+      const std::string larger = quick_fallback_mesh(r.scheme->info().reference);
+      const auto on_larger = supported_levels(r, *ctx.accepted(larger, *r.scheme), c.backend);
+      if (!on_larger.empty()) runs.push_back({c.scheme, larger, c.backend, nearest_level(on_larger, kSummaryTriangles)->first});
+    } catch (const InputError&) {
+    }
+  }
 }
 
 // The meshes a scheme runs on: the selection's, the quick set's of its rule, or the default set.
@@ -65,26 +130,46 @@ double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a
 
 }  // namespace
 
+std::vector<std::pair<int, long>>::const_iterator nearest_level(const std::vector<std::pair<int, long>>& level_triangles,
+                                                                long target) {
+  return std::min_element(level_triangles.begin(), level_triangles.end(), [&](const auto& a, const auto& b) {
+    return log_distance(a.second, target) < log_distance(b.second, target);
+  });
+}
+
 std::vector<int> quick_levels(const std::vector<std::pair<int, long>>& level_triangles) {
   std::vector<std::pair<int, long>> left = level_triangles;
   std::vector<int> chosen;
-  for (long target : {kQuickHigh, kQuickLow}) {
-    if (left.empty()) break;
-    const auto nearest = std::min_element(left.begin(), left.end(), [&](const auto& a, const auto& b) {
-      return log_distance(a.second, target) < log_distance(b.second, target);
-    });
-    chosen.push_back(nearest->first);
-    left.erase(nearest);
+  // The summary cell: the smallest output within the band (validating a cell costs about 3 us of
+  // CPU per triangle, and the quick set has some 50 of them), else the one nearest the band's middle.
+  auto summary = left.cend();
+  for (auto it = left.cbegin(); it != left.cend(); ++it)
+    if (it->second >= kSummaryLow && it->second <= kSummaryHigh && (summary == left.cend() || it->second < summary->second))
+      summary = it;
+  if (summary == left.cend()) summary = nearest_level(left, kSummaryTriangles);
+  if (summary != left.cend()) {
+    chosen.push_back(summary->first);
+    left.erase(summary);
+  }
+  if (!left.empty()) {
+    const auto low = nearest_level(left, kQuickLow);
+    chosen.push_back(low->first);
   }
   std::sort(chosen.begin(), chosen.end());
   return chosen;
 }
 
+std::string quick_fallback_mesh(SubdivisionRule rule) {
+  return rule == SubdivisionRule::Loop ? "icosphere-5" : "frog-party";
+}
+
 std::vector<QuickMesh> quick_meshes() {
   // The corpus's Spot: a real quad mesh, 81% of its quads extraordinary; without the corpus, the
-  // Sword stand-in (random quads, 38% extraordinary) in its place.
+  // Sword stand-in (random quads, 38% extraordinary) in its place. One mesh per rule: at 0.5-2 M
+  // triangles a cell's validation costs seconds, and the quad sphere's cells doubled the run for
+  // a mesh with eight extraordinary vertices.
   const std::string real = corpus_dir() ? "crane/spot_control" : "sword-standin";
-  return {{"quadsphere", SubdivisionRule::CatmullClark}, {"icosphere", SubdivisionRule::Loop}, {real, SubdivisionRule::CatmullClark}};
+  return {{"icosphere", SubdivisionRule::Loop}, {real, SubdivisionRule::CatmullClark}};
 }
 
 std::vector<RunSpec> distinct_runs(const std::vector<RunSpec>& runs, std::vector<std::string>* notes) {
@@ -186,7 +271,19 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
           plan.notes.push_back("skipped " + r.spec + " on " + std::string(to_string(b)) + ": backend unavailable");
           continue;
         }
-        for (int level : levels_for(sel, r, *accepted, b)) plan.runs.push_back({r.spec, mesh, b, level});
+        std::string on = mesh;
+        std::vector<int> levels = levels_for(sel, r, *accepted, b);
+        if (sel.quick && !reaches_summary_size(r, *accepted, b, levels)) {
+          // The quick mesh is too small for this scheme's levels: its rule's larger built-in instead.
+          // A scheme that refuses that one too keeps its quick mesh, and its summary cell says its size.
+          try {
+            const std::string larger = quick_fallback_mesh(info.reference);
+            levels = levels_for(sel, r, *ctx.accepted(larger, *r.scheme), b);
+            on = larger;
+          } catch (const InputError&) {
+          }
+        }
+        for (int level : levels) plan.runs.push_back({r.spec, on, b, level});
       }
     }
   }
@@ -200,6 +297,7 @@ Plan make_plan(const Selection& sel, MeasureContext& ctx) {
           // the mesh is absent (the corpus is not beside the checkout): no headline figure
         }
       }
+  if (sel.levels.empty()) add_summary_levels(plan.runs, ctx);
   plan.runs = distinct_runs(plan.runs, &plan.notes);
   if (sel.shard_count > 1) {
     const size_t all = plan.runs.size();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "harness/bench/measure.h"
+#include "harness/bench/paired.h"
 
 namespace sdb {
 
@@ -62,19 +63,39 @@ std::pair<int, int> parse_shard(const std::string& text);
 // names is index modulo count (every copy of a repeated run goes to the same shard).
 std::vector<RunSpec> shard_runs(const std::vector<RunSpec>& runs, int index, int count);
 
-// The quick set's meshes: a quad mesh and a triangle mesh (built-ins) and one real corpus mesh
-// (a built-in stand-in when the corpus is absent). A scheme runs on the ones of its own rule:
-// Loop schemes on the triangle mesh, Catmull-Clark schemes on the quad meshes.
+// The quick set's meshes: a triangle mesh (a built-in) and one real corpus quad mesh (a built-in
+// stand-in when the corpus is absent). A scheme runs on the one of its own rule: Loop schemes on
+// the triangle mesh, Catmull-Clark schemes on the quad mesh.
 struct QuickMesh {
   std::string name;
   SubdivisionRule rule;
 };
+
+// The summary cell's size band: within a factor of two of kSummaryTriangles. A scheme whose levels
+// cannot reach it on a quick mesh (cpatch-1pass's N <= 9 on lavapipe: 12 k triangles on the quad
+// sphere) runs on its rule's larger built-in instead (quick_fallback_mesh).
+inline constexpr long kSummaryLow = kSummaryTriangles / 2, kSummaryHigh = kSummaryTriangles * 2;
+// A built-in of some ten thousand faces: the c-patch paper's Frog Party stand-in (11,628 random
+// quads, 59% extraordinary; random quads past 1,300 are refused as too slow to make), or the
+// icosphere subdivided to 20,480 triangles.
+std::string quick_fallback_mesh(SubdivisionRule rule);
 std::vector<QuickMesh> quick_meshes();
 
-// The quick set's two levels of a scheme on an accepted mesh: among its default levels, the one
-// whose output is nearest (in ratio) kQuickHigh triangles, then of the rest the one nearest
-// kQuickLow. Fewer when the scheme has fewer levels.
-inline constexpr long kQuickHigh = 1'000'000, kQuickLow = 100'000;
+// Levels are chosen from the predicted output size (Scheme::estimated_triangles), not from a fixed
+// list: every summary cell (the level nearest kSummaryTriangles) lands within a factor of two of it
+// wherever the scheme's levels reach it (a depth step quadruples the output). Scanned: depths
+// 0..kDeepestDepth, rates 2..kFinestRate, less what the scheme's unsupported() declines.
+inline constexpr int kDeepestDepth = 12, kFinestRate = 257;
+
+// The entry of `level_triangles` whose output is nearest `target` in ratio; end() when empty.
+std::vector<std::pair<int, long>>::const_iterator nearest_level(const std::vector<std::pair<int, long>>& level_triangles,
+                                                                long target);
+
+// The quick set's two levels of a scheme on an accepted mesh: among the levels it takes, the one
+// with the smallest output within kSummaryLow..kSummaryHigh (else the one nearest, in ratio,
+// kSummaryTriangles), then of the rest the one nearest kQuickLow. Fewer when the scheme has fewer
+// levels.
+inline constexpr long kQuickLow = 100'000;
 inline constexpr double kQuickMinTime = 0.02;  // seconds per timed repetition (default 0.05)
 std::vector<int> quick_levels(const std::vector<std::pair<int, long>>& level_triangles);
 

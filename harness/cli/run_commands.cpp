@@ -7,7 +7,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <map>
 #include <optional>
+#include <set>
+#include <sstream>
 #include <tuple>
 
 #include "harness/bench/machine.h"
@@ -21,6 +24,7 @@
 #include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
+#include "harness/core/registry.h"
 #include "harness/core/printable.h"
 #include "harness/gpu/context.h"
 #include "harness/pictures/pictures.h"
@@ -45,7 +49,8 @@ struct RunOptions {
   uint64_t seed = 1;
   bool json = false, all_meshes = false, all_corpus = false, no_validate = false, no_report = false;
   bool in_process = false, force = false;
-  bool quick = false, no_paired = false, no_pictures = false;
+  bool quick = false, full = false, no_paired = false, no_pictures = false, no_papers = false;
+  bool plan_only = false;  // --plan
   std::string shard;  // "I/N"
   int rounds = 5;     // paired rounds of the summary cells
   bool rounds_given = false;
@@ -179,21 +184,83 @@ std::optional<pictures::PictureRequest> picture_request(const RunOptions& opts, 
   return request;
 }
 
+// Why the run's report has no paper tables, or "" when the run measures them: they come with the
+// whole set (quick or default), not with a selection of schemes, meshes or levels, nor with a shard.
+std::string papers_left_out(const RunOptions& opts, const Selection& selection) {
+  if (opts.no_papers) return "no paper table: the run was asked not to measure them (--no-papers)";
+  if (selection.shard_count > 1) return "no paper table in a shard: `subdivbench paper ID` measures each";
+  if (!selection.schemes.empty() || !selection.meshes.empty() || !selection.levels.empty() || !selection.backends.empty())
+    return "no paper table: this run measured a selection; `subdivbench run` without one (or `subdivbench paper ID`) "
+           "measures them";
+  return "";
+}
+
+// Every registered paper table (harness/core/paper_table.h), the quick version with the quick set:
+// each writes DIR/paper/ID.md. A table that fails is named, with why, in the report; the run goes on.
+std::pair<std::vector<std::string>, std::string> measure_paper_tables(const std::string& dir, bool quick) {
+  std::vector<std::string> written;
+  std::string failed;
+  for (const PaperTable& t : paper_tables()) {
+    PaperTableOptions options;
+    options.out_dir = (std::filesystem::path(dir) / "paper").string();
+    options.quick = quick;
+    std::printf("paper table %s%s\n", t.id.c_str(), quick ? " (quick)" : "");
+    std::fflush(stdout);
+    std::ostringstream printed;  // the table is in ID.md; run's own output stays its rows
+    try {
+      t.run(options, printed);
+      const std::string md = (std::filesystem::path(options.out_dir) / (t.id + ".md")).string();
+      if (std::filesystem::is_regular_file(md)) written.push_back(md);
+      else failed += (failed.empty() ? "" : "; ") + t.id + ": wrote no table";
+    } catch (const std::exception& e) {
+      failed += (failed.empty() ? "" : "; ") + t.id + ": " + printable(e.what());
+    }
+  }
+  return {written, failed.empty() ? "" : "not in this report: " + failed};
+}
+
 RunSet::ReportWriter report_writer(const RunOptions& opts, const Selection& selection) {
   if (opts.no_report) return {};
   const std::optional<pictures::PictureRequest> request = picture_request(opts, selection);
-  return [request](const std::string& results_json, const std::string& dir) {
+  const std::string no_papers = papers_left_out(opts, selection);
+  const bool quick = selection.quick;
+  return [request, no_papers, quick](const std::string& results_json, const std::string& dir) {
     if (request) {
       const pictures::PictureManifest m = pictures::write_pictures(*request, dir);
       gpu::release_shared_context();
       std::printf("pictures: %s\n", m.available ? (std::to_string(m.pictures.size()) + " on " + m.device).c_str()
                                                 : ("none: " + m.reason).c_str());
     }
-    write_report({results_json}, dir);
+    ReportOptions options;
+    options.papers_note = no_papers;
+    if (no_papers.empty()) std::tie(options.papers, options.papers_note) = measure_paper_tables(dir, quick);
+    gpu::release_shared_context();
+    write_report({results_json}, dir, options);
   };
 }
 
+// `run --plan`: the rows the selection would measure, counted per backend, and nothing measured
+// or written (the README's counts come from here).
+int print_plan(const RunOptions& opts) {
+  const RunSelection selection = run_selection(opts);
+  MeasureContext ctx(describe_machine());
+  const Plan plan = make_plan(selection.selection, ctx);
+  for (const auto& n : plan.notes) std::printf("note: %s\n", n.c_str());
+  std::map<std::string, size_t> per_backend;
+  std::set<std::string> meshes;
+  for (const RunSpec& r : plan.runs) ++per_backend[std::string(to_string(r.backend))], meshes.insert(r.mesh);
+  const Selection& sel = selection.selection;
+  const bool whole = sel.schemes.empty() && sel.meshes.empty() && sel.levels.empty() && !sel.all_meshes;
+  std::printf("%s: %zu rows on %zu meshes (", sel.quick ? "quick set" : whole ? "default set" : "selection",
+              plan.runs.size(), meshes.size());
+  bool first = true;
+  for (const auto& [backend, n] : per_backend) std::printf("%s%s %zu", first ? "" : ", ", backend.c_str(), n), first = false;
+  std::printf(")\n");
+  return 0;
+}
+
 int run(const RunOptions& opts, bool selection_given) {
+  if (opts.plan_only) return print_plan(opts);
   const bool isolate = !opts.in_process;
   RunSet set = opts.resume.empty()
                    ? RunSet::start(opts.out, run_selection(opts), isolate, opts.force)
@@ -271,13 +338,17 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
                             "(about 100 k and 1 M triangles); 3 repetitions, 3 paired rounds and 10000 rays unless "
                             "given, Hausdorff distances only where the deviation is measured by nearest points");
   quick->excludes(r->get_option("--all"))->excludes(r->get_option("--all-corpus"));
+  r->add_flag("--full", opts->full,
+              "the default set instead of the quick set when nothing is selected: every scheme on the curated meshes at "
+              "its default levels and the level nearest 1 M triangles, with its headline runs")
+      ->excludes(quick);
   r->add_option("--shard", opts->shard,
                 "run shard I of N (0 <= I < N) of the selection: the runs whose position among the sorted run names "
                 "is I modulo N (merge the shards' results with `report --in`)");
   // What a resumed run compares with its journal: given at all, the whole selection must match.
   std::vector<const CLI::Option*> selection;
   for (const char* name : {"--scheme", "--mesh", "--backend", "--level", "--all", "--all-corpus", "--reps", "--rays", "--no-validate",
-                           "--quick", "--shard"})
+                           "--quick", "--full", "--shard"})
     selection.push_back(r->get_option(name));
   auto* out = r->add_option("--out", opts->out, "output folder (results.json, report, journal.jsonl)");
   r->add_option("--resume", opts->resume,
@@ -287,6 +358,11 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
                                        "naming it; `--resume DIR` continues it)")
       ->excludes(r->get_option("--resume"));
   r->add_flag("--no-report", opts->no_report, "write results.json only");
+  r->add_flag("--plan", opts->plan_only, "print how many rows the selection plans, per backend, and stop")
+      ->excludes(r->get_option("--resume"));
+  r->add_flag("--no-papers", opts->no_papers,
+              "no paper tables in the report (default without a selection: every registered table, the quick "
+              "versions unless --full)");
   r->add_flag("--no-pictures", opts->no_pictures,
               "no pictures in the report (default: the paper schemes' surfaces, rendered with Vulkan where a device exists)");
   auto* rounds = r->add_option("--rounds", opts->rounds,
@@ -301,6 +377,10 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   const CLI::Option* rays = r->get_option("--rays");
   verbs["run"] = [opts, selection, reps, rays, rounds] {
     const bool given = std::any_of(selection.begin(), selection.end(), [](const CLI::Option* o) { return o->count() > 0; });
+    // No selection at all: the quick set (README, "Quick start"); --full asks for the default set.
+    const bool chose = !opts->schemes.empty() || !opts->meshes.empty() || !opts->levels.empty() || opts->all_meshes ||
+                       opts->all_corpus;
+    if (!opts->full && !chose && opts->resume.empty()) opts->quick = true;
     if (opts->quick && reps->count() == 0) opts->reps = kQuickReps;
     opts->rounds_given = rounds->count() > 0;
     if (opts->quick && !opts->rounds_given) opts->rounds = kQuickRounds;

@@ -1,0 +1,193 @@
+#include "reports/overview.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "harness/bench/paired.h"
+#include "harness/bench/plan.h"
+#include "harness/bench/statistics.h"
+
+namespace sdb {
+namespace {
+
+using json = nlohmann::json;
+
+double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a, 1L)) / double(std::max(b, 1L)))); }
+
+bool usable(const RunRow& r) { return r.status == RunStatus::Ok && r.triangles > 0; }
+
+std::string cell_key(const std::string& spec, const std::string& mesh, Backend b) {
+  return spec + "|" + mesh + "|" + std::string(to_string(b));
+}
+
+// A summary cell: its row and, where the run paired it against its peer, the paired figures.
+struct SummaryCell {
+  const RunRow* row = nullptr;
+  const PairedCell* paired = nullptr;
+};
+
+// The summary cells in the rows' order: per (scheme, mesh, backend) the paired row, else the ok row
+// nearest kSummaryTriangles.
+std::vector<SummaryCell> summary_cells(const ResultsFile& results) {
+  std::map<std::string, const PairedCell*> paired;
+  for (const PairedCell& c : results.paired)
+    if (!is_backend_cell(c)) paired[cell_key(c.row.scheme, c.mesh, c.row.backend)] = &c;
+  std::vector<std::string> order;
+  std::map<std::string, SummaryCell> cells;
+  for (const RunRow& r : results.runs) {
+    if (!usable(r) || r.role == "calibration") continue;
+    const std::string key = cell_key(r.spelled(), r.mesh, r.backend);
+    const auto p = paired.find(key);
+    auto [it, fresh] = cells.emplace(key, SummaryCell{&r, p == paired.end() ? nullptr : p->second});
+    if (fresh) {
+      order.push_back(key);
+      if (it->second.paired && it->second.paired->row.level != r.level) it->second.row = nullptr;
+      continue;
+    }
+    SummaryCell& c = it->second;
+    if (c.paired ? r.level == c.paired->row.level
+                 : log_distance(r.triangles, kSummaryTriangles) < log_distance(c.row->triangles, kSummaryTriangles))
+      c.row = &r;
+  }
+  std::vector<SummaryCell> out;
+  for (const std::string& key : order)
+    if (cells[key].row) out.push_back(cells[key]);
+  return out;
+}
+
+double rate_of(const SummaryCell& c) {
+  if (c.paired && c.paired->time_ms_median > 0 && c.paired->row.triangles > 0)
+    return double(c.paired->row.triangles) / c.paired->time_ms_median / 1e3;
+  return c.row->triangle_rate_mtris;
+}
+
+// Marks each point that no other point of the same backend dominates (as fast or faster and as
+// near or nearer, strictly better in one).
+void mark_pareto(std::vector<OverviewPoint>& points) {
+  for (OverviewPoint& p : points) {
+    p.pareto = std::none_of(points.begin(), points.end(), [&](const OverviewPoint& q) {
+      return q.rate_mtris >= p.rate_mtris && q.plotted_p95 <= p.plotted_p95 &&
+             (q.rate_mtris > p.rate_mtris || q.plotted_p95 < p.plotted_p95);
+    });
+  }
+}
+
+// Per mesh with a ray test (a closed input), whether every row of the scheme there is watertight.
+void count_watertight(const ResultsFile& results, SchemeOverview& s) {
+  std::map<std::string, bool> closed;  // mesh: watertight so far
+  for (const RunRow& r : results.runs) {
+    if (r.spelled() != s.scheme || r.status == RunStatus::Unsupported || r.watertight.ray_cracks < 0) continue;
+    const bool tight = r.watertight.open_edges == 0 && r.watertight.ray_cracks == 0;
+    auto [it, fresh] = closed.emplace(r.mesh, tight);
+    if (!fresh) it->second = it->second && tight;
+  }
+  s.closed_inputs = int(closed.size());
+  s.watertight_inputs = int(std::count_if(closed.begin(), closed.end(), [](const auto& m) { return m.second; }));
+}
+
+void add_paired_ratio(const ResultsFile& results, SchemeOverview& s) {
+  std::vector<double> medians;
+  for (const bool cpu_implementation_only : {false, true}) {
+    for (const PairedCell& c : results.paired) {
+      if (is_backend_cell(c) || c.row.scheme != s.scheme || c.rounds == 0) continue;
+      if (on_cpu_implementation(results.machine, c.row.backend) != cpu_implementation_only) continue;
+      if (medians.empty()) s.ratio_min = c.rate_ratio_min, s.ratio_max = c.rate_ratio_max;
+      medians.push_back(c.rate_ratio_median);
+      s.ratio_min = std::min(s.ratio_min, c.rate_ratio_min);
+      s.ratio_max = std::max(s.ratio_max, c.rate_ratio_max);
+    }
+    if (!medians.empty()) break;  // a CPU implementation's cells only where the scheme has no other
+  }
+  s.paired_cells = int(medians.size());
+  if (!medians.empty()) s.ratio_median = median(medians);
+}
+
+json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+}  // namespace
+
+ReportOverview make_overview(const ResultsFile& results) {
+  ReportOverview o;
+  std::map<Backend, BackendOverview> backends;
+  std::map<std::string, SchemeOverview> schemes;
+  std::vector<std::string> scheme_order;
+  for (const SummaryCell& c : summary_cells(results)) {
+    const RunRow& r = *c.row;
+    BackendOverview& b = backends[r.backend];
+    b.backend = r.backend;
+    b.cpu_implementation = cpu_implementation_words(results.machine, r.backend);
+    OverviewPoint p{r.spelled(), r.mesh, r.level, r.triangles, rate_of(c), c.paired != nullptr, r.limit == "reproduces",
+                    r.deviation.measured ? r.deviation.pos_p95_rel_diag : NAN};
+    auto [it, fresh] = schemes.emplace(p.scheme, SchemeOverview{p.scheme});
+    if (fresh) scheme_order.push_back(p.scheme);
+    SchemeOverview& s = it->second;
+    if (s.peer.empty()) s.peer = r.peer;  // SchemeInfo::peer as the row recorded it; empty: the anchor
+    // The best rate: among cells at the summary's size on a backend that is not a CPU implementation
+    // of a GPU API, where the scheme has any such; a smaller cell's rate is mostly fixed costs.
+    const bool in_band = r.triangles >= kSummaryLow && r.triangles <= kSummaryHigh;
+    const auto rank = [](bool cpu_impl, bool band) { return (cpu_impl ? 0 : 2) + (band ? 1 : 0); };
+    const int mine = rank(!b.cpu_implementation.empty(), in_band), best = rank(s.best_on_cpu_implementation, s.best_in_band);
+    if (s.best_mesh.empty() || mine > best || (mine == best && p.rate_mtris > s.best_rate_mtris)) {
+      s.best_rate_mtris = p.rate_mtris, s.best_backend = r.backend, s.best_mesh = r.mesh;
+      s.best_on_cpu_implementation = !b.cpu_implementation.empty(), s.best_in_band = in_band;
+    }
+    if (r.limit == "approximates") {
+      s.limit = "approximates";
+      if (std::isfinite(p.p95_rel_diag)) s.worst_p95_rel_diag = std::max(s.worst_p95_rel_diag, p.p95_rel_diag);
+    } else if (r.limit == "reproduces" && s.limit.empty()) {
+      s.limit = "exact";
+    }
+    if (!in_band) {
+      b.unplotted.push_back(p.scheme + " on " + p.mesh + ": " + std::to_string(p.triangles) +
+                            " triangles, outside the summary's 0.5-2 M (its levels do not reach it there)");
+      continue;
+    }
+    if (!p.exact && !std::isfinite(p.p95_rel_diag)) {
+      b.unplotted.push_back(p.scheme + " on " + p.mesh + ": deviation not measured");
+      continue;
+    }
+    p.plotted_p95 = p.exact ? kPrecisionFloorRelDiag : std::max(p.p95_rel_diag, kPrecisionFloorRelDiag);
+    b.points.push_back(p);
+  }
+  for (auto& [backend, b] : backends) {
+    mark_pareto(b.points);
+    o.backends.push_back(std::move(b));
+  }
+  for (const std::string& name : scheme_order) {
+    SchemeOverview& s = schemes[name];
+    add_paired_ratio(results, s);
+    count_watertight(results, s);
+    o.schemes.push_back(s);
+  }
+  return o;
+}
+
+json overview_json(const ReportOverview& o) {
+  json backends = json::array(), schemes = json::array();
+  for (const BackendOverview& b : o.backends) {
+    json points = json::array();
+    for (const OverviewPoint& p : b.points)
+      points.push_back({{"scheme", p.scheme}, {"mesh", p.mesh}, {"level", p.level}, {"triangles", p.triangles},
+                        {"rate_mtris", p.rate_mtris}, {"paired", p.paired}, {"exact", p.exact},
+                        {"p95_rel_diag", number_or_null(p.p95_rel_diag)}, {"plotted_p95", p.plotted_p95},
+                        {"pareto", p.pareto}});
+    backends.push_back({{"backend", to_string(b.backend)}, {"cpu_implementation", b.cpu_implementation},
+                        {"points", points}, {"unplotted", b.unplotted}});
+  }
+  for (const SchemeOverview& s : o.schemes)
+    schemes.push_back({{"scheme", s.scheme}, {"best_rate_mtris", s.best_rate_mtris},
+                       {"best_backend", to_string(s.best_backend)}, {"best_mesh", s.best_mesh},
+                       {"best_on_cpu_implementation", s.best_on_cpu_implementation}, {"best_in_band", s.best_in_band},
+                       {"peer", s.peer},
+                       {"paired_cells", s.paired_cells}, {"ratio_median", s.ratio_median}, {"ratio_min", s.ratio_min},
+                       {"ratio_max", s.ratio_max}, {"limit", s.limit}, {"worst_p95_rel_diag", s.worst_p95_rel_diag},
+                       {"closed_inputs", s.closed_inputs}, {"watertight_inputs", s.watertight_inputs}});
+  return {{"precision_floor_rel_diag", kPrecisionFloorRelDiag}, {"summary_triangles", kSummaryTriangles},
+          {"summary_band", {kSummaryLow, kSummaryHigh}},
+          {"backends", backends}, {"schemes", schemes}};
+}
+
+}  // namespace sdb

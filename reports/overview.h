@@ -1,0 +1,72 @@
+// The report's first screen as data: per backend, each scheme's summary cell on each mesh as a
+// point (triangle rate against deviation from the input's limit surface) with the Pareto front
+// marked, and one row per scheme (best rate, paired ratio to its peer, exact or approximates,
+// watertight on every closed input). Computed here, once, in C++; reports/report.py lays it out.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "harness/bench/results.h"
+
+namespace sdb {
+
+// Where the figure draws a row that reproduces the limit (and any whose p95 lies below it): the
+// deviation of an exact evaluation in float is rounding, a few 1e-7 of the diagonal, and a log axis
+// would otherwise rank rounding noise.
+inline constexpr double kPrecisionFloorRelDiag = 1e-6;
+
+struct OverviewPoint {
+  std::string scheme, mesh;  // the spec, as rows spell it
+  int level = 0;
+  long triangles = 0;
+  double rate_mtris = 0;  // the paired rounds' median where the run paired the cell, else the row's
+  bool paired = false;
+  bool exact = false;      // the row reproduces the input's limit surface (RunRow::limit)
+  double p95_rel_diag = 0;  // measured p95 distance from the input's limit / diagonal; NaN: not measured
+  double plotted_p95 = 0;   // p95_rel_diag, or kPrecisionFloorRelDiag for exact rows and those below it
+  bool pareto = false;      // no other point of the backend is as fast and as near, and better in one
+};
+
+struct BackendOverview {
+  Backend backend = Backend::Cpu;
+  std::string cpu_implementation;  // "llvmpipe ..., a CPU implementation of Vulkan, not a GPU", or ""
+  // Ok summary cells at the summary's size (plan.h: kSummaryLow..kSummaryHigh triangles) whose
+  // deviation was measured or that reproduce the limit.
+  std::vector<OverviewPoint> points;
+  std::vector<std::string> unplotted;  // "scheme on mesh: why" for the other ok cells
+};
+
+struct SchemeOverview {
+  std::string scheme;
+  // The fastest summary cell on a backend that is not a CPU implementation of a GPU API (on one
+  // only where the scheme has no other).
+  double best_rate_mtris = 0;
+  Backend best_backend = Backend::Cpu;
+  std::string best_mesh;
+  bool best_on_cpu_implementation = false;
+  bool best_in_band = false;  // at kSummaryLow..kSummaryHigh triangles (plan.h); else the scheme has no such cell
+  // Over its paired summary cells against its peer (not the backend cells): the median of their
+  // medians, and the smallest and largest round.
+  std::string peer;  // SchemeInfo::peer as its rows recorded it; empty: the anchor
+  int paired_cells = 0;
+  double ratio_median = 0, ratio_min = 0, ratio_max = 0;
+  std::string limit;  // "exact" | "approximates" | "" (no row said)
+  double worst_p95_rel_diag = 0;  // approximates: the largest p95 of its approximating cells
+  int closed_inputs = 0, watertight_inputs = 0;  // meshes with a ray test, and those without an open edge or crack
+};
+
+struct ReportOverview {
+  std::vector<BackendOverview> backends;
+  std::vector<SchemeOverview> schemes;  // in the rows' order of first appearance
+};
+
+// The summary cell of each (scheme, mesh, backend): the paired row where the run paired it, else the
+// ok row nearest kSummaryTriangles. Only ok rows with triangles.
+ReportOverview make_overview(const ResultsFile& results);
+
+nlohmann::json overview_json(const ReportOverview& overview);
+
+}  // namespace sdb
