@@ -166,9 +166,9 @@ class VulkanMipghEvaluation final : public Evaluation {
     for (size_t v = 0; v < control_.size(); ++v)
       level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2], 0.0f};
     control_staging_.write(level0_);
-    if (m_.base_tangents.level >= 0) {
+    if (!m_.base_tangents.empty()) {
       base_points_.resize(control_.size());
-      for (size_t v = 0; v < control_.size(); ++v) base_points_[v] = {level0_[v][0], level0_[v][1], level0_[v][2]};
+      for (size_t v = 0; v < control_.size(); ++v) base_points_[v] = {control_[v][0], control_[v][1], control_[v][2]};
     }
     ctx_->submit(*frame_);
     readback_->invalidate();
@@ -179,7 +179,7 @@ class VulkanMipghEvaluation final : public Evaluation {
     // The D-vertices' normals from level 0 as the cpu's (vertex_tangents.h), applied here on the
     // host: a device pass reading level 0 is not written yet (issue 39d). Output node v is D-vertex v.
     const BaseTangents& base = m_.base_tangents;
-    if (base.level >= 0)
+    if (!base.empty())
       for (int v = 0; v < m_.atlas.num_vertices; ++v)
         if (base.has(v)) {
           const V3 n = base.normal(v, base_points_.data());
