@@ -441,17 +441,23 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   // the interior nodes lie in rows 1 .. n - 2 (tile.h), the first triangle's and the turned one's
   const int first = w, count = whole_lanes((n - 2) * w, t.squares() - first);
   auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
-  (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
-      t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]), at(s.v[0][2]),
-      at(s.normal[0]), at(s.normal[1]), at(s.normal[2]));
+  // A regular D-facet's normals from its patch on level 0 (regular_patches.h), straight into the
+  // tile's normal planes; the stencils then give the positions alone.
+  const bool patch = n >= 3 && base && base->patches && base->patches->regular(facets.first);
+  if (patch) {
+    tile::quad_limit_positions(t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]),
+                               at(s.v[0][1]), at(s.v[0][2]));
+    base->patches->interior_planes(facets.first, sigma, base->points, w, s.normal[0].data(), s.normal[1].data(),
+                                   s.normal[2].data());
+  } else {
+    (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
+        t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]),
+        at(s.v[0][2]), at(s.normal[0]), at(s.normal[1]), at(s.normal[2]));
+  }
   auto assemble = [&](int f, bool turned) {
     tile::assemble_limit(s, n, w, l.s, quad, turned, offset, position + l.interior(f), normal + l.interior(f));
-    // A regular D-facet's normals from its patch on level 0 (regular_patches.h), or from its
-    // 1-ring's composed masks (facet_masks.h).
-    if (!base || n < 3) return;
-    if (base->patches && base->patches->regular(f))
-      base->patches->normals(f, sigma, base->points, 1, n - 2, 1, n - 2, n - 2, normal + l.interior(f));
-    else if (base->masks && base->masks->has(f))
+    // Or from its 1-ring's composed masks (facet_masks.h).
+    if (!patch && n >= 3 && base && base->masks && base->masks->has(f))
       base->masks->interior_normals(f, sigma, base->points, normal + l.interior(f));
   };
   assemble(facets.first, false);

@@ -1,5 +1,7 @@
 #include "schemes/mipgh/regular_patches.h"
 
+#include "schemes/mipgh/tile.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -63,8 +65,6 @@ bool gather_net(const DAtlas& atlas, const EdgeTags& tags, int f, uint32_t* net)
   return true;
 }
 
-thread_local std::vector<V3> t_value, t_slope;  // per net row a and column: the patch along u, and d/du
-
 }  // namespace
 
 RegularPatches find_regular_patches(const DAtlas& atlas, const EdgeTags& tags, int depth) {
@@ -80,41 +80,12 @@ RegularPatches find_regular_patches(const DAtlas& atlas, const EdgeTags& tags, i
     const int n = (1 << sigma) + 1;
     std::vector<float> b(4 * size_t(n)), d(b.size());
     for (int k = 0; k < n; ++k) cubic_basis(double(k) / (n - 1), &b[4 * size_t(k)], &d[4 * size_t(k)]);
-    p.basis.push_back(std::move(b)), p.derivative.push_back(std::move(d));
+    std::vector<float> f(8 * size_t(n));
+    for (int k = 0; k < n; ++k)
+      for (int m = 0; m < 4; ++m) f[size_t(m * n + k)] = b[4 * size_t(k) + m], f[size_t((4 + m) * n + k)] = d[4 * size_t(k) + m];
+    p.basis.push_back(std::move(b)), p.derivative.push_back(std::move(d)), p.by_function.push_back(std::move(f));
   }
   return p;
-}
-
-void RegularPatches::normals(int f, int sigma, const V3* base, int i0, int i1, int j0, int j1, int stride,
-                             V3* out) const {
-  const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
-  // The control points' differences from the facet's first corner (grid (0, 0)): exact to float's
-  // relative precision however fine the level.
-  V3 D[16];
-  const V3 c = base[q[5]];
-  for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
-  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
-  const int columns = j1 - j0 + 1;
-  t_value.resize(4 * size_t(columns)), t_slope.resize(4 * size_t(columns));
-  for (int a = 0; a < 4; ++a)
-    for (int j = j0; j <= j1; ++j) {
-      const float *b = B + 4 * j, *d = dB + 4 * j;
-      const V3 *r = D + 4 * a;
-      t_value[size_t(a * columns + j - j0)] = b[0] * r[0] + b[1] * r[1] + b[2] * r[2] + b[3] * r[3];
-      t_slope[size_t(a * columns + j - j0)] = d[0] * r[0] + d[1] * r[1] + d[2] * r[2] + d[3] * r[3];
-    }
-  for (int i = i0; i <= i1; ++i) {
-    const float *b = B + 4 * i, *d = dB + 4 * i;
-    V3* row = out + size_t(i - i0) * size_t(stride);
-    for (int j = 0; j < columns; ++j) {
-      const V3 *value = t_value.data() + j, *slope = t_slope.data() + j;
-      const V3 t1 = b[0] * slope[0] + b[1] * slope[columns] + b[2] * slope[2 * columns] + b[3] * slope[3 * columns];
-      const V3 t2 = d[0] * value[0] + d[1] * value[columns] + d[2] * value[2 * columns] + d[3] * value[3 * columns];
-      const V3 x = cross(t1, t2);
-      const float inv = 1.0f / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z + 1e-37f);
-      row[j] = inv * x;
-    }
-  }
 }
 
 std::vector<float> RegularPatches::node_weights(int sigma) {
@@ -134,18 +105,73 @@ std::vector<float> RegularPatches::node_weights(int sigma) {
   return w;
 }
 
+void RegularPatches::interior_planes(int f, int sigma, const V3* base, int stride, float* nx, float* ny,
+                                     float* nz) const {
+  const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
+  const V3 c = base[q[5]];
+  V3 D[16];
+  for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
+  // Columns 1 .. n - 2 rounded up to whole SIMD vectors of eight where the row has room (column
+  // n - 1 is the side's, in the tile but never read from these planes): at n = 17, 15 columns left
+  // seven to a scalar tail.
+  const int n = (1 << sigma) + 1, columns = std::min(((n - 2) + 7) & ~7, n - 1);
+  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
+  // Per net row a and coordinate k, the patch along u (value) and d/du (slope) at columns 1 .. n - 2.
+  thread_local std::vector<float> t_rows;
+  t_rows.resize(24 * size_t(columns));
+  const float* value[4][3];
+  const float* slope[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int k = 0; k < 3; ++k) {
+      float* v = &t_rows[size_t((a * 3 + k) * 2) * size_t(columns)];
+      float* s = v + columns;
+      auto coordinate = [&](const V3& p) { return k == 0 ? p.x : k == 1 ? p.y : p.z; };
+      const float r0 = coordinate(D[4 * a]), r1 = coordinate(D[4 * a + 1]), r2 = coordinate(D[4 * a + 2]),
+                  r3 = coordinate(D[4 * a + 3]);
+      tile::cubic_row(by_function[size_t(sigma)].data() + 1, n, r0, r1, r2, r3, columns, v, s);
+      value[a][k] = v, slope[a][k] = s;
+    }
+  for (int i = 1; i + 1 < n; ++i) {
+    const size_t row = size_t(i) * size_t(stride) + 1;
+    tile::sum_normals(value, slope, B + 4 * i, dB + 4 * i, columns, nx + row, ny + row, nz + row);
+  }
+}
+
 void RegularPatches::side_normals(int f, int sigma, int side, const V3* base, V3* out) const {
   const int n = (1 << sigma) + 1;
   if (n < 3) return;
-  // Side k's nodes a = 1 .. n - 2 run along one row or column (lod.h's side_ij), forwards or back.
-  const RowColumn first = side_ij(4, side, n, 1, 0), last = side_ij(4, side, n, n - 2, 0);
-  const int i0 = std::min(first.i, last.i), i1 = std::max(first.i, last.i);
-  const int j0 = std::min(first.j, last.j), j1 = std::max(first.j, last.j);
-  const bool backwards = first.i > last.i || first.j > last.j;
-  thread_local std::vector<V3> t_line;
-  t_line.resize(size_t(n));
-  normals(f, sigma, base, i0, i1, j0, j1, i0 == i1 ? 0 : 1, t_line.data());
-  for (int a = 0; a < n - 2; ++a) out[a] = t_line[size_t(backwards ? n - 3 - a : a)];
+  const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
+  const V3 c = base[q[5]];
+  V3 D[16];
+  for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
+  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
+  // Side k's nodes run along one row (sides 0, 2) or column (1, 3) of the grid (lod.h's side_ij):
+  // the patch's cubic there, fixed in the other parameter, as four points per tangent.
+  const RowColumn first = side_ij(4, side, n, 0, 0);
+  const bool row = side == 0 || side == 2;
+  const int fixed = row ? first.i : first.j;
+  const float *b = B + 4 * fixed, *d = dB + 4 * fixed;
+  V3 along[4], across[4];  // T1 = sum B'(u) along (rows), T2 = sum B(u) across; or by columns
+  for (int k = 0; k < 4; ++k) {
+    V3 x{0, 0, 0}, y{0, 0, 0};
+    for (int m = 0; m < 4; ++m) {
+      const V3 p = row ? D[4 * m + k] : D[4 * k + m];  // row: net column k over rows m; column: net row k
+      x = x + b[m] * p, y = y + d[m] * p;
+    }
+    along[k] = x, across[k] = y;
+  }
+  for (int a = 1; a + 1 < n; ++a) {
+    const RowColumn p = side_ij(4, side, n, a, 0);
+    const int t = row ? p.j : p.i;
+    const float *bt = B + 4 * t, *dt = dB + 4 * t;
+    V3 t1{0, 0, 0}, t2{0, 0, 0};
+    for (int k = 0; k < 4; ++k) {
+      if (row) t1 = t1 + dt[k] * along[k], t2 = t2 + bt[k] * across[k];
+      else t1 = t1 + bt[k] * across[k], t2 = t2 + dt[k] * along[k];
+    }
+    const V3 x = cross(t1, t2);
+    out[a - 1] = (1.0f / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z + 1e-37f)) * x;
+  }
 }
 
 }  // namespace sdb::mipgh

@@ -31,11 +31,13 @@ struct RegularPatches {
   // Per level: the cubic B-spline basis and its derivative at the level's grid points t = k / (n - 1),
   // 4 values each, k = 0 .. n - 1.
   std::vector<std::vector<float>> basis, derivative;
+  // The same by function: B_m at k in [m * n + k], B'_m in [(4 + m) * n + k] (rows of SIMD lanes).
+  std::vector<std::vector<float>> by_function;
   bool regular(int f) const { return !patch.empty() && patch[size_t(f)] >= 0; }
-  // The unit normals (u along a row, v across: the stencils' T1 x T2) at level sigma's grid points
-  // (i, j) of regular D-facet f for i in rows, j in columns, written to out[(i - i0) * stride + j - j0],
-  // from level 0's points `base`.
-  void normals(int f, int sigma, const V3* base, int i0, int i1, int j0, int j1, int stride, V3* out) const;
+  // The unit normals (u along a row, v across: the stencils' T1 x T2) of regular D-facet f's
+  // interior (rows and columns 1 .. n - 2 of level sigma) from level 0's points `base`, into three
+  // planes, node (i, j) at i * stride + j (a projection tile's normal planes, tile.h).
+  void interior_planes(int f, int sigma, const V3* base, int stride, float* nx, float* ny, float* nz) const;
   // The same at the points (i, j) of side `side` (a = 1 .. n - 2 from corner `side`, lod.h's
   // side_ij), written to out[a - 1].
   void side_normals(int f, int sigma, int side, const V3* base, V3* out) const;
