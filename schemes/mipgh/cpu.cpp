@@ -24,7 +24,7 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, D
     compile_primitives(m_.atlas, m_.lod, depth, out_);
   }
   a_.resize(inner_nodes), b_.resize(inner_nodes);
-  if (m_.base_tangents.level >= 0) base_.resize(control_.size());
+  if (!m_.base_tangents.empty()) base_.resize(control_.size());
   if (!m_.pick.empty()) limit_.resize(inner_nodes);
   // A triangle's (u, v) is Loop's parametrization, which names no point of the Catmull-Clark
   // reference (whose ptex faces split a triangle in three): quad/triangle rows carry none.
@@ -36,7 +36,9 @@ CpuMipghEvaluation::CpuMipghEvaluation(const ControlMesh& mesh, MeshRule rule, D
 void CpuMipghEvaluation::run() {
   const float* o = m_.origin;
   for (size_t v = 0; v < control_.size(); ++v) a_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2]};
-  if (m_.base_tangents.level >= 0) std::copy_n(a_.begin(), control_.size(), base_.begin());  // level 0, kept
+  // Level 0 as given, kept for the normals taken from it (vertex_tangents.h, regular_patches.h)
+  if (!m_.base_tangents.empty())
+    for (size_t v = 0; v < control_.size(); ++v) base_[v] = {control_[v][0], control_[v][1], control_[v][2]};
   V3 *src = a_.data(), *dst = b_.data();
   if (m_.lod.adaptive()) {
     for (int sigma = 0; sigma <= m_.inner_depth(); ++sigma) {
@@ -57,7 +59,7 @@ void CpuMipghEvaluation::run() {
   // The limit is written straight into the output, moved back by the origin there; or over the
   // spare buffer and limit_ where the depth's grid points are picked from a deeper level.
   const std::vector<uint32_t>& pick = m_.pick;
-  const BaseLevel base{m_.base_tangents, base_.data()};
+  const BaseLevel base{m_.base_tangents, base_.data(), &m_.patches, &m_.facet_masks};
   if (pick.empty()) {
     const V3 origin{o[0], o[1], o[2]};
     m_.processor.project(m_.inner_depth(), src, reinterpret_cast<V3*>(out_.positions.data()),
@@ -80,7 +82,8 @@ void CpuMipghEvaluation::output_level(int sigma, const V3* src, V3* spare) {
     for (const auto& [at, i] : nodes) out_.positions[i] = {src[at].x + o[0], src[at].y + o[1], src[at].z + o[2]};
     return;
   }
-  m_.processor.project(sigma, src, spare, limit_.data(), adaptive_.homes[sigma], multithreaded_);
+  const BaseLevel base{m_.base_tangents, base_.data(), &m_.patches, &m_.facet_masks};
+  m_.processor.project(sigma, src, spare, limit_.data(), adaptive_.homes[sigma], multithreaded_, &base);
   for (const auto& [at, i] : nodes) {
     out_.positions[i] = {spare[at].x + o[0], spare[at].y + o[1], spare[at].z + o[2]};
     out_.normals[i] = {limit_[at].x, limit_[at].y, limit_[at].z};

@@ -49,9 +49,14 @@ MeshMutation::MeshMutation(const ControlMesh& mesh, MeshRule rule, Topology topo
       shader(make_shader(rule, sdc_options(mesh))),
       processor(atlas, lod, tags, *shader),
       pick(inner > depth && render.empty() ? same_points_at(atlas, lod, depth, inner) : std::vector<uint32_t>{}),
-      base_tangents(project && render.empty() && rule != MeshRule::QuadTri
-                        ? compose_base_tangents(processor, *shader, atlas.num_vertices, inner)
+      base_tangents(project && rule != MeshRule::QuadTri
+                        ? compose_base_tangents(processor, *shader,
+                                                render.empty() ? std::vector<uint8_t>(atlas.num_vertices, uint8_t(inner))
+                                                               : vertex_homes(atlas, render, home))
                         : BaseTangents{}),
+      patches(project && rule == MeshRule::CatmullClark ? find_regular_patches(atlas, tags, inner) : RegularPatches{}),
+      facet_masks(project && rule == MeshRule::CatmullClark ? compose_facet_masks(mesh, atlas, tags, patches, inner)
+                                                            : FacetMasks{}),
       depth_(depth),
       project_(project) {
   for (int v = 0; v < atlas.num_vertices; ++v)

@@ -12,6 +12,8 @@
 #include "schemes/mipgh/lod.h"
 #include "schemes/mipgh/mipgh.h"
 #include "schemes/mipgh/processor.h"
+#include "schemes/mipgh/facet_masks.h"
+#include "schemes/mipgh/regular_patches.h"
 #include "schemes/mipgh/shader.h"
 
 namespace sdb::mipgh {
@@ -43,8 +45,12 @@ class MeshMutation {
   // Where semi-sharp creases outlast the depth, refined to limit_depth_for and sampled at the
   // depth's grid points: output node i is inner node pick[i] (empty: the same level, or adaptive).
   const std::vector<uint32_t> pick;
-  // Uniform projection: the D-vertices' limit tangents as weights on level 0 (vertex_tangents.h).
+  // Projection: the D-vertices' limit tangents at their level as weights on level 0 (vertex_tangents.h).
   const BaseTangents base_tangents;
+  // Projection, Catmull-Clark: the regular D-facets' normals from their bicubic patches on level 0.
+  const RegularPatches patches;
+  // And the other untagged interior D-facets' normals from their 1-ring on level 0.
+  const FacetMasks facet_masks;
   float origin[3];  // levels are refined relative to the control box's centre: float keeps its precision
 
  private:

@@ -160,22 +160,29 @@ int interior_count(int size, int level) {
 
 }  // namespace
 
+std::vector<uint8_t> vertex_homes(const DAtlas& atlas, const std::vector<uint8_t>& render,
+                                  const std::vector<uint8_t>& home) {
+  std::vector<uint8_t> level(atlas.num_vertices, 0);
+  for (int f = 0; f < atlas.num_facets(); ++f)
+    for (int k = 0; k < atlas.facet_size[f]; ++k) {
+      uint8_t& l = level[atlas.facet_corners[f][k]];
+      l = std::max(l, render[f]);
+    }
+  for (uint8_t& l : level) l = home[l];
+  return level;
+}
+
 AdaptiveOutput compile_adaptive(const DAtlas& atlas, const DLoD& lod, const std::vector<uint8_t>& render,
                                 const std::vector<uint8_t>& home_of, Tessellation& out) {
   const int V = atlas.num_vertices, E = atlas.num_edges(), F = atlas.num_facets();
   AdaptiveOutput r;
   r.homes.resize(lod.depth() + 1), r.nodes.resize(lod.depth() + 1);
-  std::vector<int> edge_level(E), vertex_level(V, 0);
+  std::vector<int> edge_level(E);
   for (int e = 0; e < E; ++e) {
     const DEdge& d = atlas.edges[e];
     edge_level[e] = std::max<int>(render[d.major.facet], d.minor.null() ? 0 : render[d.minor.facet]);
   }
-  // every D-facet at the D-vertex, not only its ring's: a vertex of several fans has the first in its ring
-  for (int f = 0; f < F; ++f)
-    for (int k = 0; k < atlas.facet_size[f]; ++k) {
-      int& level = vertex_level[atlas.facet_corners[f][k]];
-      level = std::max<int>(level, render[f]);
-    }
+  const std::vector<uint8_t> vertex_home = vertex_homes(atlas, render, home_of);
   uint32_t next = uint32_t(V);
   std::vector<uint32_t> edge_out(E), facet_out(F);
   for (int e = 0; e < E; ++e) edge_out[e] = next, next += (1u << edge_level[e]) - 1;
@@ -186,7 +193,7 @@ AdaptiveOutput compile_adaptive(const DAtlas& atlas, const DLoD& lod, const std:
     return SurfaceCoord{uint32_t(f), float(p.j) * step, float(p.i) * step};
   };
   for (int v = 0; v < V; ++v) {
-    const int home = home_of[vertex_level[v]];
+    const int home = vertex_home[v];
     r.homes[home].vertices.push_back(v), r.nodes[home].push_back({uint32_t(v), uint32_t(v)});
     if (atlas.valence(v) == 0) continue;
     const HalfEdge& h = atlas.ring[atlas.ring_offsets[v]];

@@ -32,6 +32,12 @@ struct AdaptiveOutput {
 AdaptiveOutput compile_adaptive(const DAtlas& atlas, const DLoD& lod, const std::vector<uint8_t>& render,
                                 const std::vector<uint8_t>& home, Tessellation& out);
 
+// Adaptive: the level each D-vertex's output node comes from, home[] of the finest level a D-facet
+// at it is drawn at (every D-facet at it, not only its ring's: a vertex of several fans has the
+// first in its ring).
+std::vector<uint8_t> vertex_homes(const DAtlas& atlas, const std::vector<uint8_t>& render,
+                                  const std::vector<uint8_t>& home);
+
 // For each node of level sigma, the node of the deeper level `inner` at the same grid point.
 std::vector<uint32_t> same_points_at(const DAtlas& atlas, const DLoD& lod, int sigma, int inner);
 

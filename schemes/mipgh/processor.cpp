@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "schemes/mipgh/facet_masks.h"
+#include "schemes/mipgh/regular_patches.h"
 #include "schemes/mipgh/tile.h"
 
 namespace sdb::mipgh {
@@ -429,7 +431,7 @@ inline V3 placed(float x, float y, float z, const V3* offset) {
 }  // namespace
 
 void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal,
-                                   const V3* offset) const {
+                                   const V3* offset, const BaseLevel* base) const {
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
   const bool quad = load_tile(sigma, facets, src);
@@ -439,17 +441,54 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   // the interior nodes lie in rows 1 .. n - 2 (tile.h), the first triangle's and the turned one's
   const int first = w, count = whole_lanes((n - 2) * w, t.squares() - first);
   auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
-  (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
-      t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]), at(s.v[0][2]),
-      at(s.normal[0]), at(s.normal[1]), at(s.normal[2]));
+  // A regular D-facet's normals from its patch on level 0 (regular_patches.h), straight into the
+  // tile's normal planes; the stencils then give the positions alone.
+  const bool patch = n >= 3 && base && base->patches && base->patches->regular(facets.first);
+  if (patch) {
+    tile::quad_limit_positions(t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]),
+                               at(s.v[0][1]), at(s.v[0][2]));
+    base->patches->interior_planes(facets.first, sigma, base->points, w, s.normal[0].data(), s.normal[1].data(),
+                                   s.normal[2].data());
+  } else {
+    (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
+        t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]),
+        at(s.v[0][2]), at(s.normal[0]), at(s.normal[1]), at(s.normal[2]));
+  }
   auto assemble = [&](int f, bool turned) {
     tile::assemble_limit(s, n, w, l.s, quad, turned, offset, position + l.interior(f), normal + l.interior(f));
+    // Or from its 1-ring's composed masks (facet_masks.h).
+    if (!patch && n >= 3 && base && base->masks && base->masks->has(f))
+      base->masks->interior_normals(f, sigma, base->points, normal + l.interior(f));
   };
   assemble(facets.first, false);
   if (facets.second >= 0) assemble(facets.second, true);
 }
 
-void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const {
+void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
+                                 const BaseLevel* base) const {
+  project_edge_nodes(sigma, e, src, position, normal, offset);
+  // A D-edge of a D-facet whose normals come from level 0 (regular_patches.h, facet_masks.h): from
+  // the major's patch or masks, else the minor's, whose side runs the other way.
+  const LevelLayout& l = lod_.layout(sigma);
+  if (!base || l.s == 0) return;
+  const DEdge& d = atlas_.edges[e];
+  V3* out = normal + l.edge_node(e, 0);
+  auto from = [&](const HalfEdge& h) {
+    if (base->patches && base->patches->regular(h.facet)) {
+      base->patches->side_normals(h.facet, sigma, h.side, base->points, out);
+      return true;
+    }
+    if (base->masks && base->masks->has(h.facet)) {
+      base->masks->side_normals(h.facet, sigma, h.side, base->points, out);
+      return true;
+    }
+    return false;
+  };
+  if (!from(d.major) && !d.minor.null() && from(d.minor)) std::reverse(out, out + l.s);
+}
+
+void MeshProcessor::project_edge_nodes(int sigma, int e, const V3* src, V3* position, V3* normal,
+                                       const V3* offset) const {
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
   if (!fast_edge(e)) {
@@ -500,8 +539,8 @@ void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, 
 void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, bool parallel, const V3* offset,
                             const BaseLevel* base) const {
   for_each(int(tiles_.size()), parallel, 32, [&](int i) {
-    project_facets(sigma, tiles_[i], src, position, normal, offset);
-    for (int32_t e : tile_edges_.of(i)) project_edge(sigma, e, src, position, normal, offset);
+    project_facets(sigma, tiles_[i], src, position, normal, offset, base);
+    for (int32_t e : tile_edges_.of(i)) project_edge(sigma, e, src, position, normal, offset, base);
     for (int32_t v : tile_vertices_.of(i)) project_vertex(sigma, v, src, position, normal, offset, base);
   });
 }
@@ -515,17 +554,17 @@ void MeshProcessor::project_vertex(int sigma, int v, const V3* src, V3* position
     gather_vertex(sigma, v, src, disk);
     shader_.limit(disk, position[v], normal[v]);
     // The tangents from level 0 (vertex_tangents.h: float's rounding at this level's spacing).
-    if (base && base->tangents.level == sigma && base->tangents.has(v)) normal[v] = base->tangents.normal(v, base->points);
+    if (base && base->tangents.applies(v, sigma)) normal[v] = base->tangents.normal(v, base->points);
   }
   if (offset) position[v] = placed(position[v].x, position[v].y, position[v].z, offset);
 }
 
 void MeshProcessor::project(int sigma, const V3* src, V3* position, V3* normal, const Homes& homes,
-                            bool parallel) const {
+                            bool parallel, const BaseLevel* base) const {
   const auto &f = homes.facets, &e = homes.edges, &v = homes.vertices;
-  for_each(int(f.size()), parallel, 64, [&](int i) { project_facets(sigma, {f[i], -1}, src, position, normal, nullptr); });
-  for_each(int(e.size()), parallel, 256, [&](int i) { project_edge(sigma, e[i], src, position, normal, nullptr); });
-  for_each(int(v.size()), parallel, 512, [&](int i) { project_vertex(sigma, v[i], src, position, normal, nullptr); });
+  for_each(int(f.size()), parallel, 64, [&](int i) { project_facets(sigma, {f[i], -1}, src, position, normal, nullptr, base); });
+  for_each(int(e.size()), parallel, 256, [&](int i) { project_edge(sigma, e[i], src, position, normal, nullptr, base); });
+  for_each(int(v.size()), parallel, 512, [&](int i) { project_vertex(sigma, v[i], src, position, normal, nullptr, base); });
 }
 
 void MeshProcessor::vertex_shader_disk(int sigma, int v, const V3* src, bool limit, const DiskVisitor& visit) const {

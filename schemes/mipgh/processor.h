@@ -36,7 +36,8 @@ class MeshProcessor {
   // Adaptive (DLoD's labels): the limit of the nodes whose home is level sigma only: the
   // interiors of these D-facets, the nodes of these D-edges and these D-vertices.
   using Homes = LevelHomes;
-  void project(int sigma, const V3* src, V3* position, V3* normal, const Homes& homes, bool parallel) const;
+  void project(int sigma, const V3* src, V3* position, V3* normal, const Homes& homes, bool parallel,
+               const BaseLevel* base = nullptr) const;
 
   // Adjustment without refinement (Figure 24's bypassed case): every node of level sigma is
   // replaced by what `shader` makes of its 1-disk there (read from src, written to dst). Any
@@ -111,8 +112,12 @@ class MeshProcessor {
   bool load_strip_rows(int sigma, int e, const V3* src) const;
   // The array offsets of the nodes along a side (depth 0) or one in from it (1), at level sigma.
   const int32_t* side_rows(int sigma, int size, int side, int depth) const;
-  void project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal, const V3* offset) const;
-  void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const;
+  void project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal, const V3* offset,
+                      const BaseLevel* base) const;
+  // The limit of D-edge e's nodes by the stencils and masks of level sigma alone.
+  void project_edge_nodes(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const;
+  void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
+                    const BaseLevel* base) const;
   void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset,
                       const BaseLevel* base = nullptr) const;
   void step_adaptive(int sigma, const V3* src, V3* dst, bool parallel) const;

@@ -86,6 +86,44 @@ SDB_TILE_CLONES void triangle_limit_normals(const float* __restrict X, const flo
   limit_normals(triangle_limit_at, X, Y, Z, w, count, px, py, pz, nx, ny, nz);
 }
 
+SDB_TILE_CLONES void quad_limit_positions(const float* __restrict X, const float* __restrict Y,
+                                          const float* __restrict Z, int w, int count, float* __restrict px,
+                                          float* __restrict py, float* __restrict pz) {
+  for (int L = 0; L < count; ++L) px[L] = quad_limit_at(X, w, L).pos, py[L] = quad_limit_at(Y, w, L).pos, pz[L] = quad_limit_at(Z, w, L).pos;
+}
+
+SDB_TILE_CLONES void cubic_row(const float* __restrict f, int n, float r0, float r1, float r2, float r3, int count,
+                               float* __restrict v, float* __restrict s) {
+  const float *__restrict b0 = f, *__restrict b1 = f + n, *__restrict b2 = f + 2 * n, *__restrict b3 = f + 3 * n;
+  const float *__restrict d0 = f + 4 * n, *__restrict d1 = f + 5 * n, *__restrict d2 = f + 6 * n, *__restrict d3 = f + 7 * n;
+  for (int k = 0; k < count; ++k) {
+    v[k] = (b0[k] * r0 + b1[k] * r1) + (b2[k] * r2 + b3[k] * r3);
+    s[k] = (d0[k] * r0 + d1[k] * r1) + (d2[k] * r2 + d3[k] * r3);
+  }
+}
+
+SDB_TILE_CLONES void sum_normals(const float* const (&value)[4][3], const float* const (&slope)[4][3], const float* b,
+                                 const float* d, int count, float* __restrict nx, float* __restrict ny,
+                                 float* __restrict nz) {
+  const float b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], d0 = d[0], d1 = d[1], d2 = d[2], d3 = d[3];
+  const float *__restrict sx0 = slope[0][0], *__restrict sx1 = slope[1][0], *__restrict sx2 = slope[2][0], *__restrict sx3 = slope[3][0];
+  const float *__restrict sy0 = slope[0][1], *__restrict sy1 = slope[1][1], *__restrict sy2 = slope[2][1], *__restrict sy3 = slope[3][1];
+  const float *__restrict sz0 = slope[0][2], *__restrict sz1 = slope[1][2], *__restrict sz2 = slope[2][2], *__restrict sz3 = slope[3][2];
+  const float *__restrict vx0 = value[0][0], *__restrict vx1 = value[1][0], *__restrict vx2 = value[2][0], *__restrict vx3 = value[3][0];
+  const float *__restrict vy0 = value[0][1], *__restrict vy1 = value[1][1], *__restrict vy2 = value[2][1], *__restrict vy3 = value[3][1];
+  const float *__restrict vz0 = value[0][2], *__restrict vz1 = value[1][2], *__restrict vz2 = value[2][2], *__restrict vz3 = value[3][2];
+#pragma GCC ivdep
+  for (int j = 0; j < count; ++j) {
+    const float ax = (b0 * sx0[j] + b1 * sx1[j]) + (b2 * sx2[j] + b3 * sx3[j]);
+    const float ay = (b0 * sy0[j] + b1 * sy1[j]) + (b2 * sy2[j] + b3 * sy3[j]);
+    const float az = (b0 * sz0[j] + b1 * sz1[j]) + (b2 * sz2[j] + b3 * sz3[j]);
+    const float cx = (d0 * vx0[j] + d1 * vx1[j]) + (d2 * vx2[j] + d3 * vx3[j]);
+    const float cy = (d0 * vy0[j] + d1 * vy1[j]) + (d2 * vy2[j] + d3 * vy3[j]);
+    const float cz = (d0 * vz0[j] + d1 * vz1[j]) + (d2 * vz2[j] + d3 * vz3[j]);
+    unit_cross(ax, ay, az, cx, cy, cz, nx[j], ny[j], nz[j]);
+  }
+}
+
 namespace {
 
 // Four nodes at a time between the level's packed V3s and the tile's planes: three 16-byte loads

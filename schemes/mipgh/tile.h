@@ -86,6 +86,16 @@ void quad_limit_normals(const float* X, const float* Y, const float* Z, int stri
                         float* pz, float* nx, float* ny, float* nz);
 void triangle_limit_normals(const float* X, const float* Y, const float* Z, int stride, int count, float* px, float* py,
                             float* pz, float* nx, float* ny, float* nz);
+// The limit positions alone (a quad whose normals come from level 0: regular_patches.h).
+void quad_limit_positions(const float* X, const float* Y, const float* Z, int stride, int count, float* px, float* py,
+                          float* pz);
+// Unit normals (T1 x T2) of `count` nodes from tangents that are sums over four rows: T1 = sum_a
+// b[a] slope_a, T2 = sum_a d[a] value_a, per coordinate k the rows value[a][k], slope[a][k].
+// A cubic's value and slope at `count` points from its four coefficients r: v = sum_m B_m r_m,
+// s = sum_m B'_m r_m, B_m at f[m * n + k] and B'_m at f[(4 + m) * n + k] for point k.
+void cubic_row(const float* f, int n, float r0, float r1, float r2, float r3, int count, float* v, float* s);
+void sum_normals(const float* const (&value)[4][3], const float* const (&slope)[4][3], const float* b, const float* d,
+                 int count, float* nx, float* ny, float* nz);
 // A step's targets in one D-facet of the tile whose class planes `s` holds (a quad, the first
 // triangle, or the turned one): level sigma + 1's interior rows 1 .. width, row-major into `out`.
 // Target (r, c) lies at square (r >> 1, c >> 1), class 2 (r & 1) + (c & 1), or at the turned

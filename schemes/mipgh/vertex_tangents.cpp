@@ -1,5 +1,6 @@
 #include "schemes/mipgh/vertex_tangents.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -79,22 +80,25 @@ V3 BaseTangents::normal(int v, const V3* base) const {
   return {float(n[0] / l), float(n[1] / l), float(n[2] / l)};
 }
 
-BaseTangents compose_base_tangents(const MeshProcessor& processor, const MeshShader& shader, int num_vertices,
-                                   int level) {
+BaseTangents compose_base_tangents(const MeshProcessor& processor, const MeshShader& shader,
+                                   std::vector<uint8_t> levels) {
+  const int num_vertices = int(levels.size());
   BaseTangents out;
-  out.level = level;
+  out.level = std::move(levels);
   out.begin.assign(1, 0);
   const std::vector<V3> ids = node_ids(uint32_t(num_vertices));  // level 0's nodes are the input's vertices
-  std::vector<VertexDisk> disks(level + 1);
-  std::vector<std::vector<float>> far(level + 1);
+  const int deepest = num_vertices ? *std::max_element(out.level.begin(), out.level.end()) : 0;
+  std::vector<VertexDisk> disks(deepest + 1);
+  std::vector<std::vector<float>> far(deepest + 1);
   struct Weights {
     std::vector<double> t1, t2;  // on the level-0 disk's slots; empty: none
   };
   std::map<std::vector<float>, Weights> cache;
   for (int v = 0; v < num_vertices; ++v) {
     Weights w;
+    const int level = out.level[size_t(v)];
     if (processor.vertex_has_disk(v)) {
-      std::vector<float> key;
+      std::vector<float> key{float(level)};
       for (int s = 0; s <= level; ++s) {
         processor.gather_vertex(s, v, s == 0 ? ids.data() : nullptr, disks[s], &far[s]);
         append_key(key, disks[s], far[s]);

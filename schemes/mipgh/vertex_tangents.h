@@ -24,25 +24,36 @@ class MeshShader;
 struct V3;
 
 struct BaseTangents {
-  int level = -1;  // the projection's level they are the limit tangents of
+  // Per D-vertex: the level its limit is projected at, whose limit tangents these are (uniform:
+  // the inner depth for all; adaptive: the vertex's home). Empty: none composed.
+  std::vector<uint8_t> level;
   // Per D-vertex v: terms begin[v] .. begin[v + 1] (none: the level's own masks apply), each a
   // level-0 node and its weights in T1 and T2, to be applied relative to v's own control point.
   std::vector<uint32_t> begin, node;
   std::vector<float> t1, t2;
+  bool empty() const { return level.empty(); }
   bool has(int v) const { return begin[std::size_t(v) + 1] > begin[std::size_t(v)]; }
+  // Whether D-vertex v projected at level sigma takes its normal from these.
+  bool applies(int v, int sigma) const { return !empty() && level[std::size_t(v)] == sigma && has(v); }
   // The unit normal T1 x T2 at D-vertex v from level 0's nodes `base`.
   V3 normal(int v, const V3* base) const;
 };
 
-// What a projection reads them with: the tables and level 0's nodes, relative to the origin the
-// levels are refined about.
+struct RegularPatches;
+struct FacetMasks;
+
+// What a projection reads them with: the tables and level 0's nodes, the input's control points as
+// given (not moved to the origin the levels are refined about: their differences are exact).
 struct BaseLevel {
   const BaseTangents& tangents;
   const V3* points;
+  const RegularPatches* patches = nullptr;  // the regular D-facets' and D-edges' normals (regular_patches.h)
+  const FacetMasks* masks = nullptr;         // the others' next to extraordinary vertices (facet_masks.h)
 };
 
-// Every D-vertex's (in one fan of faces, with a face) tangents at `level` as weights on level 0.
-BaseTangents compose_base_tangents(const MeshProcessor& processor, const MeshShader& shader, int num_vertices,
-                                   int level);
+// Every D-vertex's (in one fan of faces, with a face) tangents at its level (`level`, one per
+// D-vertex) as weights on level 0.
+BaseTangents compose_base_tangents(const MeshProcessor& processor, const MeshShader& shader,
+                                   std::vector<uint8_t> level);
 
 }  // namespace sdb::mipgh

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "harness/gpu/gpu.h"
@@ -36,6 +37,9 @@ constexpr uint32_t kFacetClasses = 2, kFacetStep = 0, kFacetLimit = 1;
 constexpr uint32_t kEdgeParts = 2, kEdgeStep = 0, kEdgeLimit = 1;
 // edges.comp's kPairs: pairs of targets per invocation.
 constexpr uint32_t kEdgePairs = 2;
+// base_normals.comp's parts (D-vertices, D-facet interiors, D-facet sides), and the descriptor set
+// that binds level 0 as given.
+constexpr uint32_t kBaseParts = 3, kBaseSet = 2;
 
 // One dispatch: the pipeline, its push constants, and its descriptor set (reads level buffer 0 or
 // 1 and writes the other, or, where the pipeline writes the output, the output).
@@ -146,8 +150,8 @@ class VulkanMipghEvaluation final : public Evaluation {
     build_tables();
     gpu::check_memory(*ctx_,
                       {uint64_t(tables_.words.size() + tables_.weights.size() + tables_.lod.size()) * 4 +
-                           3 * level_bytes_ + 2 * output_bytes_,
-                       2 * output_bytes_ + control_.size() * 12},
+                           3 * level_bytes_ + 2 * output_bytes_ + control_.size() * 16,
+                       2 * output_bytes_ + control_.size() * 28},
                       mesh.name + " at depth " + std::to_string(depth));
     make_buffers();
     make_pipelines();
@@ -166,9 +170,9 @@ class VulkanMipghEvaluation final : public Evaluation {
     for (size_t v = 0; v < control_.size(); ++v)
       level0_[v] = {control_[v][0] - o[0], control_[v][1] - o[1], control_[v][2] - o[2], 0.0f};
     control_staging_.write(level0_);
-    if (m_.base_tangents.level >= 0) {
-      base_points_.resize(control_.size());
-      for (size_t v = 0; v < control_.size(); ++v) base_points_[v] = {level0_[v][0], level0_[v][1], level0_[v][2]};
+    if (m_.project()) {  // and as given, for the normals from level 0
+      for (size_t v = 0; v < control_.size(); ++v) level0_[v] = {control_[v][0], control_[v][1], control_[v][2], 0.0f};
+      base_staging_.write(level0_);
     }
     ctx_->submit(*frame_);
     readback_->invalidate();
@@ -176,15 +180,6 @@ class VulkanMipghEvaluation final : public Evaluation {
 
   const Tessellation& result() override {
     readback_->read_into(out_);
-    // The D-vertices' normals from level 0 as the cpu's (vertex_tangents.h), applied here on the
-    // host: a device pass reading level 0 is not written yet (issue 39d). Output node v is D-vertex v.
-    const BaseTangents& base = m_.base_tangents;
-    if (base.level >= 0)
-      for (int v = 0; v < m_.atlas.num_vertices; ++v)
-        if (base.has(v)) {
-          const V3 n = base.normal(v, base_points_.data());
-          out_.normals[size_t(v)] = {n.x, n.y, n.z};
-        }
     return out_;
   }
 
@@ -207,6 +202,12 @@ class VulkanMipghEvaluation final : public Evaluation {
     uint32_t facet_list[2] = {0, 0}, facets[2] = {0, 0};  // per kind: (D-LoD offset, first target) per D-facet listed; how many
     uint32_t fast_edges[2] = {0, 0}, num_fast_edges[2] = {0, 0};
     MaskRange masks;
+  };
+  struct BaseNormals {  // base_normal_tables
+    MaskRange vertices;
+    struct {
+      uint32_t entries = 0, table = 0;
+    } interiors, sides;
   };
   struct OutputNodes {  // adaptive: a level's drawn nodes, and where each goes in the output
     uint32_t at = 0, to = 0, count = 0;
@@ -243,6 +244,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       steps_.push_back(sigma < inner ? level_passes(sigma, false) : LevelPasses{});
       const bool projected = m_.project() && (m_.lod.adaptive() ? !adaptive_.nodes[sigma].empty() : sigma == inner);
       limits_.push_back(projected ? level_passes(sigma, true) : LevelPasses{});
+      base_normals_.push_back(projected ? base_normal_tables(sigma) : BaseNormals{});
     }
     if (!m_.pick.empty()) pick_ = tables_.add(m_.pick);
     if (m_.lod.adaptive())
@@ -317,6 +319,65 @@ class VulkanMipghEvaluation final : public Evaluation {
     for (bool quad : {false, true}) l.fast_edges[quad] = tables_.add(fast[quad]), l.num_fast_edges[quad] = uint32_t(fast[quad].size() / 5);
   }
 
+  // What base_normals.comp writes after level sigma's projection: the D-vertices with tangents on
+  // level 0 (vertex_tangents.h), the interiors and sides of the D-facets with patches or masks
+  // (regular_patches.h, facet_masks.h), those the projection visits (adaptive: its homes).
+  BaseNormals base_normal_tables(int sigma) {
+    BaseNormals b;
+    const LevelLayout& l = m_.lod.layout(sigma);
+    std::vector<int32_t> vertices, facets, edges;
+    if (m_.lod.adaptive()) {
+      const LevelHomes& h = adaptive_.homes[sigma];
+      vertices = h.vertices, facets = h.facets, edges = h.edges;
+    } else {
+      for (int v = 0; v < m_.atlas.num_vertices; ++v) vertices.push_back(v);
+      for (int f = 0; f < m_.atlas.num_facets(); ++f) facets.push_back(f);
+      for (int e = 0; e < m_.atlas.num_edges(); ++e) edges.push_back(e);
+    }
+    const BaseTangents& t = m_.base_tangents;
+    std::vector<uint32_t> targets, begins{0}, sources;
+    std::vector<float> weights;
+    for (int v : vertices) {
+      if (!t.applies(v, sigma)) continue;
+      targets.push_back(uint32_t(v));
+      for (uint32_t k = t.begin[size_t(v)]; k < t.begin[size_t(v) + 1]; ++k)
+        sources.push_back(t.node[k]), weights.insert(weights.end(), {t.t1[k], t.t2[k]});
+      begins.push_back(uint32_t(sources.size()));
+    }
+    b.vertices = {uint32_t(targets.size()), tables_.add(targets), tables_.add(begins), tables_.add(sources),
+                  tables_.add_weights(weights)};
+    if (l.s == 0) return b;
+    // (node weights, control points, their count) of D-facet f, if it has them
+    auto source = [&](int f, uint32_t (&entry)[3]) {
+      if (m_.patches.regular(f)) {
+        if (!patch_weights_.count(sigma)) patch_weights_[sigma] = tables_.add_weights(RegularPatches::node_weights(sigma));
+        if (!patch_nets_) patch_nets_ = tables_.add(m_.patches.net);
+        entry[0] = patch_weights_[sigma], entry[1] = patch_nets_ + 16 * uint32_t(m_.patches.patch[size_t(f)]), entry[2] = 16;
+        return true;
+      }
+      if (!m_.facet_masks.has(f)) return false;
+      const FacetMasks::Facet& g = m_.facet_masks.facets[size_t(m_.facet_masks.facet[size_t(f)])];
+      const auto key = std::make_pair(g.type, sigma);
+      if (!mask_weights_.count(key)) mask_weights_[key] = tables_.add_weights(m_.facet_masks.types[g.type].weights[size_t(sigma)]);
+      if (!mask_control_) mask_control_ = tables_.add(m_.facet_masks.control);
+      entry[0] = mask_weights_[key], entry[1] = mask_control_ + g.first, entry[2] = uint32_t(m_.facet_masks.types[g.type].size);
+      return true;
+    };
+    std::vector<uint32_t> interiors, sides;
+    uint32_t entry[3];
+    for (int f : facets)
+      if (m_.atlas.facet_size[f] == 4 && source(f, entry)) interiors.insert(interiors.end(), {entry[0], entry[1], entry[2], 0u, l.interior(f)});
+    for (int e : edges) {
+      const DEdge& d = m_.atlas.edges[e];
+      if (source(d.major.facet, entry)) sides.insert(sides.end(), {entry[0], entry[1], entry[2], uint32_t(d.major.side), l.edge_node(e, 0)});
+      else if (!d.minor.null() && source(d.minor.facet, entry))
+        sides.insert(sides.end(), {entry[0], entry[1], entry[2], uint32_t(d.minor.side) | 4u, l.edge_node(e, 0)});
+    }
+    b.interiors = {uint32_t(interiors.size() / 5), tables_.add(interiors)};
+    b.sides = {uint32_t(sides.size() / 5), tables_.add(sides)};
+    return b;
+  }
+
   MaskRange add_masks(const MaskTable& t) {
     return {uint32_t(t.entries()), tables_.add(t.target), tables_.add(t.begin), tables_.add(t.source),
             tables_.add_weights(t.weight)};
@@ -331,6 +392,9 @@ class VulkanMipghEvaluation final : public Evaluation {
     level_[0] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (even levels)");
     level_[1] = gpu::Buffer::device(c, level_bytes_, level_usage, "level nodes (odd levels)");
     normals_ = gpu::Buffer::device(c, level_bytes_, level_usage, "limit normals");
+    // Level 0 as given, for the normals taken from it (base_normals.comp)
+    base_staging_ = gpu::Buffer::upload(c, control_bytes, "control points as given (staging)");
+    base_ = gpu::Buffer::device(c, control_bytes, level_usage, "control points as given");
     lod_ = gpu::texel_table(c, tables_.lod, "D-LoD index arrays");
     words_ = gpu::texel_table(c, tables_.words, "mipgh tables");
     weights_ = gpu::texel_table(c, tables_.weights, "mask weights");
@@ -366,18 +430,21 @@ class VulkanMipghEvaluation final : public Evaluation {
     masks_limit_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0));
     if (limit_to_output()) masks_out_ = gpu::shared_compute_pipeline(*ctx_, desc(masks, 1, 0, true));
     output_ = gpu::shared_compute_pipeline(*ctx_, desc("output.comp", m_.project(), 0));
+    for (uint32_t part = 0; part < kBaseParts && m_.project(); ++part)
+      base_normals_pipelines_[part] = gpu::shared_compute_pipeline(*ctx_, desc("base_normals.comp", part, 0, limit_to_output()));
     // Set k reads level buffer k and writes the other (or, a kToOutput pipeline, the output).
     constexpr VkFormat node = VK_FORMAT_R32G32B32A32_SFLOAT;
     // Bindings 9 to 12 (mipgh.glsl): the whole buffer where the pipelines store through them, a
     // token 16 bytes where they do not (past the storage-buffer range).
     const uint64_t level_range = node_vec4_ ? level_bytes_ : 16, output_range = output_vec3_ ? output_bytes_ : 16;
-    for (int k = 0; k < 2; ++k)
+    // Set 2 reads level 0 as given (base_normals.comp) and writes the normals as set 0.
+    for (int k = 0; k < 3; ++k)
       sets_[k] = gpu::DescriptorSet(
-          *output_, {level_[k].texels(node), level_[1 - k].texels(node), normals_.texels(node),
+          *output_, {k == 2 ? base_.texels(node) : level_[k].texels(node), level_[k == 1 ? 0 : 1].texels(node), normals_.texels(node),
                      lod_.texels(VK_FORMAT_R32_UINT), words_.texels(VK_FORMAT_R32_UINT),
                      weights_.texels(VK_FORMAT_R32_SFLOAT), positions_.texels(VK_FORMAT_R32_SFLOAT),
                      out_normals_.texels(VK_FORMAT_R32_SFLOAT), normals_.texels(node),
-                     level_[1 - k].range(0, level_range), normals_.range(0, level_range), positions_.range(0, output_range),
+                     level_[k == 1 ? 0 : 1].range(0, level_range), normals_.range(0, level_range), positions_.range(0, output_range),
                      out_normals_.range(0, output_range)});
   }
 
@@ -425,6 +492,29 @@ class VulkanMipghEvaluation final : public Evaluation {
     p.count = r.entries, p.table = r.target, p.begins = r.begins, p.sources = r.sources, p.weight_base = r.weights;
     pass.dispatches.push_back({to_output ? &*masks_out_ : limit ? &*masks_limit_ : &*masks_step_, p, reads});
     passes_.push_back(std::move(pass));
+    if (limit) add_base_normals(sigma);
+  }
+
+  // After level sigma's projection, the normals from level 0 over its own (base_normal_tables).
+  void add_base_normals(int sigma) {
+    const BaseNormals& b = base_normals_[sigma];
+    const int n = m_.lod.layout(sigma).n;
+    Pass pass{m_.lod.adaptive() ? "limit normals " + std::to_string(sigma) : "limit normals", {}};
+    Push v;
+    v.count = b.vertices.entries, v.table = b.vertices.target, v.begins = b.vertices.begins;
+    v.sources = b.vertices.sources, v.weight_base = b.vertices.weights;
+    pass.dispatches.push_back({&*base_normals_pipelines_[0], v, kBaseSet});
+    Push f;
+    f.n = uint32_t(n), f.per_item = uint32_t((n - 2) * (n - 2)), f.table = b.interiors.table;
+    f.count = checked_u32(size_t(b.interiors.entries) * f.per_item, "the D-facets' normals");
+    pass.dispatches.push_back({&*base_normals_pipelines_[1], f, kBaseSet});
+    Push s;
+    s.n = uint32_t(n), s.per_item = uint32_t(n - 2), s.table = b.sides.table;
+    s.count = checked_u32(size_t(b.sides.entries) * s.per_item, "the D-edges' normals");
+    pass.dispatches.push_back({&*base_normals_pipelines_[2], s, kBaseSet});
+    bool any = false;
+    for (const Dispatch& d : pass.dispatches) any = any || d.push.count > 0;
+    if (any) passes_.push_back(std::move(pass));
   }
 
   // Adaptive: level sigma's drawn nodes into the output, from its projection (written over the
@@ -466,6 +556,7 @@ class VulkanMipghEvaluation final : public Evaluation {
       frame_timer_->reset(cmd);
       frame_timer_->begin(cmd, gpu::PassKind::Upload, "upload");
       cmd.upload(control_staging_, level_[0], control_.size() * sizeof(Node));
+      if (m_.project()) cmd.upload(base_staging_, base_, control_.size() * sizeof(Node));
       frame_timer_->end(cmd);
       for (const Pass& pass : passes_) {
         // Each pass reads what the one before wrote.
@@ -485,7 +576,6 @@ class VulkanMipghEvaluation final : public Evaluation {
 
   std::shared_ptr<gpu::Context> ctx_;  // outlives every Vulkan object below
   std::vector<Point3> control_;
-  std::vector<V3> base_points_;  // level 0 for the D-vertices' normals (result())
   MeshMutation m_;
   bool has_quads_ = false, has_triangles_ = false;
   bool node_vec4_ = true;    // the levels written as storage buffers of vec4 (a binding covers them)
@@ -500,12 +590,18 @@ class VulkanMipghEvaluation final : public Evaluation {
   std::vector<Pass> passes_;
   std::vector<Node> level0_;
   gpu::Buffer control_staging_, level_[2], normals_, lod_, words_, weights_;
+  gpu::Buffer base_staging_, base_;  // level 0 as given (base_normals.comp)
+  std::vector<BaseNormals> base_normals_;  // per level: what base_normals.comp writes after its projection
+  std::map<int, uint32_t> patch_weights_;  // per level: RegularPatches::node_weights in the weights
+  std::map<std::pair<uint32_t, int>, uint32_t> mask_weights_;  // per mask type and level
+  uint32_t patch_nets_ = 0, mask_control_ = 0;
   gpu::Buffer positions_, out_normals_;
   std::optional<gpu::OutputReadback> readback_;
   // The context's (gpu::shared_compute_pipeline: lavapipe compiles each once).
   std::shared_ptr<const gpu::ComputePipeline> facets_[2][kFacetClasses], edges_[2][kEdgeParts], masks_step_, masks_limit_, output_;
   std::shared_ptr<const gpu::ComputePipeline> facets_out_[2], edges_out_[2], masks_out_;  // the limit into the output
-  gpu::DescriptorSet sets_[2];
+  gpu::DescriptorSet sets_[3];
+  std::shared_ptr<const gpu::ComputePipeline> base_normals_pipelines_[3];
   std::optional<gpu::GpuTimer> frame_timer_;
   std::optional<gpu::Recording> frame_;
   Tessellation out_;

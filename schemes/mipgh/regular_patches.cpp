@@ -1,0 +1,177 @@
+#include "schemes/mipgh/regular_patches.h"
+
+#include "schemes/mipgh/tile.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sdb::mipgh {
+namespace {
+
+// The uniform cubic B-spline's four basis functions and their derivatives at t, in double.
+void cubic_basis(double t, float* b, float* d) {
+  const double s = 1 - t;
+  b[0] = float(s * s * s / 6), b[1] = float((3 * t * t * t - 6 * t * t + 4) / 6);
+  b[2] = float((-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6), b[3] = float(t * t * t / 6);
+  d[0] = float(-s * s / 2), d[1] = float((3 * t * t - 4 * t) / 2), d[2] = float((-3 * t * t + 2 * t + 1) / 2),
+  d[3] = float(t * t / 2);
+}
+
+// Corner k of a quad D-facet on its level-0 grid (row, column), and the grid directions of its
+// outgoing side (A) and of its incoming side reversed (B): the ring's e[r] and e[r + 1].
+constexpr int kCorner[4][2] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+constexpr int kA[4][2] = {{0, 1}, {1, 0}, {0, -1}, {-1, 0}};
+constexpr int kB[4][2] = {{1, 0}, {0, -1}, {-1, 0}, {0, 1}};
+
+// The 16 vertices of regular D-facet f's net from its corners' rings; false where the rings do
+// not close up into a 4 x 4 grid (or a vertex, edge or face around is not regular).
+bool gather_net(const DAtlas& atlas, const EdgeTags& tags, int f, uint32_t* net) {
+  if (atlas.facet_size[f] != 4) return false;
+  int32_t grid[4][4];
+  for (auto& row : grid)
+    for (int32_t& g : row) g = -1;
+  auto put = [&](int i, int j, int32_t v) {
+    int32_t& g = grid[i + 1][j + 1];
+    if (g >= 0 && g != v) return false;
+    g = v;
+    return true;
+  };
+  for (int k = 0; k < 4; ++k) {
+    const int v = atlas.facet_corners[f][k];
+    if (atlas.valence(v) != 4 || atlas.vertex_boundary[v] || atlas.vertex_fans[v] != 1) return false;
+    const int begin = atlas.ring_offsets[v];
+    int r = 0;
+    while (r < 4 && atlas.ring[begin + r].facet != f) ++r;
+    if (r == 4) return false;
+    int32_t e[4], d[4];
+    for (int i = 0; i < 4; ++i) {
+      const HalfEdge& h = atlas.ring[begin + (r + i) % 4];
+      if (atlas.facet_size[h.facet] != 4) return false;
+      for (int s = 0; tags.any && s < 4; ++s)
+        if (tags.slot[atlas.facet_edges[h.facet][s]] >= 0) return false;
+      e[i] = atlas.facet_corners[h.facet][(h.side + 1) & 3], d[i] = atlas.facet_corners[h.facet][(h.side + 2) & 3];
+    }
+    const int pi = kCorner[k][0], pj = kCorner[k][1];
+    auto at = [&](int a, int b, int32_t w) { return put(pi + a * kA[k][0] + b * kB[k][0], pj + a * kA[k][1] + b * kB[k][1], w); };
+    if (!(at(0, 0, v) && at(1, 0, e[0]) && at(0, 1, e[1]) && at(-1, 0, e[2]) && at(0, -1, e[3]) && at(1, 1, d[0]) &&
+          at(-1, 1, d[1]) && at(-1, -1, d[2]) && at(1, -1, d[3])))
+      return false;
+  }
+  for (int i = 0; i < 16; ++i) {
+    const int32_t w = grid[i / 4][i % 4];
+    if (w < 0 || (tags.any && tags.vertex[0][w] != 0.0f)) return false;
+    net[i] = uint32_t(w);
+  }
+  return true;
+}
+
+}  // namespace
+
+RegularPatches find_regular_patches(const DAtlas& atlas, const EdgeTags& tags, int depth) {
+  RegularPatches p;
+  p.patch.assign(atlas.num_facets(), -1);
+  uint32_t net[16];
+  for (int f = 0; f < atlas.num_facets(); ++f)
+    if (gather_net(atlas, tags, f, net)) {
+      p.patch[f] = int32_t(p.net.size() / 16);
+      p.net.insert(p.net.end(), net, net + 16);
+    }
+  for (int sigma = 0; sigma <= depth; ++sigma) {
+    const int n = (1 << sigma) + 1;
+    std::vector<float> b(4 * size_t(n)), d(b.size());
+    for (int k = 0; k < n; ++k) cubic_basis(double(k) / (n - 1), &b[4 * size_t(k)], &d[4 * size_t(k)]);
+    std::vector<float> f(8 * size_t(n));
+    for (int k = 0; k < n; ++k)
+      for (int m = 0; m < 4; ++m) f[size_t(m * n + k)] = b[4 * size_t(k) + m], f[size_t((4 + m) * n + k)] = d[4 * size_t(k) + m];
+    p.basis.push_back(std::move(b)), p.derivative.push_back(std::move(d)), p.by_function.push_back(std::move(f));
+  }
+  return p;
+}
+
+std::vector<float> RegularPatches::node_weights(int sigma) {
+  const int n = (1 << sigma) + 1;
+  std::vector<float> w(size_t(n) * n * 32);
+  std::vector<float> b(4 * size_t(n)), d(b.size());
+  for (int k = 0; k < n; ++k) cubic_basis(double(k) / (n - 1), &b[4 * size_t(k)], &d[4 * size_t(k)]);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      float* at = &w[(size_t(i) * n + size_t(j)) * 32];
+      for (int a = 0; a < 4; ++a)  // net row a (across, v), column c (along, u)
+        for (int c = 0; c < 4; ++c) {
+          at[4 * a + c] = float(double(b[4 * size_t(i) + a]) * d[4 * size_t(j) + c]);
+          at[16 + 4 * a + c] = float(double(d[4 * size_t(i) + a]) * b[4 * size_t(j) + c]);
+        }
+    }
+  return w;
+}
+
+void RegularPatches::interior_planes(int f, int sigma, const V3* base, int stride, float* nx, float* ny,
+                                     float* nz) const {
+  const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
+  const V3 c = base[q[5]];
+  V3 D[16];
+  for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
+  // Columns 1 .. n - 2 rounded up to whole SIMD vectors of eight where the row has room (column
+  // n - 1 is the side's, in the tile but never read from these planes): at n = 17, 15 columns left
+  // seven to a scalar tail.
+  const int n = (1 << sigma) + 1, columns = std::min(((n - 2) + 7) & ~7, n - 1);
+  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
+  // Per net row a and coordinate k, the patch along u (value) and d/du (slope) at columns 1 .. n - 2.
+  thread_local std::vector<float> t_rows;
+  t_rows.resize(24 * size_t(columns));
+  const float* value[4][3];
+  const float* slope[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int k = 0; k < 3; ++k) {
+      float* v = &t_rows[size_t((a * 3 + k) * 2) * size_t(columns)];
+      float* s = v + columns;
+      auto coordinate = [&](const V3& p) { return k == 0 ? p.x : k == 1 ? p.y : p.z; };
+      const float r0 = coordinate(D[4 * a]), r1 = coordinate(D[4 * a + 1]), r2 = coordinate(D[4 * a + 2]),
+                  r3 = coordinate(D[4 * a + 3]);
+      tile::cubic_row(by_function[size_t(sigma)].data() + 1, n, r0, r1, r2, r3, columns, v, s);
+      value[a][k] = v, slope[a][k] = s;
+    }
+  for (int i = 1; i + 1 < n; ++i) {
+    const size_t row = size_t(i) * size_t(stride) + 1;
+    tile::sum_normals(value, slope, B + 4 * i, dB + 4 * i, columns, nx + row, ny + row, nz + row);
+  }
+}
+
+void RegularPatches::side_normals(int f, int sigma, int side, const V3* base, V3* out) const {
+  const int n = (1 << sigma) + 1;
+  if (n < 3) return;
+  const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
+  const V3 c = base[q[5]];
+  V3 D[16];
+  for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
+  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
+  // Side k's nodes run along one row (sides 0, 2) or column (1, 3) of the grid (lod.h's side_ij):
+  // the patch's cubic there, fixed in the other parameter, as four points per tangent.
+  const RowColumn first = side_ij(4, side, n, 0, 0);
+  const bool row = side == 0 || side == 2;
+  const int fixed = row ? first.i : first.j;
+  const float *b = B + 4 * fixed, *d = dB + 4 * fixed;
+  V3 along[4], across[4];  // T1 = sum B'(u) along (rows), T2 = sum B(u) across; or by columns
+  for (int k = 0; k < 4; ++k) {
+    V3 x{0, 0, 0}, y{0, 0, 0};
+    for (int m = 0; m < 4; ++m) {
+      const V3 p = row ? D[4 * m + k] : D[4 * k + m];  // row: net column k over rows m; column: net row k
+      x = x + b[m] * p, y = y + d[m] * p;
+    }
+    along[k] = x, across[k] = y;
+  }
+  for (int a = 1; a + 1 < n; ++a) {
+    const RowColumn p = side_ij(4, side, n, a, 0);
+    const int t = row ? p.j : p.i;
+    const float *bt = B + 4 * t, *dt = dB + 4 * t;
+    V3 t1{0, 0, 0}, t2{0, 0, 0};
+    for (int k = 0; k < 4; ++k) {
+      if (row) t1 = t1 + dt[k] * along[k], t2 = t2 + bt[k] * across[k];
+      else t1 = t1 + bt[k] * across[k], t2 = t2 + dt[k] * along[k];
+    }
+    const V3 x = cross(t1, t2);
+    out[a - 1] = (1.0f / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z + 1e-37f)) * x;
+  }
+}
+
+}  // namespace sdb::mipgh
