@@ -15,8 +15,6 @@ namespace {
 
 using json = nlohmann::json;
 
-double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a, 1L)) / double(std::max(b, 1L)))); }
-
 bool usable(const RunRow& r) { return r.status == RunStatus::Ok && r.triangles > 0; }
 
 std::string cell_key(const std::string& spec, const std::string& mesh, Backend b) {

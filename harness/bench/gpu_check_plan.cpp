@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 
 namespace sdb {
 namespace {
-
-double log_distance(double a, double b) { return std::abs(std::log(std::max(a, 1.0) / std::max(b, 1.0))); }
 
 // The entry of `levels` whose output is nearest `target`, among those `keep` takes.
 template <typename Keep>

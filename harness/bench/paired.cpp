@@ -12,8 +12,6 @@
 namespace sdb {
 namespace {
 
-double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a, 1L)) / double(std::max(b, 1L)))); }
-
 bool usable(const RunRow& r) { return r.status == RunStatus::Ok && r.triangles > 0; }
 
 // The peer's row for `row`: same mesh, the peer scheme on the row's peer backend, nearest in

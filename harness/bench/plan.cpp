@@ -7,6 +7,7 @@
 #include <set>
 
 #include "datasets/manifest.h"
+#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gl/context.h"
@@ -125,8 +126,6 @@ std::vector<std::string> meshes_for(const Selection& sel, const SchemeInfo& info
     if (m.rule == info.reference) meshes.push_back(m.name);
   return meshes;
 }
-
-double log_distance(long a, long b) { return std::abs(std::log(double(std::max(a, 1L)) / double(std::max(b, 1L)))); }
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "harness/bench/statistics.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sdb {
 
@@ -12,5 +13,7 @@ double median(std::vector<double> v) {
   const double upper = v[mid];
   return 0.5 * (*std::max_element(v.begin(), v.begin() + long(mid)) + upper);
 }
+
+double log_distance(double a, double b) { return std::abs(std::log(std::max(a, 1.0) / std::max(b, 1.0))); }
 
 }  // namespace sdb
