@@ -16,6 +16,7 @@
 #include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "reports/history.h"
 #include "reports/overview.h"
 #include "reports/report_inputs.h"
 
@@ -65,6 +66,12 @@ void move_into_place(const fs::path& from, const fs::path& out_dir) {
   fs::rename(from / "report.html", out_dir / "report.html");
 }
 
+void write_model(const nlohmann::json& model, const std::string& path) {
+  std::ofstream file(path);
+  file << model.dump(1);
+  if (!file.flush()) throw InputError(path, "cannot write the report's figures");
+}
+
 struct WorkFolder {
   fs::path path;
   ~WorkFolder() {
@@ -106,14 +113,16 @@ void write_report(const std::vector<std::string>& inputs, const std::string& out
   std::vector<std::string> argv = {"/usr/bin/python3", resource_path("reports/report.py"), "--out", written.string(),
                                    "--schemes", registry_schemes()};
   if (options.history) {
-    argv.insert(argv.end(), {"--history", "--gate-config", resource_path("ci/gate.json"), "--names"});
+    // The gate's figures and verdicts per commit, computed here once (history.h) with the gate's
+    // own code; the script draws them.
+    const std::string model = (work.path / "history.json").string();
+    write_model(history_json(make_history(staged_files, read_gate_config(resource_path("ci/gate.json")))), model);
+    argv.insert(argv.end(), {"--history", model, "--names"});
     argv.insert(argv.end(), inputs.begin(), inputs.end());
   } else {
     // The first screen's figures, computed here once (overview.h); the script lays them out.
     const std::string overview = (work.path / "overview.json").string();
-    std::ofstream file(overview);
-    file << overview_json(make_overview(staged_files.front())).dump(1);
-    if (!file.flush()) throw InputError(overview, "cannot write the report's overview");
+    write_model(overview_json(make_overview(staged_files.front())), overview);
     argv.insert(argv.end(), {"--merged-from", merged_from(read), "--overview", overview});
   }
   if (pictures) argv.insert(argv.end(), {"--pictures", *pictures});

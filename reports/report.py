@@ -15,7 +15,7 @@ import sys
 
 import report_html as H
 from report_data import Results, cpu_implementation, load_results, fmt, spec_of
-from report_history import History, read_gate_config, verdict_lines
+from report_history import History, verdict_lines
 from report_overview import load_overview, scheme_table_html, scheme_table_md, tradeoff_figures
 try:
     from report_plots import cost_growth, deviation_distributions, history_plot, label_backends, rate_grid
@@ -215,7 +215,7 @@ def md_row_cells(r, results):
 
 def history(args, plot_dir):
     files = [(name, load_results(path)) for name, path in zip(args.names or args.inputs, args.inputs)]
-    h = History(files, args.scheme_order, read_gate_config(args.gate_config))
+    h = History(args.history, [n for n, _ in files], args.scheme_order, [r for _, d in files for r in d["runs"]])
     plot = None if NO_PLOTS else history_plot(h, plot_dir)
     first = files[-1][1]
     body = ["<section id='history'><h2>Gated benchmarks per commit</h2>",
@@ -245,11 +245,10 @@ def history(args, plot_dir):
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--out", required=True, help="folder for report.md, report.html and plots/")
-    ap.add_argument("--history", action="store_true", help="the inputs are one results file per commit, oldest first")
+    ap.add_argument("--history", default="", help="history.json (reports/history.cpp): the inputs are one results file per commit, oldest first")
     ap.add_argument("--schemes", default="", help="the registry's schemes in its order, as name=role,... (the colours)")
     ap.add_argument("--pictures", default="", help="pictures/pictures.json")
     ap.add_argument("--paper", action="append", default=[], help="a paper table's Markdown (repeatable)")
-    ap.add_argument("--gate-config", default="", help="ci/gate.json: the history's thresholds")
     ap.add_argument("--names", nargs="*", help="the inputs' names as the user gave them (history)")
     ap.add_argument("--merged-from", default="", help="which files (shards) the one input was merged from")
     ap.add_argument("--papers-note", default="", help="why the report has no (or not every) paper table, one line")

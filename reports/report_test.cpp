@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -150,6 +151,42 @@ TEST(Report, HistoryOverThreeCommitsRenders) {
       << "the planted slowdown is not marked";
   const std::string md = slurp(out / "report.md");
   EXPECT_NE(md.find("| cpatch-2pass/cpu/frog-standin/9 | osd-bfr, paired |"), std::string::npos) << md;
+}
+
+// reports/testdata/history/vulkan: a Vulkan row's kernel twice as slow from a to b; from b to c its
+// cpu-mt row (its normaliser in ci/gate.json) and its kernel both twice as slow. `report --history`
+// must say of every benchmark at every commit what `gate` says of the same pair of files.
+TEST(Report, HistoryGivesTheGatesVerdictOnEveryPairVulkanRowsIncluded) {
+  const fs::path out = fresh_folder("history-vulkan"), h = kData / "history" / "vulkan";
+  const std::vector<fs::path> files = {h / "a.json", h / "b.json", h / "c.json"};
+  const auto r = run_cli(report_args(files, out, "--history"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = slurp(out / "report.md");
+  std::map<std::string, std::vector<std::string>> history;  // benchmark -> verdict per step
+  const std::regex cell("\\(([+-][0-9]+%), (slower|faster|same)\\)");
+  std::istringstream lines_of(md);
+  for (std::string line; std::getline(lines_of, line);) {
+    if (line.rfind("| ", 0) != 0 || line.find(" | ") == std::string::npos) continue;
+    const std::string name = std::regex_replace(line.substr(2, line.find(" | ") - 2), std::regex("\\\\_"), "_");
+    for (std::sregex_iterator m(line.begin(), line.end(), cell), end; m != end; ++m) history[name].push_back((*m)[2]);
+  }
+  int compared = 0;
+  for (size_t i = 1; i < files.size(); ++i) {
+    const auto g = run_cli("gate --baseline " + files[i - 1].string() + " --current " + files[i].string());
+    std::istringstream table(g.out);
+    for (std::string line; std::getline(table, line);) {
+      std::smatch m;
+      if (!std::regex_search(line, m, std::regex("^(\\S+/\\S+/\\S+/[0-9]+) .* (same|REGRESSION|improvement)$"))) continue;
+      const std::string gate = m[2] == "REGRESSION" ? "slower" : m[2] == "same" ? "same" : "faster";
+      ASSERT_GE(history[m[1]].size(), i) << m[1] << "\n" << md;
+      EXPECT_EQ(history[m[1]][i - 1], gate) << m[1] << " at " << files[i];
+      ++compared;
+    }
+  }
+  std::printf("history: %d verdicts compared with the gate's\n", compared);
+  EXPECT_EQ(compared, 2 * 16);
+  EXPECT_EQ(history["cpatch-2pass/vulkan/frog-standin/9"], (std::vector<std::string>{"slower", "same"})) << md;
+  EXPECT_NE(md.find("| cpatch-2pass/vulkan/frog-standin/9 | cpatch-2pass/cpu-mt, paired |"), std::string::npos) << md;
 }
 
 // A good report first; then the bad input must leave it exactly as it was.

@@ -20,11 +20,6 @@ namespace {
 
 const TimeStats& timing(const RunRow& r) { return r.gpu_time_ms ? *r.gpu_time_ms : r.time_ms; }
 
-struct Normalised {
-  std::vector<double> samples;
-  std::string by;
-};
-
 // Sample r of `t` over sample r of `unit` (same round) when the run went in rounds, else over the
 // unit's fastest sample: interference only adds time, so the minimum is its stablest estimate.
 std::vector<double> divided(const std::vector<double>& t, const std::vector<double>& unit, bool paired) {
@@ -58,34 +53,34 @@ std::optional<Backend> own_normaliser(const RunRow& row, const GateConfig& confi
   return std::nullopt;
 }
 
+}  // namespace
+
 // Each repetition's time in units of the same run's peer time on the same mesh and tessellation;
 // rows without a peer (the anchor, osd-bfr) in units of the calibration probe run beside them
 // (bench --rounds), or failing that of the machine's bandwidth probe. When the run went in
 // rounds, sample r is divided by the unit's sample r, measured moments apart, which cancels a
 // busy machine's drift.
-std::optional<Normalised> normalise(const RunRow& row, const ResultsFile& file, const GateConfig& config) {
+std::optional<NormalisedTimes> normalised_times(const RunRow& row, const ResultsFile& file, const GateConfig& config) {
   const TimeStats& t = timing(row);
   const bool paired = file.rounds > 0;
   if (const auto backend = own_normaliser(row, config)) {
     const RunRow* unit = same_run_on(row, *backend, file.runs);
     if (!unit || timing(*unit).samples.empty()) return std::nullopt;
     const std::string by = row.spec + "/" + std::string(to_string(*backend));
-    return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
+    return NormalisedTimes{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
   }
   if (const RunRow* unit = find_unit(row, file)) {
     const std::string by = unit->scheme == kCalibrationScheme ? "write probe" : unit->scheme;
-    return Normalised{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
+    return NormalisedTimes{divided(t.samples, timing(*unit).samples, paired), paired ? by + ", paired" : by};
   }
   const double bw = row.backend == Backend::CpuMt    ? file.machine.write_bandwidth_mt_gbs
                     : is_gpu(row.backend)            ? file.machine.gpu_write_bandwidth_gbs
                                                      : file.machine.write_bandwidth_gbs;
   if (bw <= 0) return std::nullopt;
-  Normalised n{{}, "bandwidth probe"};
+  NormalisedTimes n{{}, "bandwidth probe"};
   for (double s : t.samples) n.samples.push_back(s * bw);
   return n;
 }
-
-}  // namespace
 
 bool GateReport::failed() const {
   if (!problems.empty() || !gaps.empty()) return true;
@@ -237,7 +232,7 @@ GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, con
                                 std::to_string(config.min_repetitions));
       continue;
     }
-    const auto a = normalise(old, baseline, config), b = normalise(cur, current, config);
+    const auto a = normalised_times(old, baseline, config), b = normalised_times(cur, current, config);
     if (!a || !b || a->by != b->by) {
       const auto own = own_normaliser(cur, config);
       report.problems.push_back(e.name + ": no common normaliser (" +

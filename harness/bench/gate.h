@@ -63,6 +63,16 @@ struct GateReport {
 
 GateReport run_gate(const ResultsFile& baseline, const ResultsFile& current, const GateConfig& config);
 
+// A row's repetitions in the units the gate compares: each over its normaliser's (its own row on
+// the backend `config` names, else its peer, else the write probe) in the same round when the file
+// went in rounds, else over the normaliser's fastest; rows with none, times the bandwidth probe.
+// `by` names the normaliser as GateEntry::normaliser does. Nothing where the normaliser is missing.
+struct NormalisedTimes {
+  std::vector<double> samples;
+  std::string by;
+};
+std::optional<NormalisedTimes> normalised_times(const RunRow& row, const ResultsFile& file, const GateConfig& config);
+
 // Per-machine baselines (ci/baselines/): a file name for a baseline recorded on `m`, its processor
 // and core count in lower case with every other character a dash ("intel-r-xeon-r-processor-2c"),
 // and the path of the first of `files` (results.json files, read in the order given) recorded on
