@@ -109,6 +109,7 @@ json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr
 
 ReportOverview make_overview(const ResultsFile& results) {
   ReportOverview o;
+  for (const RunRow& r : results.runs) o.row_bounds.push_back(judge_bounds(r));
   std::map<Backend, BackendOverview> backends;
   std::map<std::string, SchemeOverview> schemes;
   std::vector<std::string> scheme_order;
@@ -183,9 +184,11 @@ json overview_json(const ReportOverview& o) {
                        {"paired_cells", s.paired_cells}, {"ratio_median", s.ratio_median}, {"ratio_min", s.ratio_min},
                        {"ratio_max", s.ratio_max}, {"limit", s.limit}, {"worst_p95_rel_diag", s.worst_p95_rel_diag},
                        {"closed_inputs", s.closed_inputs}, {"watertight_inputs", s.watertight_inputs}});
+  json row_bounds = json::array();
+  for (const BoundJudgement& j : o.row_bounds) row_bounds.push_back({to_string(j.state), j.words});
   return {{"precision_floor_rel_diag", kPrecisionFloorRelDiag}, {"summary_triangles", kSummaryTriangles},
           {"summary_band", {kSummaryLow, kSummaryHigh}},
-          {"backends", backends}, {"schemes", schemes}};
+          {"backends", backends}, {"schemes", schemes}, {"row_bounds", row_bounds}};
 }
 
 }  // namespace sdb

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "harness/bench/bound_judgement.h"
 #include "harness/bench/results.h"
 
 namespace sdb {
@@ -60,6 +61,9 @@ struct SchemeOverview {
 
 struct ReportOverview {
   std::vector<BackendOverview> backends;
+  // Per row of the results file, in its order: its deviation against its bounds (bound_judgement.h),
+  // the words the summary and the validation grid print.
+  std::vector<BoundJudgement> row_bounds;
   std::vector<SchemeOverview> schemes;  // in the rows' order of first appearance
 };
 

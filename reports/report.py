@@ -14,7 +14,7 @@ import re
 import sys
 
 import report_html as H
-from report_data import Results, cpu_implementation, load_results, fmt, spec_of
+from report_data import Results, attach_bounds, cpu_implementation, load_results, fmt, spec_of
 from report_history import History, verdict_lines
 from report_overview import load_overview, scheme_table_html, scheme_table_md, tradeoff_figures
 try:
@@ -36,6 +36,8 @@ READING = ("Each cell is the run at the level nearest 1 M output triangles (the 
 
 def comparison(args, plot_dir):
     data = load_results(args.inputs[0])
+    overview = load_overview(args.overview)
+    attach_bounds(data, overview)
     results = Results(data, args.scheme_order)
     m = matrix(results)
     fast = fastest_lines(results, m)
@@ -46,7 +48,6 @@ def comparison(args, plot_dir):
         label_backends(results.machine)
     plots = [] if NO_PLOTS else [p for p in (rate_grid(results, plot_dir), cost_growth(results, plot_dir),
                                              deviation_distributions(results, plot_dir)) if p]
-    overview = load_overview(args.overview)
     first = [] if NO_PLOTS else tradeoff_figures(overview, results.schemes, plot_dir)
     manifest = None
     if args.pictures:

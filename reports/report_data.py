@@ -248,36 +248,18 @@ def watertight_state(r):
 
 
 def bound_state(r):
-    """('kept' | 'past' | 'none' | 'unmeasured', words): the deviation from the input's limit against
-    the row's bound, and the scheme's distance from its own control mesh's limit (a fitted image's
-    g0, the deviation's own_reference) against its own bound."""
-    dev = r.get("deviation") or {}
-    judged = [one_bound_state(r.get("deviation_bound"), dev, "")]
-    if r.get("own_deviation_bound"):
-        judged.append(one_bound_state(r["own_deviation_bound"], dev.get("own_reference") or {}, " of its own g0's limit"))
-    for state in ("past", "kept", "unmeasured"):
-        said = [words for s, words in judged if s == state]
-        if said:
-            return state, "; ".join(said)
-    return "none", "no bound declared"
+    """('kept' | 'past' | 'none' | 'unmeasured', words): the row's deviation against the bounds it
+    declares, as harness/bench/bound_judgement.cpp judged it (attach_bounds put it in the row)."""
+    return tuple(r["bound_state"])
 
 
-def one_bound_state(bound, dev, against):
-    bound = bound or {}
-    pos_bound, normal_bound = bound.get("pos_rel_diag", -1), bound.get("normal_deg", -1)
-    if (not finite(pos_bound) or pos_bound < 0) and (not finite(normal_bound) or normal_bound < 0):
-        return "none", "no bound declared"
-    pos, normal = dev.get("pos_max_rel_diag"), dev.get("normal_max_deg")
-    if not finite(pos) and not finite(normal):
-        return "unmeasured", "deviation not measured"
-    past = []
-    if finite(pos_bound) and pos_bound >= 0 and finite(pos) and pos > pos_bound:
-        past.append(f"position {pos:.3g} of the diagonal > {pos_bound:.3g}")
-    if finite(normal_bound) and normal_bound >= 0 and finite(normal) and normal > normal_bound:
-        past.append(f"normal {normal:.3g} deg > {normal_bound:.3g}")
-    if past:
-        return "past", f"past the bound{against}: " + "; ".join(past)
-    return "kept", f"within the bound{against} (position {fmt(pos)} <= {fmt(pos_bound)} of the diagonal)"
+def attach_bounds(data, overview):
+    """Each row's bound judgement from the overview (reports/overview.cpp), by the file's row order."""
+    judged = overview["row_bounds"]
+    if len(judged) != len(data["runs"]):
+        raise ValueError(f"the overview judges {len(judged)} rows, the results file has {len(data['runs'])}")
+    for r, j in zip(data["runs"], judged):
+        r["bound_state"] = j
 
 
 def percent_of_diagonal(x):

@@ -16,6 +16,7 @@
 #include <regex>
 
 #include "datasets/manifest.h"
+#include "harness/bench/bound_judgement.h"
 #include "harness/bench/progress.h"
 #include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
@@ -209,31 +210,14 @@ const LimitProjector& MeasureContext::projector(const std::shared_ptr<const Cont
 namespace {
 
 // What is past `bound` of a position (fraction of the diagonal) and a normal figure, in words.
-std::string past_bound(const DeviationBound& bound, double position, double normal, const std::string& against) {
-  std::string past;
-  if (bound.pos_rel_diag >= 0 && position > bound.pos_rel_diag)
-    past = "position deviation from " + against + " " + std::to_string(position) + " of the diagonal, past the bound " +
-           std::to_string(bound.pos_rel_diag);
-  if (bound.normal_deg >= 0 && normal > bound.normal_deg)
-    past += (past.empty() ? "" : "; ") + std::string("normal deviation from ") + against + " " + std::to_string(normal) +
-            " degrees, past the bound " + std::to_string(bound.normal_deg);
-  return past;
-}
-
 bool bounded(const DeviationBound& bound) { return bound.pos_rel_diag >= 0 || bound.normal_deg >= 0; }
 
 // A row past its scheme's declared bound fails, like a crack: the scheme promised the bound.
 void judge_deviation(RunRow& row) {
-  const DeviationFigures& d = row.deviation;
-  std::string past = past_bound(row.bound, d.pos_max_rel_diag, d.normal_max_deg, "the input's limit");
-  if (d.own) {
-    const std::string own = past_bound(row.own_bound, d.own->pos_max_rel_diag, d.own->normal_max_deg,
-                                       "the limit of its own control mesh");
-    past += (past.empty() || own.empty() ? "" : "; ") + own;
-  }
-  if (past.empty()) return;
+  const BoundJudgement j = judge_bounds(row);
+  if (j.state != BoundState::Past) return;
   row.status = RunStatus::Failed;
-  row.message += (row.message.empty() ? "" : "; ") + past;
+  row.message += (row.message.empty() ? "" : "; ") + j.words;
 }
 
 // The scheme's coords are on a mesh of its own (a fitted image's g0), not on the accepted mesh.
