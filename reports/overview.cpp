@@ -27,36 +27,48 @@ struct SummaryCell {
   const PairedCell* paired = nullptr;
 };
 
-// The summary cells in the rows' order: per (scheme, mesh, backend) the paired row, else the ok row
-// nearest kSummaryTriangles.
+// The summary cells in the rows' order: per (scheme, mesh, backend) the row at the paired level
+// where the run paired the cell against its peer, else the ok row nearest kSummaryTriangles, else
+// (none ok) the row nearest it, to show its status.
 std::vector<SummaryCell> summary_cells(const ResultsFile& results) {
   std::map<std::string, const PairedCell*> paired;
   for (const PairedCell& c : results.paired)
     if (!is_backend_cell(c)) paired[cell_key(c.row.scheme, c.mesh, c.row.backend)] = &c;
   std::vector<std::string> order;
-  std::map<std::string, SummaryCell> cells;
+  std::map<std::string, std::vector<const RunRow*>> rows;
   for (const RunRow& r : results.runs) {
-    if (!usable(r) || r.role == "calibration") continue;
-    const std::string key = cell_key(r.spelled(), r.mesh, r.backend);
-    const auto p = paired.find(key);
-    auto [it, fresh] = cells.emplace(key, SummaryCell{&r, p == paired.end() ? nullptr : p->second});
-    if (fresh) {
-      order.push_back(key);
-      if (it->second.paired && it->second.paired->row.level != r.level) it->second.row = nullptr;
-      continue;
-    }
-    SummaryCell& c = it->second;
-    if (c.paired ? r.level == c.paired->row.level
-                 : log_distance(r.triangles, kSummaryTriangles) < log_distance(c.row->triangles, kSummaryTriangles))
-      c.row = &r;
+    if (r.role == "calibration" || r.scheme == kCalibrationScheme) continue;
+    auto& cell = rows[cell_key(r.spelled(), r.mesh, r.backend)];
+    if (cell.empty()) order.push_back(cell_key(r.spelled(), r.mesh, r.backend));
+    cell.push_back(&r);
   }
+  auto nearest = [](const std::vector<const RunRow*>& rs, bool ok_only) -> const RunRow* {
+    const RunRow* best = nullptr;
+    for (const RunRow* r : rs)
+      if ((!ok_only || usable(*r)) &&
+          (!best || log_distance(r->triangles, kSummaryTriangles) < log_distance(best->triangles, kSummaryTriangles)))
+        best = r;
+    return best;
+  };
   std::vector<SummaryCell> out;
-  for (const std::string& key : order)
-    if (cells[key].row) out.push_back(cells[key]);
+  for (const std::string& key : order) {
+    const auto& rs = rows[key];
+    const auto p = paired.find(key);
+    if (p != paired.end()) {
+      const auto at = std::find_if(rs.begin(), rs.end(), [&](const RunRow* r) { return r->level == p->second->row.level; });
+      if (at != rs.end()) {
+        out.push_back({*at, p->second});
+        continue;
+      }
+    }
+    const RunRow* ok = nearest(rs, true);
+    out.push_back({ok ? ok : nearest(rs, false), nullptr});
+  }
   return out;
 }
 
 double rate_of(const SummaryCell& c) {
+  if (!usable(*c.row)) return 0;
   if (c.paired && c.paired->time_ms_median > 0 && c.paired->row.triangles > 0)
     return double(c.paired->row.triangles) / c.paired->time_ms_median / 1e3;
   return c.row->triangle_rate_mtris;
@@ -103,6 +115,26 @@ void add_paired_ratio(const ResultsFile& results, SchemeOverview& s) {
   if (!medians.empty()) s.ratio_median = median(medians);
 }
 
+// Per mesh and backend, the fastest cell (the highest rate; on a tie the later spelling, as
+// reports/report_summary.py chose it before) is marked.
+std::vector<SummaryCellRef> summary_refs(const std::vector<SummaryCell>& cells) {
+  std::vector<SummaryCellRef> refs;
+  std::map<std::string, size_t> fastest;  // mesh|backend: index into refs
+  for (const SummaryCell& c : cells) {
+    const RunRow& r = *c.row;
+    refs.push_back({r.spelled(), r.mesh, r.backend, r.level, c.paired != nullptr, rate_of(c), false});
+    const SummaryCellRef& mine = refs.back();
+    if (!(mine.rate_mtris > 0)) continue;
+    const std::string key = r.mesh + "|" + std::string(to_string(r.backend));
+    const auto it = fastest.find(key);
+    if (it == fastest.end()) fastest.emplace(key, refs.size() - 1);
+    else if (std::make_pair(mine.rate_mtris, mine.scheme) > std::make_pair(refs[it->second].rate_mtris, refs[it->second].scheme))
+      it->second = refs.size() - 1;
+  }
+  for (const auto& [key, i] : fastest) refs[i].fastest = true;
+  return refs;
+}
+
 json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
 }  // namespace
@@ -113,7 +145,10 @@ ReportOverview make_overview(const ResultsFile& results) {
   std::map<Backend, BackendOverview> backends;
   std::map<std::string, SchemeOverview> schemes;
   std::vector<std::string> scheme_order;
-  for (const SummaryCell& c : summary_cells(results)) {
+  const std::vector<SummaryCell> cells = summary_cells(results);
+  o.cells = summary_refs(cells);
+  for (const SummaryCell& c : cells) {
+    if (!usable(*c.row)) continue;
     const RunRow& r = *c.row;
     BackendOverview& b = backends[r.backend];
     b.backend = r.backend;
@@ -184,11 +219,15 @@ json overview_json(const ReportOverview& o) {
                        {"paired_cells", s.paired_cells}, {"ratio_median", s.ratio_median}, {"ratio_min", s.ratio_min},
                        {"ratio_max", s.ratio_max}, {"limit", s.limit}, {"worst_p95_rel_diag", s.worst_p95_rel_diag},
                        {"closed_inputs", s.closed_inputs}, {"watertight_inputs", s.watertight_inputs}});
+  json cells = json::array();
+  for (const SummaryCellRef& c : o.cells)
+    cells.push_back({{"scheme", c.scheme}, {"mesh", c.mesh}, {"backend", to_string(c.backend)}, {"level", c.level},
+                     {"paired", c.paired}, {"rate_mtris", c.rate_mtris}, {"fastest", c.fastest}});
   json row_bounds = json::array();
   for (const BoundJudgement& j : o.row_bounds) row_bounds.push_back({to_string(j.state), j.words});
   return {{"precision_floor_rel_diag", kPrecisionFloorRelDiag}, {"summary_triangles", kSummaryTriangles},
           {"summary_band", {kSummaryLow, kSummaryHigh}},
-          {"backends", backends}, {"schemes", schemes}, {"row_bounds", row_bounds}};
+          {"backends", backends}, {"schemes", schemes}, {"cells", cells}, {"row_bounds", row_bounds}};
 }
 
 }  // namespace sdb

@@ -59,7 +59,21 @@ struct SchemeOverview {
   int closed_inputs = 0, watertight_inputs = 0;  // meshes with a ray test, and those without an open edge or crack
 };
 
+// A summary cell as the report shows it: the row of (scheme, mesh, backend) at `level` (the paired
+// level where the run paired the cell against its peer, else the ok row nearest kSummaryTriangles,
+// else the nearest row, to show its status), its rate, and whether it is the fastest on its mesh
+// and backend.
+struct SummaryCellRef {
+  std::string scheme, mesh;
+  Backend backend = Backend::Cpu;
+  int level = 0;
+  bool paired = false;
+  double rate_mtris = 0;  // as OverviewPoint's; 0 where the row is not ok
+  bool fastest = false;
+};
+
 struct ReportOverview {
+  std::vector<SummaryCellRef> cells;  // every (scheme, mesh, backend) with a row, in the rows' order
   std::vector<BackendOverview> backends;
   // Per row of the results file, in its order: its deviation against its bounds (bound_judgement.h),
   // the words the summary and the validation grid print.
@@ -67,8 +81,8 @@ struct ReportOverview {
   std::vector<SchemeOverview> schemes;  // in the rows' order of first appearance
 };
 
-// The summary cell of each (scheme, mesh, backend): the paired row where the run paired it, else the
-// ok row nearest kSummaryTriangles. Only ok rows with triangles.
+// The summary cells (SummaryCellRef) and, from their ok rows, the figures and the per-scheme table;
+// each row's bound judgement.
 ReportOverview make_overview(const ResultsFile& results);
 
 nlohmann::json overview_json(const ReportOverview& overview);

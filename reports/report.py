@@ -38,7 +38,7 @@ def comparison(args, plot_dir):
     data = load_results(args.inputs[0])
     overview = load_overview(args.overview)
     attach_bounds(data, overview)
-    results = Results(data, args.scheme_order)
+    results = Results(data, args.scheme_order, overview)
     m = matrix(results)
     fast = fastest_lines(results, m)
     verdicts = scheme_lines(results, m)

@@ -9,7 +9,6 @@ from collections import defaultdict
 
 SCHEMA = 1
 # The summary's common output size: each cell is the row whose output is nearest this.
-COMMON_TRIANGLES = 1_000_000
 CALIBRATION = "calibration"  # harness/bench/measure.h kCalibrationScheme
 BACKEND_ORDER = ["cpu", "cpu-mt", "vulkan", "opengl"]
 
@@ -102,7 +101,9 @@ class Schemes:
 class Results:
     """One (merged) results file: its rows indexed the ways the report looks them up."""
 
-    def __init__(self, data, registry_order):
+    def __init__(self, data, registry_order, overview):
+        """overview: reports/overview.cpp's figures for this file (its summary cells)."""
+        self._cells = {(c["scheme"], c["mesh"], c["backend"]): c for c in overview["cells"]}
         self.machine = data.get("machine", {})
         self.created = data.get("created", "")
         self.rounds = data.get("rounds", 0)
@@ -146,19 +147,14 @@ class Results:
         return self._paired.get((spec, mesh, backend))
 
     def summary_cell(self, spec, mesh, backend):
-        """The row the summary shows for (scheme, mesh, backend): the paired one when the run paired
-        this cell, else the ok row with output nearest COMMON_TRIANGLES (else any row, to show its
-        status)."""
-        rows = self._by_cell.get((spec, mesh, backend), [])
-        if not rows:
+        """The row the summary shows for (scheme, mesh, backend), as reports/overview.cpp chose it
+        (the paired level where the run paired the cell, else the ok row nearest 1 M triangles, else
+        the nearest row, to show its status), with its paired figures; None where it has no row."""
+        c = self._cells.get((spec, mesh, backend))
+        if not c:
             return None
-        p = self.paired_cell(spec, mesh, backend)
-        if p:
-            for r in rows:
-                if r["level"] == p["level"]:
-                    return Cell(r, self, p)
-        ok = [r for r in rows if r["status"] == "ok" and r["triangles"] > 0] or rows
-        return Cell(min(ok, key=lambda r: abs(math.log(max(r["triangles"], 1) / COMMON_TRIANGLES))), self, None)
+        row = next(r for r in self._by_cell[(spec, mesh, backend)] if r["level"] == c["level"])
+        return Cell(row, self, self.paired_cell(spec, mesh, backend) if c["paired"] else None, c["fastest"])
 
 
 def is_backend_pair(p):
@@ -169,9 +165,10 @@ def is_backend_pair(p):
 class Cell:
     """A summary cell: a row, and its ratio to its peer, paired or single pass."""
 
-    def __init__(self, row, results, paired):
+    def __init__(self, row, results, paired, fastest=False):
         self.row = row
         self.paired = paired
+        self.fastest = fastest  # the fastest on its mesh and backend (reports/overview.cpp)
         self.peer = None
         self.ratio = None
         if paired:
