@@ -8,24 +8,16 @@
 #include <filesystem>
 
 #include "harness/bench/measure.h"
+#include "tests/timed_rows.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;
 
 namespace {
 
-RunRow row(const std::string& scheme, Backend backend, std::vector<double> samples, std::string peer = "",
+RunRow row(const std::string& scheme, Backend backend, std::vector<double> samples, const std::string& peer = "",
            std::optional<Backend> peer_backend = std::nullopt) {
-  RunRow r;
-  r.scheme = r.spec = scheme;
-  r.backend = backend;
-  r.mesh = "cube";
-  r.level = 3;
-  r.tessellation = 8;
-  r.peer = std::move(peer);
-  r.peer_backend = peer_backend;
-  r.time_ms = TimeStats{1, 1, 1, int(samples.size()), samples};
-  return r;
+  return test::timed_row(scheme, backend, std::move(samples), peer, peer_backend, 3);
 }
 
 std::vector<double> around(double t) {

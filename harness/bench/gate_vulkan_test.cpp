@@ -9,6 +9,7 @@
 
 #include "harness/bench/gate.h"
 #include "harness/bench/measure.h"
+#include "tests/timed_rows.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;
@@ -17,16 +18,7 @@ namespace {
 
 RunRow row(const std::string& scheme, Backend backend, std::vector<double> samples,
            std::optional<Backend> peer_backend = std::nullopt) {
-  RunRow r;
-  r.scheme = r.spec = scheme;
-  r.backend = backend;
-  r.mesh = "cube";
-  r.level = 9;
-  r.tessellation = 8;
-  r.peer = peer_backend ? "osd-bfr" : "";
-  r.peer_backend = peer_backend;
-  r.time_ms = TimeStats{1, 1, 1, int(samples.size()), samples};
-  return r;
+  return test::timed_row(scheme, backend, std::move(samples), peer_backend ? "osd-bfr" : "", peer_backend);
 }
 
 // Nine rounds: the write probes and osd-bfr (the anchor, normalised by them) on cpu and cpu-mt,
