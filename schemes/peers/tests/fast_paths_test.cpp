@@ -356,6 +356,37 @@ TEST(OpenMesh, RefinesAsOpenSubdivOnSmoothClosedMeshes) {
   }
 }
 
+// Two poles of valence n over an n-gon equator: Loop weights past the 50 valences LoopT tabulates
+// by default (it read past its table: garbage, NaN on loop_pole64's copy scaled by 1e-6).
+ControlMesh bipyramid(int n) {
+  ControlMesh m;
+  m.name = m.source = "bipyramid-" + std::to_string(n);
+  for (int i = 0; i < n; ++i)
+    m.positions.push_back({float(std::cos(2 * M_PI * i / n)), float(std::sin(2 * M_PI * i / n)), 0.0f});
+  m.positions.push_back({0, 0, 1});
+  m.positions.push_back({0, 0, -1});
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    for (int v : {i, j, n, j, i, n + 1}) m.face_vertices.push_back(v);
+    m.face_sizes.insert(m.face_sizes.end(), {3, 3});
+  }
+  return m;
+}
+
+TEST(OpenMesh, LoopRefinesAsOpenSubdivAtEveryValence) {
+  for (int n : {49, 50, 64, 360}) {
+    const ControlMesh mesh = bipyramid(n);
+    const double d = diag(mesh);
+    for (int depth : {1, 2}) {
+      const Tessellation om = run("openmesh-loop", mesh, Backend::Cpu, depth);
+      const std::vector<Point3> osd = refined_points(mesh, SubdivisionRule::Loop, depth);
+      ASSERT_EQ(om.num_vertices(), osd.size()) << mesh.name << " depth " << depth;
+      EXPECT_LE(matched_distance(om.positions, osd, 1e-3 * d), 1e-6 * d) << mesh.name << " depth " << depth;
+      EXPECT_LE(matched_distance(osd, om.positions, 1e-3 * d), 1e-6 * d) << mesh.name << " depth " << depth;
+    }
+  }
+}
+
 namespace {
 
 // Each boundary vertex of `m` with its two neighbours along the boundary.
