@@ -9,6 +9,9 @@
 // What a verdict does not read is left out (it cost more than 30 CPU-minutes with it): timing,
 // Hausdorff distances, and the nearest-point deviation of schemes that declare no bound on it
 // (MeasureOptions::unjudged_deviation: a LimitProjector of a million triangles per mesh and copy).
+// What depends on the topology alone is made once for the mesh and its copies by whoever makes it:
+// Far's limit stencil tables (schemes/peers/limit_stencils.h; 52-55 CPU-s per rule at the
+// valence-360 poles, which eight runs per rule made again before).
 #include <gtest/gtest.h>
 
 #include <unistd.h>

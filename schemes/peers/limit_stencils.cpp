@@ -7,8 +7,12 @@
 #include <opensubdiv/osd/cpuEvaluator.h>
 
 #include <algorithm>
+#include <list>
+#include <mutex>
 #include <stdexcept>
+#include <string>
 
+#include "harness/core/content_hash.h"
 #include "harness/mesh/facts.h"
 #include "harness/mesh/osd_topology.h"
 #include "harness/reference/surface_normal.h"
@@ -57,15 +61,20 @@ SchemeInfo limit_stencil_info(SubdivisionRule rule) {
   return info;
 }
 
-LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
-  LimitStencils out;
+namespace {
+
+PreparedStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
+  PreparedStencils prepared;
+  auto made = std::make_shared<LimitStencils>();
+  LimitStencils& out = *made;
   out.control_points = num_vertices(mesh);
   const auto uniform = make_refiner(mesh, rule);
   Far::TopologyRefiner::UniformOptions uniform_options(depth);
   uniform_options.fullTopologyInLastLevel = true;
   uniform->RefineUniform(uniform_options);
-  out.topology.triangles = uniform_triangles(*uniform, depth);
-  out.topology.coords = uniform_vertex_coords(*uniform, rule, depth);
+  prepared.topology.triangles = uniform_triangles(*uniform, depth);
+  prepared.topology.coords = uniform_vertex_coords(*uniform, rule, depth);
+  out.vertices = prepared.topology.coords.size();
 
   const auto adaptive = make_refiner(mesh, rule);
   Far::TopologyRefiner::AdaptiveOptions adaptive_options(std::max(depth + 1, has_sharp_features(mesh) ? 8 : 0));
@@ -74,7 +83,7 @@ LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule,
   const auto patches = limit_patches(*adaptive);
   const Far::PatchMap patch_map(*patches);
 
-  const std::vector<SurfaceCoord>& coords = out.topology.coords;
+  const std::vector<SurfaceCoord>& coords = prepared.topology.coords;
   std::vector<float> s, t;
   s.reserve(coords.size()), t.reserve(coords.size());
   for (uint32_t i = 0; i < coords.size(); ++i) {
@@ -96,9 +105,9 @@ LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule,
   Far::LimitStencilTableFactory::Options options;
   options.generate1stDerivatives = true;
   out.table.reset(Far::LimitStencilTableFactory::Create(*adaptive, locations, nullptr, patches.get(), options));
-  const int made = out.table ? out.table->GetNumStencils() : 0;
-  if (made != int(locations.size()))
-    throw std::runtime_error("Far::LimitStencilTableFactory gave " + std::to_string(made) + " stencils for " +
+  const int stencils = out.table ? out.table->GetNumStencils() : 0;
+  if (stencils != int(locations.size()))
+    throw std::runtime_error("Far::LimitStencilTableFactory gave " + std::to_string(stencils) + " stencils for " +
                              std::to_string(locations.size()) + " vertices with a patch");
   if (!out.refined_only.empty()) {
     Far::StencilTableFactory::Options refined;
@@ -107,7 +116,88 @@ LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule,
     refined.generateOffsets = true;
     out.refined.reset(Far::StencilTableFactory::Create(*uniform, refined));
   }
-  return out;
+  prepared.stencils = std::move(made);
+  return prepared;
+}
+
+// Everything make_limit_stencils reads of a mesh, as bytes: the counts, faces, tags and options,
+// and the rule and depth; not the positions, the name or the source lines.
+std::string topology_bytes(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
+  std::string bytes;
+  const auto put = [&bytes](const void* data, size_t size) { bytes.append(static_cast<const char*>(data), size); };
+  const auto put_vector = [&put](const auto& v) {
+    const size_t n = v.size();
+    put(&n, sizeof n);
+    for (const auto& x : v) put(&x, sizeof x);
+  };
+  const int header[] = {int(rule), depth, num_vertices(mesh), int(mesh.boundary), int(mesh.crease_method),
+                        int(mesh.triangle_rule)};
+  put(header, sizeof header);
+  put_vector(mesh.face_sizes);
+  put_vector(mesh.face_vertices);
+  put_vector(mesh.holes);
+  const size_t creases = mesh.creases.size();  // tags field by field: their structs may hold padding
+  put(&creases, sizeof creases);
+  for (const EdgeCrease& c : mesh.creases)
+    put(&c.v0, sizeof c.v0), put(&c.v1, sizeof c.v1), put(&c.sharpness, sizeof c.sharpness);
+  const size_t corners = mesh.corners.size();
+  put(&corners, sizeof corners);
+  for (const VertexCorner& c : mesh.corners) put(&c.vertex, sizeof c.vertex), put(&c.sharpness, sizeof c.sharpness);
+  return bytes;
+}
+
+size_t kept_bytes(const PreparedStencils& p, const std::string& key) {
+  return p.stencils->bytes() + key.size() + p.topology.triangles.size() * sizeof(uint32_t) +
+         p.topology.coords.size() * sizeof(SurfaceCoord);
+}
+
+// The tables kept, most recently used first; past kKeptStencilBytes the oldest are dropped.
+struct KeptStencils {
+  uint64_t hash;
+  std::string key;
+  PreparedStencils prepared;
+  size_t bytes;
+};
+std::mutex g_kept_mutex;
+std::list<KeptStencils> g_kept;
+
+}  // namespace
+
+size_t LimitStencils::bytes() const {
+  size_t b = (limit_vertices.size() + refined_only.size()) * sizeof(uint32_t);
+  if (table)
+    b += (table->GetSizes().size() + table->GetOffsets().size() + table->GetControlIndices().size()) * sizeof(int) +
+         (table->GetWeights().size() + table->GetDuWeights().size() + table->GetDvWeights().size()) * sizeof(float);
+  if (refined)
+    b += (refined->GetSizes().size() + refined->GetOffsets().size() + refined->GetControlIndices().size()) *
+             sizeof(int) +
+         refined->GetWeights().size() * sizeof(float);
+  return b;
+}
+
+PreparedStencils limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth) {
+  std::string key = topology_bytes(mesh, rule, depth);
+  const uint64_t hash = fnv1a_64(key);
+  {
+    std::lock_guard<std::mutex> lock(g_kept_mutex);
+    for (auto it = g_kept.begin(); it != g_kept.end(); ++it)
+      if (it->hash == hash && it->key == key) {
+        g_kept.splice(g_kept.begin(), g_kept, it);
+        return it->prepared;  // the topology copied, the tables shared
+      }
+  }
+  // Made outside the lock: another thread's tables for another mesh need not wait for these.
+  PreparedStencils made = make_limit_stencils(mesh, rule, depth);
+  const size_t bytes = kept_bytes(made, key);
+  if (bytes > kKeptStencilBytes) return made;
+  std::lock_guard<std::mutex> lock(g_kept_mutex);
+  g_kept.push_front({hash, std::move(key), made, bytes});
+  size_t total = 0;
+  for (auto it = g_kept.begin(); it != g_kept.end();) {
+    total += it->bytes;
+    it = total > kKeptStencilBytes ? g_kept.erase(it) : std::next(it);
+  }
+  return made;
 }
 
 void evaluate_refined_only(const LimitStencils& s, const float* control, float* positions, float* du, float* dv) {

@@ -1,11 +1,12 @@
-// What osd-stencil and osd-glcompute evaluate, made once in prepare: the limit position and both
-// tangents at every vertex of uniform refinement to depth k, as one Far::LimitStencilTable over
-// the control points, beside the triangles and SurfaceCoords of that refinement (osd-uniform's
-// output layout, vertex for vertex).
+// What osd-stencil and osd-glcompute evaluate, made in prepare (once per topology): the limit
+// position and both tangents at every vertex of uniform refinement to depth k, as one
+// Far::LimitStencilTable over the control points, beside the triangles and SurfaceCoords of that
+// refinement (osd-uniform's output layout, vertex for vertex).
 #pragma once
 
 #include <opensubdiv/far/stencilTable.h>
 
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -15,17 +16,28 @@
 
 namespace sdb {
 
+// What depends on the mesh's topology only (faces, tags, options; never the positions), so that
+// one copy serves every mesh of that topology: a scaled or moved copy, and osd-stencil and
+// osd-glcompute on the same mesh.
 struct LimitStencils {
-  Tessellation topology;  // triangles and coords; positions and normals left empty
   int control_points = 0;
+  size_t vertices = 0;  // of depth-k refinement
   // Limit stencil j gives vertex limit_vertices[j]; every vertex that has a limit patch.
   std::unique_ptr<const OpenSubdiv::Far::LimitStencilTable> table;
   std::vector<uint32_t> limit_vertices;
-  bool all_vertices_have_limits() const { return limit_vertices.size() == topology.coords.size(); }
+  bool all_vertices_have_limits() const { return limit_vertices.size() == vertices; }
   // Vertices with no limit patch (only on holes, or on the faces an EdgeNone boundary leaves
   // without a limit): their refined position, from these stencils (row = vertex), tangents zero.
   std::vector<uint32_t> refined_only;
   std::unique_ptr<const OpenSubdiv::Far::StencilTable> refined;
+  size_t bytes() const;
+};
+
+// What prepare starts from: the triangles and SurfaceCoords of depth-k refinement (positions and
+// normals left empty), the evaluation's own, and the tables, shared.
+struct PreparedStencils {
+  Tessellation topology;
+  std::shared_ptr<const LimitStencils> stencils;
 };
 
 // Far::LimitStencilTableFactory evaluates the patches of a refiner. A uniformly refined one has
@@ -40,7 +52,16 @@ struct LimitStencils {
 // 10, OpenSubdiv's maximum, took Far::LimitStencilTableFactory over ten minutes on one corpus shape
 // (appendLocalPointStencilTable); single-crease patches were worse (3e-3 on catmark_cube_creases1).
 // The factory factorises every level into stencils over the control points itself.
-LimitStencils make_limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth);
+//
+// Made in prepare, never in the timed execute. The tables of the last topologies asked for are
+// kept, up to kKeptStencilBytes, and served again for the same topology (content_hash's FNV-1a of
+// the faces, tags, options, rule and depth finds an entry; those bytes compared in full accept
+// it): Far's factory costs 38 CPU-s at loop_pole360's valence-360 vertex, which a validation of
+// the mesh and its scaled copies, or of both peers, would otherwise pay each time.
+PreparedStencils limit_stencils(const ControlMesh& mesh, SubdivisionRule rule, int depth);
+// Tables past this size are made for their run alone (the sword at depth 4: 5.5 GB): keeping
+// them would take memory from the runs after.
+constexpr size_t kKeptStencilBytes = size_t(256) << 20;
 
 // Creases, corners, holes or a boundary: what needs the full isolation level.
 bool has_sharp_features(const ControlMesh& mesh);

@@ -10,6 +10,8 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
+#include <algorithm>
+
 #include "harness/core/errors.h"
 #include "harness/mesh/facts.h"
 #include "schemes/peers/peers.h"
@@ -40,14 +42,33 @@ Mesh to_openmesh(const ControlMesh& m) {
   return mesh;
 }
 
+// LoopT tabulates its vertex weights for valences below 50 (init_weights' default) and reads past
+// the table at a higher valence: garbage weights, a NaN or a plausible wrong point (openmesh-loop
+// on loop_pole64's valence-64 poles, row "ok" as given and NaN on a copy scaled by 1e-6). Sized to
+// the mesh's largest valence, which refinement never raises. CatmullClarkT computes its weights.
+template <typename Subdivider>
+void fit_weights(Subdivider&, size_t) {}
+void fit_weights(OpenMesh::Subdivider::Uniform::LoopT<TriMesh>& loop, size_t largest_valence) {
+  loop.init_weights(std::max<size_t>(50, largest_valence + 1));
+}
+
+template <typename Mesh>
+size_t largest_valence(const Mesh& mesh) {
+  size_t largest = 0;
+  for (auto v : mesh.vertices()) largest = std::max<size_t>(largest, mesh.valence(v));
+  return largest;
+}
+
 template <typename Mesh, typename Subdivider>
 class OpenMeshEvaluation final : public Evaluation {
  public:
-  OpenMeshEvaluation(const ControlMesh& mesh, int depth) : base_(to_openmesh<Mesh>(mesh)), depth_(depth) {}
+  OpenMeshEvaluation(const ControlMesh& mesh, int depth)
+      : base_(to_openmesh<Mesh>(mesh)), largest_valence_(largest_valence(base_)), depth_(depth) {}
 
   void execute() override {
     refined_ = base_;
     Subdivider subdivider;
+    fit_weights(subdivider, largest_valence_);
     subdivider.attach(refined_);
     subdivider(static_cast<size_t>(depth_));
     subdivider.detach();
@@ -79,6 +100,7 @@ class OpenMeshEvaluation final : public Evaluation {
   }
 
   const Mesh base_;
+  size_t largest_valence_;
   Mesh refined_;
   int depth_;
   Tessellation out_;

@@ -46,18 +46,20 @@ std::optional<std::string> opengl_unavailable() {
 class OsdGlComputeEvaluation final : public Evaluation {
  public:
   OsdGlComputeEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth)
-      : ctx_(gl::shared_context()), control_(mesh), stencils_(make_limit_stencils(mesh, rule, depth)), timer_(*ctx_) {
-    out_ = std::move(stencils_.topology);
-    const int n = stencils_.table->GetNumStencils();  // the vertices with a limit patch
+      : ctx_(gl::shared_context()), control_(mesh), timer_(*ctx_) {
+    PreparedStencils prepared = limit_stencils(mesh, rule, depth);
+    stencils_ = std::move(prepared.stencils);
+    out_ = std::move(prepared.topology);
+    const int n = stencils_->table->GetNumStencils();  // the vertices with a limit patch
     const size_t vertices = out_.coords.size();
     out_.positions.resize(vertices);
     out_.normals.resize(vertices);
     du_.resize(3 * vertices);
     dv_.resize(3 * vertices);
     for (auto* v : {&dense_p_, &dense_du_, &dense_dv_}) v->resize(3 * size_t(n));
-    source_.reset(Osd::GLVertexBuffer::Create(3, stencils_.control_points));
+    source_.reset(Osd::GLVertexBuffer::Create(3, stencils_->control_points));
     for (auto* b : {&position_, &tangent_u_, &tangent_v_}) b->reset(Osd::GLVertexBuffer::Create(3, n));
-    table_.reset(Osd::GLStencilTableSSBO::Create(stencils_.table.get()));
+    table_.reset(Osd::GLStencilTableSSBO::Create(stencils_->table.get()));
     evaluator_.reset(Osd::GLComputeEvaluator::Create(kDesc, kDesc, kDesc, kDesc));
     if (!evaluator_) throw std::runtime_error("Osd::GLComputeEvaluator::Create failed (its compute shader did not build)");
     ctx_->check("preparing the GL compute evaluator");
@@ -66,7 +68,7 @@ class OsdGlComputeEvaluation final : public Evaluation {
   void execute() override {
     timer_.clear();
     timer_.begin(gl::PassKind::Upload, "upload control points");
-    source_->UpdateData(control_.positions[0].data(), 0, stencils_.control_points);
+    source_->UpdateData(control_.positions[0].data(), 0, stencils_->control_points);
     timer_.end();
     timer_.begin(gl::PassKind::Kernel, "GLComputeEvaluator::EvalStencils");
     const bool ok = Osd::GLComputeEvaluator::EvalStencils(source_.get(), kDesc, position_.get(), kDesc, tangent_u_.get(),
@@ -91,10 +93,10 @@ class OsdGlComputeEvaluation final : public Evaluation {
     times_.readback_ms = readback.readback_ms;
     times_.passes.insert(times_.passes.end(), readback.passes.begin(), readback.passes.end());
     ctx_->check("reading back the GL compute evaluator's output");
-    scatter_limit(stencils_, dense_p_.data(), out_.positions[0].data());
-    scatter_limit(stencils_, dense_du_.data(), du_.data());
-    scatter_limit(stencils_, dense_dv_.data(), dv_.data());
-    evaluate_refined_only(stencils_, control_.positions[0].data(), out_.positions[0].data(), du_.data(), dv_.data());
+    scatter_limit(*stencils_, dense_p_.data(), out_.positions[0].data());
+    scatter_limit(*stencils_, dense_du_.data(), du_.data());
+    scatter_limit(*stencils_, dense_dv_.data(), dv_.data());
+    evaluate_refined_only(*stencils_, control_.positions[0].data(), out_.positions[0].data(), du_.data(), dv_.data());
     normals_from_tangents(du_.data(), dv_.data(), out_.normals.data(), 0, out_.normals.size());
     stale_ = false;
     return out_;
@@ -115,7 +117,7 @@ class OsdGlComputeEvaluation final : public Evaluation {
 
   std::shared_ptr<gl::Context> ctx_;
   const ControlMesh control_;
-  LimitStencils stencils_;
+  std::shared_ptr<const LimitStencils> stencils_;  // shared with other runs of the topology
   std::unique_ptr<Osd::GLVertexBuffer> source_, position_, tangent_u_, tangent_v_;
   std::unique_ptr<Osd::GLStencilTableSSBO> table_;
   std::unique_ptr<Osd::GLComputeEvaluator> evaluator_;

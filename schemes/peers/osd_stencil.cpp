@@ -1,5 +1,5 @@
 // osd-stencil, osd-stencil-loop: OpenSubdiv's fast CPU path as production code uses it: limit
-// stencils made once (limit_stencils.h), then every frame Osd::CpuEvaluator::EvalStencils (cpu)
+// stencils made once per topology in prepare (limit_stencils.h), then every frame Osd::CpuEvaluator::EvalStencils (cpu)
 // on TBB ranges of 200 stencils (cpu-mt: what Osd::TbbEvaluator does; Debian's libosdCPU lacks it),
 // or with `osd-stencil:omp=1` Osd::OmpEvaluator::EvalStencils (cpu-mt, OpenMP), positions and both
 // tangents, normals crossed from the tangents. TBB ranges are the default because OmpEvaluator's
@@ -26,32 +26,34 @@ class OsdStencilEvaluation final : public Evaluation {
   enum class Threads { One, OpenMp, TbbRanges };
 
   OsdStencilEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, Threads threads)
-      : control_(mesh), stencils_(make_limit_stencils(mesh, rule, depth)), threads_(threads) {
-    out_ = std::move(stencils_.topology);
+      : control_(mesh), threads_(threads) {
+    PreparedStencils prepared = limit_stencils(mesh, rule, depth);
+    stencils_ = std::move(prepared.stencils);
+    out_ = std::move(prepared.topology);
     const size_t n = out_.coords.size();
     out_.positions.resize(n);
     out_.normals.resize(n);
     du_.resize(3 * n);
     dv_.resize(3 * n);
-    if (!stencils_.all_vertices_have_limits())
-      for (auto* v : {&dense_p_, &dense_du_, &dense_dv_}) v->resize(3 * stencils_.limit_vertices.size());
+    if (!stencils_->all_vertices_have_limits())
+      for (auto* v : {&dense_p_, &dense_du_, &dense_dv_}) v->resize(3 * stencils_->limit_vertices.size());
   }
 
   void execute() override {
-    const Far::LimitStencilTable& t = *stencils_.table;
+    const Far::LimitStencilTable& t = *stencils_->table;
     const float* in = control_.positions[0].data();
     float* p = out_.positions[0].data();
     // Straight into the output when every vertex has a limit patch; else densely, then scattered.
-    const bool direct = stencils_.all_vertices_have_limits();
+    const bool direct = stencils_->all_vertices_have_limits();
     float* dp = direct ? p : dense_p_.data();
     float* du = direct ? du_.data() : dense_du_.data();
     float* dv = direct ? dv_.data() : dense_dv_.data();
     evaluate_stencils(t, in, dp, du, dv);
     if (!direct) {
-      scatter_limit(stencils_, dp, p);
-      scatter_limit(stencils_, du, du_.data());
-      scatter_limit(stencils_, dv, dv_.data());
-      evaluate_refined_only(stencils_, in, p, du_.data(), dv_.data());
+      scatter_limit(*stencils_, dp, p);
+      scatter_limit(*stencils_, du, du_.data());
+      scatter_limit(*stencils_, dv, dv_.data());
+      evaluate_refined_only(*stencils_, in, p, du_.data(), dv_.data());
     }
     const size_t vertices = out_.positions.size();
     if (threads_ != Threads::One)
@@ -92,7 +94,7 @@ class OsdStencilEvaluation final : public Evaluation {
   }
 
   const ControlMesh control_;
-  LimitStencils stencils_;
+  std::shared_ptr<const LimitStencils> stencils_;  // shared with other runs of the topology
   Threads threads_;
   std::vector<float> du_, dv_;
   std::vector<float> dense_p_, dense_du_, dense_dv_;  // per limit stencil, when some vertices have none

@@ -6,6 +6,7 @@
 
 #include <opensubdiv/far/primvarRefiner.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -23,6 +24,7 @@
 #include "harness/mesh/osd_topology.h"
 #include "harness/reference/limit_evaluator.h"
 #include "harness/validate/deviation.h"
+#include "schemes/peers/limit_stencils.h"
 
 using namespace sdb;
 using sdb::conformance::max_distance;
@@ -211,6 +213,67 @@ TEST(OsdStencil, OpenMpTbbRangesAndOneThreadAgreeBitForBit) {
   }
 }
 
+// The tables depend on the topology alone, so a scaled and moved copy of a mesh is served the
+// tables made for the mesh (limit_stencils.h) and evaluates to the mesh's output scaled and moved;
+// everything else the tables read (a crease's sharpness, a corner, a hole, the boundary rule, the
+// creasing method, the subdivision rule, the depth) gets tables of its own.
+TEST(OsdStencil, TablesAreMadeOncePerTopologyAndNeverSharedAcrossTags) {
+  const ControlMesh mesh = load_mesh("creased-cube");
+  const double diagonal = diag(mesh);
+  ControlMesh copy = mesh;
+  for (Point3& p : copy.positions)
+    for (float& x : p) x = float((double(x) + 10 * diagonal) * 1e6);
+  copy.name = copy.source = "the copy";
+  const auto tables = limit_stencils(mesh, SubdivisionRule::CatmullClark, 2).stencils;
+  EXPECT_EQ(limit_stencils(copy, SubdivisionRule::CatmullClark, 2).stencils, tables)
+      << "the copy's tables were made again";
+  EXPECT_EQ(limit_stencils(mesh, SubdivisionRule::CatmullClark, 2).topology.triangles,
+            limit_stencils(copy, SubdivisionRule::CatmullClark, 2).topology.triangles);
+
+  std::vector<std::pair<std::string, ControlMesh>> others;
+  const auto other = [&](const std::string& what, auto change) {
+    ControlMesh m = mesh;
+    change(m);
+    others.push_back({what, m});
+  };
+  other("one crease sharper", [](ControlMesh& m) { m.creases[0].sharpness += 1; });
+  other("one crease fewer", [](ControlMesh& m) { m.creases.pop_back(); });
+  other("a corner", [](ControlMesh& m) { m.corners.push_back({0, 3.0f}); });
+  other("a hole", [](ControlMesh& m) { m.holes.push_back(0); });
+  other("edge-and-corner boundaries", [](ControlMesh& m) { m.boundary = BoundaryRule::EdgeAndCorner; });
+  other("Chaikin creases", [](ControlMesh& m) { m.crease_method = CreaseMethod::Chaikin; });
+  other("one face turned", [](ControlMesh& m) {
+    std::rotate(m.face_vertices.begin(), m.face_vertices.begin() + 1, m.face_vertices.begin() + 4);
+  });
+  for (const auto& [what, m] : others)
+    EXPECT_NE(limit_stencils(m, SubdivisionRule::CatmullClark, 2).stencils, tables) << what;
+  EXPECT_NE(limit_stencils(mesh, SubdivisionRule::CatmullClark, 1).stencils, tables) << "another depth";
+  const ControlMesh triangles = load_mesh("icosphere");
+  EXPECT_NE(limit_stencils(triangles, SubdivisionRule::Loop, 2).stencils,
+            limit_stencils(triangles, SubdivisionRule::CatmullClark, 2).stencils)
+      << "Loop and Catmull-Clark";
+
+  // A scaled copy's output is the mesh's, scaled, to float rounding (wrong tables would be a
+  // diagonal off). Not the moved one: its float tangents cancel at ten diagonals from the origin
+  // (2.4 degrees here), which is why the harness places every mesh at unit size before a scheme
+  // sees it (harness/mesh/placement.h).
+  ControlMesh scaled = mesh;
+  for (Point3& p : scaled.positions)
+    for (float& x : p) x = float(double(x) * 1e6);
+  for (const char* scheme : {"osd-stencil", "osd-glcompute"}) {
+    if (std::string(scheme) == "osd-glcompute" && !gl::probe().available) continue;
+    const Backend backend = std::string(scheme) == "osd-stencil" ? Backend::Cpu : Backend::OpenGl;
+    const Tessellation a = run(scheme, mesh, backend, 2), b = run(scheme, scaled, backend, 2);
+    ASSERT_EQ(a.num_vertices(), b.num_vertices()) << scheme;
+    double apart = 0;
+    for (size_t i = 0; i < a.positions.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        apart = std::max(apart, std::abs(double(b.positions[i][k]) / 1e6 - a.positions[i][k]));
+    EXPECT_LE(apart, 1e-6 * diagonal) << scheme;
+    EXPECT_LE(max_distance(a.normals, b.normals), 1e-5) << scheme;
+  }
+}
+
 TEST(OsdGlCompute, GivesOsdStencilsOutputOnTheDevice) {
   if (const gl::DeviceInfo g = gl::probe(); !g.available) GTEST_SKIP() << g.reason;
   std::vector<std::pair<std::string, bool>> meshes = {
@@ -289,6 +352,37 @@ TEST(OpenMesh, RefinesAsOpenSubdivOnSmoothClosedMeshes) {
       ASSERT_EQ(om.num_vertices(), osd.size()) << name << " depth " << depth;
       EXPECT_LE(matched_distance(om.positions, osd, 1e-3 * d), 1e-6 * d) << name << " depth " << depth;
       EXPECT_LE(matched_distance(osd, om.positions, 1e-3 * d), 1e-6 * d) << name << " depth " << depth;
+    }
+  }
+}
+
+// Two poles of valence n over an n-gon equator: Loop weights past the 50 valences LoopT tabulates
+// by default (it read past its table: garbage, NaN on loop_pole64's copy scaled by 1e-6).
+ControlMesh bipyramid(int n) {
+  ControlMesh m;
+  m.name = m.source = "bipyramid-" + std::to_string(n);
+  for (int i = 0; i < n; ++i)
+    m.positions.push_back({float(std::cos(2 * M_PI * i / n)), float(std::sin(2 * M_PI * i / n)), 0.0f});
+  m.positions.push_back({0, 0, 1});
+  m.positions.push_back({0, 0, -1});
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    for (int v : {i, j, n, j, i, n + 1}) m.face_vertices.push_back(v);
+    m.face_sizes.insert(m.face_sizes.end(), {3, 3});
+  }
+  return m;
+}
+
+TEST(OpenMesh, LoopRefinesAsOpenSubdivAtEveryValence) {
+  for (int n : {49, 50, 64, 360}) {
+    const ControlMesh mesh = bipyramid(n);
+    const double d = diag(mesh);
+    for (int depth : {1, 2}) {
+      const Tessellation om = run("openmesh-loop", mesh, Backend::Cpu, depth);
+      const std::vector<Point3> osd = refined_points(mesh, SubdivisionRule::Loop, depth);
+      ASSERT_EQ(om.num_vertices(), osd.size()) << mesh.name << " depth " << depth;
+      EXPECT_LE(matched_distance(om.positions, osd, 1e-3 * d), 1e-6 * d) << mesh.name << " depth " << depth;
+      EXPECT_LE(matched_distance(osd, om.positions, 1e-3 * d), 1e-6 * d) << mesh.name << " depth " << depth;
     }
   }
 }
