@@ -28,7 +28,6 @@ class CpuEvaluation final : public Evaluation {
   }
   const Tessellation& result() override { return s_.out; }
   size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::vector<std::string> notes() const override { return s_.notes(); }
 
  private:
   void first_step() {
@@ -55,7 +54,7 @@ class CpuEvaluation final : public Evaluation {
     Tessellation& out = s_.out;
     if (s_.project) {
       refined::Projection p{last[0].data(), 3, {s_.origin[0], s_.origin[1], s_.origin[2]}, out.positions.data(),
-                            out.normals.data()};
+                            out.normals.data(), s_.early >= 0 ? points_[s_.early][0].data() : nullptr};
       refined::project(s_.limit, p, multithreaded_);
       return;
     }

@@ -1,13 +1,12 @@
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/refined/requests.h"
 #include "schemes/edgefriend/edgefriend.h"
 #include "schemes/edgefriend/surface.h"
 #include "schemes/edgefriend/vulkan.h"
 
 namespace sdb::edgefriend {
 namespace {
-
-constexpr int kMaxDepth = 8;
 
 SchemeInfo make_info() {
   SchemeInfo info;
@@ -41,10 +40,7 @@ class EdgeFriendScheme final : public Scheme {
   const SchemeInfo& info() const override { return info_; }
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
-    if (r.level < 1 || r.level > kMaxDepth) return "depth must be 1.." + std::to_string(kMaxDepth);
-    if (r.backend == Backend::Vulkan) return vulkan_unavailable();
-    if (r.backend != Backend::Cpu && r.backend != Backend::CpuMt) return info_.name + " runs on cpu, cpu-mt and vulkan";
-    return std::nullopt;
+    return refined::unsupported_request(r, info_.name);
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {
