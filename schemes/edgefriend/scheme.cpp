@@ -19,6 +19,10 @@ SchemeInfo make_info() {
   info.role = SchemeRole::Peer;
   info.reference = SubdivisionRule::CatmullClark;
   info.level_kind = LevelKind::Depth;
+  // Measured 194 bytes per output triangle at a validated run's peak (the sword, validate at
+  // depths 2 and 3); a bench's peak at depth 4 is 111 on cpu, cpu-mt and vulkan
+  // (../halfedge/notes/2026-12-07-limit.md). 256 leaves a fifth to spare.
+  info.peak_bytes_per_triangle = 256;
   info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
   info.accepts.faces = MeshRequirements::Faces::Any;  // the first step makes quads of every face

@@ -19,6 +19,10 @@ SchemeInfo make_info(SubdivisionRule rule) {
   info.role = SchemeRole::Peer;
   info.reference = rule;
   info.level_kind = LevelKind::Depth;
+  // Measured 198 (halfedge-cc, the sword, validate at depths 2 and 3) and 134 (halfedge-loop, the
+  // bunny) bytes per output triangle at a validated run's peak; a bench's peak at depth 4 is 111
+  // to 134 on cpu, cpu-mt and vulkan (notes/2026-12-07-limit.md). 256 leaves a fifth to spare.
+  info.peak_bytes_per_triangle = 256;
   info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
   info.accepts.faces = loop ? MeshRequirements::Faces::TrianglesOnly : MeshRequirements::Faces::Any;
