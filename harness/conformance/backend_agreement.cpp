@@ -76,4 +76,19 @@ void vulkan_sweep(SubdivisionRule rule, const std::string& scheme,
               "diagonal, normals %.2g deg\n", scheme.c_str(), runs, refused, identical, vertices, worst, worst_deg);
 }
 
+void expect_passes_timed(Evaluation& e, const std::vector<std::string>& expected) {
+  e.execute();
+  e.result();
+  const std::optional<GpuTimes> t = e.gpu_times();
+  if (!t) GTEST_SKIP() << "no timestamps on this queue";
+  std::vector<std::string> labels;
+  double kernel = 0;
+  for (const GpuPassTime& p : t->passes) {
+    labels.push_back(p.label);
+    if (p.label != "upload" && p.label != "readback") kernel += p.ms;
+  }
+  EXPECT_EQ(labels, expected);
+  EXPECT_NEAR(t->kernel_ms, kernel, 1e-9);
+}
+
 }  // namespace sdb::conformance

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "harness/core/control_mesh.h"
 #include "harness/core/scheme.h"
@@ -64,5 +65,9 @@ Agreement expect_vulkan_agrees(const std::string& name, int depth, const Control
 using SweepCheck = std::function<Agreement(const std::string& name, const ControlMesh& accepted, int depth)>;
 void vulkan_sweep(SubdivisionRule rule, const std::string& scheme,
                   const std::function<void(const ControlMesh&)>& cpu_prepare, const SweepCheck& check);
+
+// Runs `e` once and EXPECTs its GPU passes' labels to be `expected`, in order, and its kernel time
+// their sum (upload and readback apart); skips where the queue has no timestamps.
+void expect_passes_timed(Evaluation& e, const std::vector<std::string>& expected);
 
 }  // namespace sdb::conformance

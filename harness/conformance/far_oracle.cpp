@@ -88,9 +88,7 @@ Match compare(const Tessellation& t, const FarLevel& osd, int depth, double diag
     }
     covered[it->second] = 1;
     m.max_rel = std::max(m.max_rel, distance(t.positions[i], osd.points[it->second]) / diagonal);
-    if (normals && !osd.sideless.empty() && osd.sideless[it->second]) {
-      ++m.sideless;
-    } else if (normals) {
+    if (normals) {
       const Point3 &a = t.normals[i], &b = osd.normals[it->second];
       // atan2 of |a x b| and a . b: acos of a dot this close to 1 cannot resolve 0.01 degrees.
       const double c[3] = {double(a[1]) * b[2] - double(a[2]) * b[1], double(a[2]) * b[0] - double(a[0]) * b[2],
@@ -101,40 +99,6 @@ Match compare(const Tessellation& t, const FarLevel& osd, int depth, double diag
   }
   for (size_t v = 0; v < covered.size(); ++v) m.uncovered += !covered[v] && !osd.on_hole[v] && osd.has_coord(v);
   return m;
-}
-
-void mark_sideless_normals(const ControlMesh& m, SubdivisionRule rule, int depth, FarLevel& far) {
-  auto r = make_refiner(m, rule);
-  Far::TopologyRefiner::UniformOptions options(depth);
-  options.fullTopologyInLastLevel = true;
-  r->RefineUniform(options);
-  using P = PrimvarPointT<double>;
-  std::vector<std::vector<P>> levels(depth + 1);
-  for (int l = 0; l <= depth; ++l) levels[l].resize(r->GetLevel(l).GetNumVertices());
-  for (size_t v = 0; v < m.positions.size(); ++v)
-    for (int k = 0; k < 3; ++k) levels[0][v].p[k] = m.positions[v][k];
-  Far::PrimvarRefiner primvar(*r);
-  for (int l = 1; l <= depth; ++l) {
-    P* dst = levels[l].data();
-    primvar.Interpolate(l, levels[l - 1].data(), dst);
-  }
-  const size_t n = levels[depth].size();
-  std::vector<P> pos(n), du(n), dv(n);
-  P *p = pos.data(), *a = du.data(), *b = dv.data();
-  primvar.Limit(levels[depth].data(), p, a, b);
-  const Far::TopologyLevel& l = r->GetLevel(depth);
-  far.sideless.assign(far.points.size(), 0);
-  for (int v = 0; v < l.GetNumVertices(); ++v) {
-    int sharp = 0;
-    for (int e : l.GetVertexEdges(v)) sharp += l.GetEdgeSharpness(e) > 0;
-    const double* x = du[v].p;
-    const double* y = dv[v].p;
-    const double c[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-    const double lx = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), ly = std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
-    const double longest = std::max(lx, ly);
-    const bool parallel = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) <= 1e-9 * longest * longest;
-    if ((!l.IsVertexBoundary(v) && sharp == 2) || parallel) far.sideless[v] = 1;
-  }
 }
 
 }  // namespace sdb::conformance

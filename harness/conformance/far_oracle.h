@@ -30,7 +30,6 @@ struct FarLevel {
   std::vector<char> on_hole;  // the vertex's coord lies in a hole (no scheme output there)
   std::vector<char> faceless;
   std::vector<char> special;  // where Far's limit masks are not the exact limit (far_limit_is_exact)
-  std::vector<char> sideless;  // normals compare() leaves out, counted (mark_sideless_normals); empty: none
   bool has_coord(size_t v) const { return !faceless[v]; }
 };
 
@@ -47,17 +46,10 @@ struct Match {
   double max_deg = 0;  // largest normal angle (limit only)
   long uncovered = 0;  // Far vertices (not inside holes) no output vertex stands for
   long unmatched = 0;  // output vertices at a grid point Far has no coord for (ptex borders)
-  long sideless = 0;   // normals not compared (FarLevel::sideless)
 };
 
 // Every output vertex against Far's vertex at its grid point (Far's limit masks approximate
 // where `special` says: a scheme's limit is judged against the yardstick, limit_judge.h).
 Match compare(const Tessellation& t, const FarLevel& far, int depth, double diagonal, bool normals);
-
-// Marks `sideless` the vertices whose normal has no side to compare: an interior crease (its side
-// is Far's edge order's in Far, the SurfaceCoord's face's in the uniform-refinement peers:
-// harness/refined/limit.h), or where Far's limit tangents are parallel (a surface folded back on
-// itself, catmark_val2_back2back: the normal is rounding's). For the peers' normal checks.
-void mark_sideless_normals(const ControlMesh& m, SubdivisionRule rule, int depth, FarLevel& far);
 
 }  // namespace sdb::conformance

@@ -9,7 +9,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
+#include <tuple>
+
+#include "harness/refined/exact_masks.h"
+#include "harness/refined/float3.h"
 
 namespace sdb::refined {
 namespace {
@@ -106,7 +111,8 @@ void limit_masks(const Hood& hood, Sdc::Crease::Rule rule, Masks& m) {
 
 bool regular(const FaceLevel& l, const Ring& r, int sharp_edges, float vertex_sharpness) {
   const size_t valence = l.face_size == 4 ? 4 : 6;
-  return !r.boundary() && r.corners.size() == valence && sharp_edges <= 1 && vertex_sharpness <= 0.0f;
+  // (A dart, one sharp edge, is not: Far's masks take it as smooth, which is not its limit.)
+  return !r.boundary() && r.corners.size() == valence && sharp_edges == 0 && vertex_sharpness <= 0.0f;
 }
 
 Point3 unit_normal(const float a[3], const float b[3]) {
@@ -114,6 +120,26 @@ Point3 unit_normal(const float a[3], const float b[3]) {
   const float len2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
   const float k = len2 > 0.0f ? 1.0f / std::sqrt(len2) : 0.0f;
   return {c[0] * k, c[1] * k, c[2] * k};
+}
+
+// A special vertex's entries from exact masks on its disk's slots: the face-opposite vertices,
+// the edges' ends, the vertex (PrimvarRefiner::Limit's order, as Sdc's masks are entered).
+void add_exact(SpecialTable& plan, const FaceLevel& l, const Ring& r, const RingDisk& d, const RingMasks& m, uint32_t v,
+               uint32_t output) {
+  const bool catmark = l.face_size == 4;
+  plan.vertex.push_back(output);
+  auto add = [&](uint32_t vertex, int slot) {
+    plan.ring.push_back(vertex);
+    plan.weights.push_back(static_cast<float>(m.position[slot]));
+    plan.weights.push_back(static_cast<float>(m.first[slot]));
+    plan.weights.push_back(static_cast<float>(m.second[slot]));
+  };
+  if (catmark)
+    for (int i = 0; i < d.faces; ++i) add(l.verts[next_corner(next_corner(r.corners[i], 4), 4)], 1 + d.edges + i);
+  for (int i = 0; i < d.faces; ++i) add(l.verts[next_corner(r.corners[i], l.face_size)], 1 + i);
+  if (r.boundary()) add(l.verts[r.trailing], d.edges);
+  add(v, 0);
+  plan.begin.push_back(static_cast<uint32_t>(plan.ring.size()));
 }
 
 }  // namespace
@@ -127,34 +153,121 @@ std::vector<uint32_t> vertex_corners(const FaceLevel& l) {
   return at;
 }
 
-LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule) {
+namespace {
+
+// The lowest corner at every vertex: the one its SurfaceCoord is taken from (coords.h), whose face
+// names the side a normal is judged on.
+std::vector<uint32_t> first_corners(const FaceLevel& l) {
+  std::vector<uint32_t> at(l.num_vertices, kNone);
+  for (uint64_t c = l.num_corners; c-- > 0;) at[l.verts[c]] = static_cast<uint32_t>(c);
+  return at;
+}
+
+// The vertex's ring as exact_masks.h takes it, on the side of the face of corner `first`.
+RingDisk disk_of(const FaceLevel& l, const Ring& r, const std::vector<float>& sharpness, float vertex_sharpness,
+                 uint32_t first) {
+  RingDisk d;
+  d.edges = static_cast<int>(r.edges());
+  d.faces = static_cast<int>(r.corners.size());
+  d.edge_sharpness = sharpness;
+  d.vertex_sharpness = vertex_sharpness;
+  const uint32_t face = first / l.face_size;
+  for (size_t i = 0; i < r.corners.size(); ++i)
+    if (r.corners[i] / l.face_size == face) d.side = static_cast<int>(i);
+  return d;
+}
+
+// A vertex's ring from corner `start` (vertex_corners'), its edges' sharpness in ring order.
+struct VertexRing {
+  Ring r;
+  std::vector<float> sharpness;
+  float vertex_sharpness = 0;
+  int sharp = 0;      // sharp edges
+  bool semi = false;  // an edge or the vertex semi-sharp
+};
+
+VertexRing ring_at(const FaceLevel& l, uint32_t v, uint32_t start) {
+  VertexRing out;
+  out.r = walk(l, start);
+  for (uint32_t c : out.r.corners) out.sharpness.push_back(l.edge_sharpness ? l.edge_sharpness(c) : 0.0f);
+  if (out.r.boundary()) out.sharpness.push_back(l.edge_sharpness ? l.edge_sharpness(out.r.trailing) : 0.0f);
+  const float vs = l.vertex_sharpness ? l.vertex_sharpness(v) : 0.0f;
+  out.vertex_sharpness = vs;
+  out.semi = vs > 0.0f && vs < kInfiniteSharpness;
+  for (float s : out.sharpness) out.sharp += s > 0.0f, out.semi = out.semi || (s > 0.0f && s < kInfiniteSharpness);
+  return out;
+}
+
+// Exact masks by ring, made once per kind of ring (a crease's 2^k vertices share one).
+class ExactMaskCache {
+ public:
+  ExactMaskCache(SubdivisionRule rule, const Sdc::Options& options) : rule_(rule), options_(options) {}
+  const RingMasks& at(const RingDisk& d) {
+    auto key = std::make_tuple(d.edges, d.faces, d.edge_sharpness, d.vertex_sharpness, d.side);
+    auto it = cache_.find(key);
+    if (it == cache_.end()) it = cache_.emplace(key, exact_ring_masks(d, rule_, options_)).first;
+    return it->second;
+  }
+
+ private:
+  SubdivisionRule rule_;
+  Sdc::Options options_;
+  std::map<std::tuple<int, int, std::vector<float>, float, int>, RingMasks> cache_;
+};
+
+}  // namespace
+
+// Where the early level has last-level vertex v: its ring's exact masks there, into plan.early.
+class EarlyRings {
+ public:
+  EarlyRings(const EarlyLevel* early, const FaceLevel& last) {
+    if (!early || !early->level) return;
+    level_ = early->level;
+    if (level_->face_size != last.face_size || early->last_of.size() != level_->num_vertices)
+      throw std::invalid_argument("plan_limit: an early level of other faces or vertices");
+    early_of_.assign(last.num_vertices, kNone);
+    for (uint32_t u = 0; u < level_->num_vertices; ++u)
+      if (early->last_of[u] != kNone) early_of_.at(early->last_of[u]) = u;
+    corners_ = vertex_corners(*level_);
+    first_ = first_corners(*level_);
+  }
+
+  bool add(uint32_t v, ExactMaskCache& exact, SpecialTable& table) const {
+    const uint32_t u = early_of_.empty() ? kNone : early_of_[v];
+    if (u == kNone || corners_[u] == kNone) return false;
+    const VertexRing er = ring_at(*level_, u, corners_[u]);
+    const RingDisk disk = disk_of(*level_, er.r, er.sharpness, er.vertex_sharpness, first_[u]);
+    const RingMasks& m = exact.at(disk);
+    if (m.first.empty()) return false;
+    add_exact(table, *level_, er.r, disk, m, u, v);
+    return true;
+  }
+
+ private:
+  const FaceLevel* level_ = nullptr;
+  std::vector<uint32_t> early_of_, corners_, first_;
+};
+
+LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule, const Sdc::Options& options, const EarlyLevel* early) {
   const bool catmark = rule == SubdivisionRule::CatmullClark;
   if (l.face_size != (catmark ? 4u : 3u)) throw std::invalid_argument("plan_limit: faces of the wrong size for the rule");
   LimitPlan plan;
   plan.face_size = l.face_size;
   plan.num_vertices = l.num_vertices;
   plan.ring_size = catmark ? 8 : 6;
-  const std::vector<uint32_t> corners = vertex_corners(l);
+  const std::vector<uint32_t> corners = vertex_corners(l), first = first_corners(l);
+  ExactMaskCache exact(rule, options);
+  const EarlyRings early_rings(early, l);
   plan.regular_ring.assign(size_t(plan.ring_size) * l.num_vertices, kNone);
-  std::vector<float> sharpness;
   Masks masks;
   for (uint32_t v = 0; v < l.num_vertices; ++v) {
     const uint32_t start = corners[v];
     if (start == kNone) continue;  // in no face: no limit (Far leaves it), none written
-    Ring r = walk(l, start);
-    sharpness.clear();
-    for (uint32_t c : r.corners) sharpness.push_back(l.edge_sharpness ? l.edge_sharpness(c) : 0.0f);
-    if (r.boundary()) sharpness.push_back(l.edge_sharpness ? l.edge_sharpness(r.trailing) : 0.0f);
-    const float vs = l.vertex_sharpness ? l.vertex_sharpness(v) : 0.0f;
-    int sharp = 0;
-    bool semi = vs > 0.0f && vs < kInfiniteSharpness;
-    for (float s : sharpness) {
-      sharp += s > 0.0f;
-      if (s > 0.0f && s < kInfiniteSharpness) semi = true, plan.largest_sharpness_left = std::max(plan.largest_sharpness_left, s);
-    }
-    if (vs < kInfiniteSharpness) plan.largest_sharpness_left = std::max(plan.largest_sharpness_left, vs);
-    plan.semi_sharp_vertices += semi;
-    if (regular(l, r, sharp, vs)) {
+    VertexRing vr = ring_at(l, v, start);
+    Ring& r = vr.r;
+    std::vector<float>& sharpness = vr.sharpness;
+    const float vs = vr.vertex_sharpness;
+    if (regular(l, r, vr.sharp, vs)) {
       uint32_t* ring = &plan.regular_ring[size_t(plan.ring_size) * v];
       for (size_t i = 0; i < r.corners.size(); ++i) {
         const uint32_t nc = next_corner(r.corners[i], l.face_size);
@@ -162,6 +275,15 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule) {
         if (catmark) ring[4 + i] = l.verts[next_corner(nc, 4)];
       }
       continue;
+    }
+    if (early_rings.add(v, exact, plan.early)) continue;
+    const RingDisk disk = disk_of(l, r, sharpness, vs, first[v]);
+    if (vr.semi || !far_masks_exact(disk, rule)) {
+      const RingMasks& m = exact.at(disk);
+      if (!m.first.empty()) {
+        add_exact(plan.special, l, r, disk, m, v, v);
+        continue;
+      }  // no tangent plane the ring's matrix shows (valence 2): Far's masks, the limit has no normal
     }
     const Sdc::Crease::Rule vrule =
         Sdc::Crease().DetermineVertexVertexRule(vs, static_cast<int>(sharpness.size()), sharpness.data());
@@ -181,10 +303,11 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule) {
     const Hood hood(masks.edges, masks.faces, vs, sharpness.data());
     if (catmark) limit_masks<Sdc::SCHEME_CATMARK>(hood, vrule, masks);
     else limit_masks<Sdc::SCHEME_LOOP>(hood, vrule, masks);
-    plan.special.push_back(v);
+    SpecialTable& table = plan.special;
+    table.vertex.push_back(v);
     auto add = [&](uint32_t vertex, int slot) {
-      plan.ring.push_back(vertex);
-      for (int k = 0; k < 3; ++k) plan.weights.push_back(masks.at(k)[slot]);
+      table.ring.push_back(vertex);
+      for (int k = 0; k < 3; ++k) table.weights.push_back(masks.at(k)[slot]);
     };
     if (catmark)
       for (size_t i = 0; i < r.corners.size(); ++i) {
@@ -194,25 +317,11 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule) {
     for (size_t i = 0; i < r.corners.size(); ++i) add(l.verts[next_corner(r.corners[i], l.face_size)], 1 + static_cast<int>(i));
     if (r.boundary()) add(l.verts[r.trailing], masks.edges);
     add(v, 0);
-    plan.begin.push_back(static_cast<uint32_t>(plan.ring.size()));
+    table.begin.push_back(static_cast<uint32_t>(table.ring.size()));
   }
   return plan;
 }
 
-namespace {
-
-struct P3 {
-  float x, y, z;
-};
-inline P3 load(const float* points, uint32_t stride, uint32_t v) {
-  const float* p = points + size_t(v) * stride;
-  return {p[0], p[1], p[2]};
-}
-inline P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline P3 operator*(P3 a, float w) { return {a.x * w, a.y * w, a.z * w}; }
-
-}  // namespace
 
 // Sdc's constant masks of a regular vertex (catmarkScheme.h, loopScheme.h), their sums ordered as
 // PrimvarRefiner::Limit's: faces, then edges, then the vertex.
@@ -256,19 +365,19 @@ void project_regular(const LimitPlan& plan, const Projection& p, uint32_t first,
   }
 }
 
-void project_special(const LimitPlan& plan, const Projection& pr, uint32_t first, uint32_t last) {
+void project_special(const SpecialTable& table, const float* points, const Projection& pr, uint32_t first, uint32_t last) {
   const P3 origin{pr.origin[0], pr.origin[1], pr.origin[2]};
   for (uint32_t i = first; i < last; ++i) {
     P3 pos{0, 0, 0}, t1{0, 0, 0}, t2{0, 0, 0};
-    for (uint32_t k = plan.begin[i]; k < plan.begin[i + 1]; ++k) {
-      const P3 p = load(pr.points, pr.stride, plan.ring[k]);
-      const float* w = &plan.weights[3 * size_t(k)];
+    for (uint32_t k = table.begin[i]; k < table.begin[i + 1]; ++k) {
+      const P3 p = load(points, pr.stride, table.ring[k]);
+      const float* w = &table.weights[3 * size_t(k)];
       pos = pos + p * w[0];
       t1 = t1 + p * w[1];
       t2 = t2 + p * w[2];
     }
     pos = pos + origin;
-    const uint32_t v = plan.special[i];
+    const uint32_t v = table.vertex[i];
     pr.positions[v] = {pos.x, pos.y, pos.z};
     const float a[3] = {t1.x, t1.y, t1.z}, b[3] = {t2.x, t2.y, t2.z};
     pr.normals[v] = unit_normal(a, b);
@@ -276,26 +385,19 @@ void project_special(const LimitPlan& plan, const Projection& pr, uint32_t first
 }
 
 void project(const LimitPlan& plan, const Projection& p, bool parallel) {
-  const uint32_t specials = static_cast<uint32_t>(plan.special.size());
+  if (plan.early.size() > 0 && !p.early_points) throw std::invalid_argument("project: the plan reads an early level");
   if (!parallel) {
     project_regular(plan, p, 0, plan.num_vertices);
-    project_special(plan, p, 0, specials);
+    project_special(plan.special, p.points, p, 0, plan.special.size());
+    project_special(plan.early, p.early_points, p, 0, plan.early.size());
     return;
   }
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, plan.num_vertices, 4096),
                     [&](const tbb::blocked_range<uint32_t>& r) { project_regular(plan, p, r.begin(), r.end()); });
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, specials, 256),
-                    [&](const tbb::blocked_range<uint32_t>& r) { project_special(plan, p, r.begin(), r.end()); });
-}
-
-std::vector<std::string> semi_sharp_notes(const LimitPlan& plan, int depth) {
-  if (plan.semi_sharp_vertices == 0) return {};
-  char note[240];
-  std::snprintf(note, sizeof note,
-                "semi-sharp creases outlast depth %d (sharpness up to %.3g left at %llu vertices): projected with "
-                "Far's limit masks there, which take it as infinite (not the limit)",
-                depth, double(plan.largest_sharpness_left), static_cast<unsigned long long>(plan.semi_sharp_vertices));
-  return {note};
+  for (const auto& [table, points] : {std::pair{&plan.special, p.points}, std::pair{&plan.early, p.early_points}})
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, table->size(), 256), [&, t = table, pts = points](const tbb::blocked_range<uint32_t>& r) {
+      project_special(*t, pts, p, r.begin(), r.end());
+    });
 }
 
 }  // namespace sdb::refined

@@ -27,28 +27,38 @@ gpu::ComputePipelineDesc desc(const char* shader) {
 }  // namespace
 
 uint64_t VulkanLimit::table_bytes(const LimitPlan& p) {
-  return 4 * (uint64_t(p.regular_ring.size()) + p.special.size() + p.begin.size() + p.ring.size() + p.weights.size()) + 80;
+  uint64_t words = p.regular_ring.size();
+  for (const SpecialTable* t : {&p.special, &p.early}) words += t->vertex.size() + t->begin.size() + t->ring.size() + t->weights.size();
+  return 4 * words + 160;
 }
+
+VulkanLimit::Table::Table(gpu::Context& ctx, const SpecialTable& t, const std::string& level)
+    : count(t.size()),
+      vertex(gpu::texel_table(ctx, t.vertex, "limit: special vertices" + level)),
+      begin(gpu::texel_table(ctx, t.begin, "limit: entry ranges" + level)),
+      ring(gpu::texel_table(ctx, t.ring, "limit: ring vertices" + level)),
+      weights(gpu::texel_table(ctx, t.weights, "limit: mask weights" + level)) {}
 
 VulkanLimit::VulkanLimit(gpu::Context& ctx, const LimitPlan& plan)
     : ctx_(&ctx),
       ring_size_(plan.ring_size),
       face_size_(plan.face_size),
       vertices_(plan.num_vertices),
-      specials_(static_cast<uint32_t>(plan.special.size())),
       regular_ring_(gpu::texel_table(ctx, plan.regular_ring, "limit: regular rings")),
-      special_(gpu::texel_table(ctx, plan.special, "limit: special vertices")),
-      begin_(gpu::texel_table(ctx, plan.begin, "limit: entry ranges")),
-      ring_(gpu::texel_table(ctx, plan.ring, "limit: ring vertices")),
-      weights_(gpu::texel_table(ctx, plan.weights, "limit: mask weights")),
+      special_(ctx, plan.special, ""),
+      early_(ctx, plan.early, " (early level)"),
       regular_(gpu::shared_compute_pipeline(ctx, desc("limit_regular.comp"))),
       special_pass_(gpu::shared_compute_pipeline(ctx, desc("limit_special.comp"))) {}
 
-void VulkanLimit::bind(const gpu::Buffer& points, const gpu::Buffer& positions, const gpu::Buffer& normals) {
-  constexpr VkFormat u = VK_FORMAT_R32_UINT, f = VK_FORMAT_R32_SFLOAT;
-  set_ = gpu::DescriptorSet(*regular_, {points.texels(VK_FORMAT_R32G32B32A32_SFLOAT), regular_ring_.texels(u),
-                                        special_.texels(u), begin_.texels(u), ring_.texels(u), weights_.texels(f),
+void VulkanLimit::bind(const gpu::Buffer& points, const gpu::Buffer& early_points, const gpu::Buffer& positions,
+                       const gpu::Buffer& normals) {
+  constexpr VkFormat u = VK_FORMAT_R32_UINT, f = VK_FORMAT_R32_SFLOAT, rgba = VK_FORMAT_R32G32B32A32_SFLOAT;
+  set_ = gpu::DescriptorSet(*regular_, {points.texels(rgba), regular_ring_.texels(u), special_.vertex.texels(u),
+                                        special_.begin.texels(u), special_.ring.texels(u), special_.weights.texels(f),
                                         positions.texels(f), normals.texels(f)});
+  early_set_ = gpu::DescriptorSet(*special_pass_, {early_points.texels(rgba), regular_ring_.texels(u), early_.vertex.texels(u),
+                                                   early_.begin.texels(u), early_.ring.texels(u), early_.weights.texels(f),
+                                                   positions.texels(f), normals.texels(f)});
 }
 
 void VulkanLimit::record(gpu::Commands& cmd, gpu::GpuTimer& timer, const float origin[3]) const {
@@ -63,13 +73,17 @@ void VulkanLimit::record(gpu::Commands& cmd, gpu::GpuTimer& timer, const float o
   cmd.push(p);
   cmd.dispatch(gpu::groups_for(vertices_, kLocalSize, ctx_->limits()));
   timer.end(cmd);
-  if (specials_ == 0) return;
-  // The two passes write disjoint vertices (a special one is skipped by the regular pass).
+  if (special_.count + early_.count == 0) return;
+  // The passes write disjoint vertices (a special one is skipped by the regular pass, and is in one
+  // table).
   timer.begin(cmd, gpu::PassKind::Kernel, "limit: special");
-  cmd.bind(*special_pass_, set_);
-  p.count = specials_;
-  cmd.push(p);
-  cmd.dispatch(gpu::groups_for(specials_, kLocalSize, ctx_->limits()));
+  for (const auto& [table, set] : {std::pair{&special_, &set_}, std::pair{&early_, &early_set_}}) {
+    if (table->count == 0) continue;
+    cmd.bind(*special_pass_, *set);
+    p.count = table->count;
+    cmd.push(p);
+    cmd.dispatch(gpu::groups_for(table->count, kLocalSize, ctx_->limits()));
+  }
   timer.end(cmd);
 }
 

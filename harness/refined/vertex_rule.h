@@ -23,4 +23,44 @@ inline float parent_mask_weight(int transitions, float transition_sum, float par
   return pw > 1.0f ? 1.0f : pw;
 }
 
+// A vertex point's mask as coefficients of its ring's sums: the vertex, the edges' far ends, the
+// faces' other corners (each scheme sums its ring its own way), and the parent's or the child's
+// crease ends.
+struct RuleMask {
+  float vertex = 0, edges = 0, faces = 0, parent_ends = 0, child_ends = 0;
+};
+
+// One rule's mask; `smooth`: the smooth (and dart) rule's at the vertex's valence.
+inline RuleMask rule_mask(int rule, bool parent, const RuleMask& smooth) {
+  RuleMask k;
+  if (rule == kSmoothRule || rule == kDartRule) {
+    k.vertex = smooth.vertex, k.edges = smooth.edges, k.faces = smooth.faces;
+  } else if (rule == kCreaseRule) {
+    k.vertex = 0.75f;
+    (parent ? k.parent_ends : k.child_ends) = 0.125f;
+  } else {
+    k.vertex = 1.0f;
+  }
+  return k;
+}
+
+// Sdc's ComputeVertexVertexMask: the parent's rule's mask, or where the rule changes the parent's
+// weighted by parent_mask_weight plus the child's by the rest (CombineVertexVertexMasks).
+inline RuleMask vertex_point_mask(const RuleMask& smooth, float parent_vs, int parent_sharp, float child_vs, int child_sharp,
+                                  int transitions, float transition_sum) {
+  const int prule = vertex_rule(parent_vs, parent_sharp), crule = vertex_rule(child_vs, child_sharp);
+  const RuleMask parent = rule_mask(prule, true, smooth);
+  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
+  const float pw = parent_mask_weight(transitions, transition_sum, parent_vs, child_vs);
+  const float cw = 1.0f - pw;
+  const RuleMask child = rule_mask(crule, false, smooth);
+  RuleMask k;
+  k.vertex = pw * parent.vertex + cw * child.vertex;
+  k.edges = pw * parent.edges + cw * child.edges;
+  k.faces = pw * parent.faces + cw * child.faces;
+  k.parent_ends = pw * parent.parent_ends;
+  k.child_ends = cw * child.child_ends;
+  return k;
+}
+
 }  // namespace sdb::refined

@@ -3,32 +3,23 @@
 // (harness/refined/limit.h).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
+#include "harness/refined/cpu_frame.h"
 #include "schemes/edgefriend/surface.h"
 
 namespace sdb::edgefriend {
 namespace {
 
-class CpuEvaluation final : public Evaluation {
+class CpuEvaluation final : public refined::CpuFrame {
  public:
   CpuEvaluation(const ControlMesh& mesh, int depth, bool multithreaded, int threads, bool project)
-      : control_(mesh.positions), s_(mesh, depth, project), multithreaded_(multithreaded) {
-    if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
+      : CpuFrame(multithreaded, threads), control_(mesh.positions), s_(mesh, depth, project) {
     const auto& levels = s_.hierarchy.levels;
     points_.resize(levels.size());
     for (size_t d = 0; d + 1 < levels.size(); ++d) points_[d].resize(levels[d].num_vertices);
     points_.back().resize(s_.hierarchy.out_vertices);  // in the output's numbering
   }
 
-  void execute() override {
-    auto go = [&] { run(); };
-    if (arena_) arena_->execute(go);
-    else go();
-  }
-  const Tessellation& result() override { return s_.out; }
-  size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::vector<std::string> notes() const override { return s_.notes(); }
+  const Tessellation& output() const override { return s_.out; }
 
  private:
   void first_step() {
@@ -42,7 +33,7 @@ class CpuEvaluation final : public Evaluation {
     });
   }
 
-  void run() {
+  void run() override {
     relative_.resize(control_.size());
     first_step();
     const auto& levels = s_.hierarchy.levels;
@@ -55,7 +46,7 @@ class CpuEvaluation final : public Evaluation {
     Tessellation& out = s_.out;
     if (s_.project) {
       refined::Projection p{last[0].data(), 3, {s_.origin[0], s_.origin[1], s_.origin[2]}, out.positions.data(),
-                            out.normals.data()};
+                            out.normals.data(), s_.early >= 0 ? points_[s_.early][0].data() : nullptr};
       refined::project(s_.limit, p, multithreaded_);
       return;
     }
@@ -65,8 +56,6 @@ class CpuEvaluation final : public Evaluation {
 
   std::vector<Point3> control_, relative_;
   Surface s_;
-  bool multithreaded_;
-  std::unique_ptr<tbb::task_arena> arena_;
   std::vector<std::vector<Point3>> points_;  // levels 1 .. depth
 };
 

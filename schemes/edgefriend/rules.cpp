@@ -3,17 +3,16 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "harness/refined/float3.h"
 #include "harness/refined/vertex_rule.h"
 
 namespace sdb::edgefriend {
 namespace {
 
-struct P3 {
-  float x, y, z;
-};
-inline P3 at(const Point3* p, uint32_t i) { return {p[i][0], p[i][1], p[i][2]}; }
-inline P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline P3 operator*(P3 a, float w) { return {a.x * w, a.y * w, a.z * w}; }
+using refined::P3;
+using refined::at;
+using refined::operator+;
+using refined::operator*;
 
 inline void store(const Step& s, uint32_t i, P3 v) {
   const uint32_t j = s.out_index ? s.out_index[i] : i;
@@ -58,40 +57,12 @@ Ring walk(const Step& s, uint32_t start) {
   return r;
 }
 
-// A vertex mask as coefficients of the ring's sums: V, sum E, sum D, parent and child crease ends.
-struct Coefficients {
-  float vertex = 0, edges = 0, diagonals = 0, parent_ends = 0, child_ends = 0;
-};
-
-Coefficients mask_of(int rule, bool parent, const SmoothWeights& w, uint32_t n) {
-  Coefficients k;
-  if (rule == kSmoothRule || rule == kDartRule) {
-    k.vertex = w.vertex[n], k.edges = w.edge[n], k.diagonals = w.diagonal[n];
-  } else if (rule == kCreaseRule) {
-    k.vertex = 0.75f;
-    (parent ? k.parent_ends : k.child_ends) = 0.125f;
-  } else {
-    k.vertex = 1.0f;
-  }
-  return k;
-}
-
-Coefficients vertex_mask(const Ring& r, float parent_vs, const SmoothWeights& w) {
+// Sdc's vertex-point mask on the ring (refined::vertex_point_mask), its face sum the diagonals'.
+refined::RuleMask vertex_mask(const Ring& r, float parent_vs, const SmoothWeights& w) {
   const uint32_t n = r.n < uint32_t(kMaxValence) ? r.n : uint32_t(kMaxValence);  // past it: a ghost face's point
-  const float child_vs = decay(parent_vs);
-  const int prule = vertex_rule(parent_vs, r.parent_sharp), crule = vertex_rule(child_vs, r.child_sharp);
-  const Coefficients parent = mask_of(prule, true, w, n);
-  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
-  const float pw = refined::parent_mask_weight(r.transitions, r.transition_sum, parent_vs, child_vs);
-  const float cw = 1.0f - pw;
-  const Coefficients child = mask_of(crule, false, w, n);
-  Coefficients k;
-  k.vertex = pw * parent.vertex + cw * child.vertex;
-  k.edges = pw * parent.edges + cw * child.edges;
-  k.diagonals = pw * parent.diagonals + cw * child.diagonals;
-  k.parent_ends = pw * parent.parent_ends;
-  k.child_ends = cw * child.child_ends;
-  return k;
+  const refined::RuleMask smooth{w.vertex[n], w.edge[n], w.diagonal[n]};
+  return refined::vertex_point_mask(smooth, parent_vs, r.parent_sharp, decay(parent_vs), r.child_sharp, r.transitions,
+                                    r.transition_sum);
 }
 
 void vertex_point(const Step& s, uint32_t v) {
@@ -100,9 +71,9 @@ void vertex_point(const Step& s, uint32_t v) {
   if (start == kNone) return store(s, to, {0, 0, 0});  // in no quad: no point (never output)
   const Ring r = walk(s, start);
   const float vs = p.vertex_sharpness.empty() ? 0.0f : p.vertex_sharpness[v];
-  const Coefficients k = vertex_mask(r, vs, *s.weights);
+  const refined::RuleMask k = vertex_mask(r, vs, *s.weights);
   const P3 centre = at(s.src, v);
-  store(s, to, ((r.edges * k.edges + r.diagonals * k.diagonals) + (r.parent_ends * k.parent_ends + r.child_ends * k.child_ends)) +
+  store(s, to, ((r.edges * k.edges + r.diagonals * k.faces) + (r.parent_ends * k.parent_ends + r.child_ends * k.child_ends)) +
                    centre * k.vertex);
 }
 

@@ -1,13 +1,12 @@
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/refined/requests.h"
 #include "schemes/edgefriend/edgefriend.h"
 #include "schemes/edgefriend/surface.h"
 #include "schemes/edgefriend/vulkan.h"
 
 namespace sdb::edgefriend {
 namespace {
-
-constexpr int kMaxDepth = 8;
 
 SchemeInfo make_info() {
   SchemeInfo info;
@@ -20,6 +19,10 @@ SchemeInfo make_info() {
   info.role = SchemeRole::Peer;
   info.reference = SubdivisionRule::CatmullClark;
   info.level_kind = LevelKind::Depth;
+  // Measured 194 bytes per output triangle at a validated run's peak (the sword, validate at
+  // depths 2 and 3); a bench's peak at depth 4 is 111 on cpu, cpu-mt and vulkan
+  // (../halfedge/notes/2026-12-07-limit.md). 256 leaves a fifth to spare.
+  info.peak_bytes_per_triangle = 256;
   info.backends = {Backend::Cpu, Backend::CpuMt, Backend::Vulkan};
   info.default_levels = {1, 2, 3, 4};
   info.accepts.faces = MeshRequirements::Faces::Any;  // the first step makes quads of every face
@@ -41,10 +44,7 @@ class EdgeFriendScheme final : public Scheme {
   const SchemeInfo& info() const override { return info_; }
 
   std::optional<std::string> unsupported(const RunRequest& r) const override {
-    if (r.level < 1 || r.level > kMaxDepth) return "depth must be 1.." + std::to_string(kMaxDepth);
-    if (r.backend == Backend::Vulkan) return vulkan_unavailable();
-    if (r.backend != Backend::Cpu && r.backend != Backend::CpuMt) return info_.name + " runs on cpu, cpu-mt and vulkan";
-    return std::nullopt;
+    return refined::unsupported_request(r, info_.name);
   }
 
   std::unique_ptr<Evaluation> prepare(const ControlMesh& mesh, const RunRequest& r) const override {

@@ -50,7 +50,15 @@ Surface::Surface(const ControlMesh& mesh, int d, bool p) : depth(d), project(p),
   }
   const Bounds b = bounds_of(mesh.positions);
   for (int k = 0; k < 3; ++k) origin[k] = static_cast<float>(b.centre(k));
-  if (project) limit = refined::plan_limit(hierarchy.face_level(), SubdivisionRule::CatmullClark);
+  if (project) {
+    // Special vertices that level 1 has take their limit from their ring there (limit.h, EarlyLevel).
+    refined::EarlyLevel at_first;
+    const FirstLevelFaces first = d > 1 ? first_level_faces(hierarchy) : FirstLevelFaces{};
+    const refined::FaceLevel first_level = first.face_level();
+    if (d > 1) early = 0, at_first.level = &first_level, at_first.last_of = first.last_of;
+    limit = refined::plan_limit(hierarchy.face_level(), SubdivisionRule::CatmullClark, sdc_options(mesh),
+                                early >= 0 ? &at_first : nullptr);
+  }
   // Coords: level 1 (a quad mesh's level 0 split once), then a corner split per level.
   refined::LevelCorners corners = refined::first_uniform_corners(mesh, SubdivisionRule::CatmullClark);
   if (std::all_of(mesh.face_sizes.begin(), mesh.face_sizes.end(), [](int n) { return n == 4; }))
@@ -69,10 +77,6 @@ Surface::Surface(const ControlMesh& mesh, int d, bool p) : depth(d), project(p),
   std::vector<uint32_t>().swap(kept.vertex_corner);
   for (auto* v : {&hierarchy.out_verts, &hierarchy.out_twin}) std::vector<uint32_t>().swap(*v);
   std::vector<float>().swap(hierarchy.out_edge_sharpness);
-}
-
-std::vector<std::string> Surface::notes() const {
-  return project ? refined::semi_sharp_notes(limit, depth) : std::vector<std::string>{};
 }
 
 }  // namespace sdb::edgefriend

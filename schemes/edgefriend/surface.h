@@ -23,12 +23,12 @@ struct Surface {
   StencilTable stencils;
   SmoothWeights weights;
   refined::LimitPlan limit;  // empty without projection
+  int early = -1;            // the level (index into hierarchy.levels) the plan's early table reads; -1: none
   float origin[3];           // the control box's centre: levels are refined relative to it (float keeps its precision)
   Tessellation out;          // triangles and coords; positions and normals sized
   const Level& last() const { return hierarchy.levels.back(); }
   // The output index table of the step that writes the last level (null: none needed).
   const uint32_t* out_index() const { return hierarchy.out_index.empty() ? nullptr : hierarchy.out_index.data(); }
-  std::vector<std::string> notes() const;
 };
 
 // Throws Unsupported where the depth would not fit 32-bit indices or 60% of this machine's memory.

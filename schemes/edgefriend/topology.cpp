@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -197,6 +198,29 @@ Level refine_level(const Level& p) {
   return c;
 }
 
+// A level's mesh quads as faces, corners numbered by `out`: twins (kNone at the mesh's boundary)
+// and, where the level is creased, each corner's edge sharpness.
+void quad_faces(const Level& l, const std::function<uint32_t(uint32_t)>& out, std::vector<uint32_t>& verts,
+                std::vector<uint32_t>& twin, std::vector<float>& edge_sharpness) {
+  const uint32_t R = l.mesh_quads;
+  verts.resize(4 * uint64_t(R));
+  for (uint64_t c = 0; c < 4 * uint64_t(R); ++c) verts[c] = out(l.indices[c]);
+  twin.assign(4 * uint64_t(R), kNone);
+  if (l.creased) edge_sharpness.assign(4 * uint64_t(R), 0.0f);
+  for (uint32_t q = 0; q < l.num_quads; ++q) {
+    const Friends& f = l.friends[q];
+    const uint32_t owned[2][3] = {{4 * q + 1, f.friend0, 0}, {4 * q + 3, f.friend1, 1}};
+    for (const auto& [corner, fr, which] : owned) {
+      const uint32_t other = 4 * (fr >> 1) + 2 * (fr & 1u);
+      const float s = which ? f.sharpness1 : f.sharpness0;
+      if (q < R && (fr >> 1) < R) twin[corner] = other, twin[other] = corner;
+      if (edge_sharpness.empty()) continue;
+      if (q < R) edge_sharpness[corner] = s;
+      if ((fr >> 1) < R) edge_sharpness[other] = s;
+    }
+  }
+}
+
 // The last level's mesh quads as the output's faces (topology.h, Hierarchy).
 void lay_out(Hierarchy& h) {
   const Level& l = h.levels.back();
@@ -210,22 +234,7 @@ void lay_out(Hierarchy& h) {
       if (used[v]) h.out_index[v] = k++;
   }
   const auto out = [&](uint32_t v) { return h.out_index.empty() ? v : h.out_index[v]; };
-  h.out_verts.resize(4 * uint64_t(R));
-  for (uint64_t c = 0; c < 4 * uint64_t(R); ++c) h.out_verts[c] = out(l.indices[c]);
-  h.out_twin.assign(4 * uint64_t(R), kNone);
-  if (l.creased) h.out_edge_sharpness.assign(4 * uint64_t(R), 0.0f);
-  for (uint32_t q = 0; q < l.num_quads; ++q) {
-    const Friends& f = l.friends[q];
-    const uint32_t owned[2][3] = {{4 * q + 1, f.friend0, 0}, {4 * q + 3, f.friend1, 1}};
-    for (const auto& [corner, fr, which] : owned) {
-      const uint32_t other = 4 * (fr >> 1) + 2 * (fr & 1u);
-      const float s = which ? f.sharpness1 : f.sharpness0;
-      if (q < R && (fr >> 1) < R) h.out_twin[corner] = other, h.out_twin[other] = corner;
-      if (h.out_edge_sharpness.empty()) continue;
-      if (q < R) h.out_edge_sharpness[corner] = s;
-      if ((fr >> 1) < R) h.out_edge_sharpness[other] = s;
-    }
-  }
+  quad_faces(l, out, h.out_verts, h.out_twin, h.out_edge_sharpness);
   if (!l.vertex_sharpness.empty()) {
     h.out_vertex_sharpness.assign(h.out_vertices, 0.0f);
     for (uint32_t v = 0; v < l.num_vertices; ++v)
@@ -235,16 +244,44 @@ void lay_out(Hierarchy& h) {
 
 }  // namespace
 
-refined::FaceLevel Hierarchy::face_level() const {
+namespace {
+
+// Quads as a FaceLevel over the arrays (which outlive it).
+refined::FaceLevel quad_level(uint32_t vertices, const std::vector<uint32_t>& verts, const std::vector<uint32_t>& twin,
+                              const std::vector<float>& edge_sharpness, const std::vector<float>& vertex_sharpness) {
   refined::FaceLevel f;
   f.face_size = 4;
-  f.num_vertices = out_vertices;
-  f.verts = out_verts.data();
-  f.twin = out_twin.data();
-  f.num_corners = out_verts.size();
-  if (!out_edge_sharpness.empty()) f.edge_sharpness = [this](uint32_t c) { return out_edge_sharpness[c]; };
-  if (!out_vertex_sharpness.empty()) f.vertex_sharpness = [this](uint32_t v) { return out_vertex_sharpness[v]; };
+  f.num_vertices = vertices;
+  f.verts = verts.data();
+  f.twin = twin.data();
+  f.num_corners = verts.size();
+  if (!edge_sharpness.empty()) f.edge_sharpness = [&edge_sharpness](uint32_t c) { return edge_sharpness[c]; };
+  if (!vertex_sharpness.empty()) f.vertex_sharpness = [&vertex_sharpness](uint32_t v) { return vertex_sharpness[v]; };
   return f;
+}
+
+}  // namespace
+
+refined::FaceLevel Hierarchy::face_level() const {
+  return quad_level(out_vertices, out_verts, out_twin, out_edge_sharpness, out_vertex_sharpness);
+}
+
+FirstLevelFaces first_level_faces(const Hierarchy& h) {
+  FirstLevelFaces f;
+  const Level& l = h.levels.front();
+  quad_faces(l, [](uint32_t v) { return v; }, f.verts, f.twin, f.edge_sharpness);
+  f.vertex_sharpness = l.vertex_sharpness;
+  f.last_of.resize(l.num_vertices);
+  for (uint32_t v = 0; v < l.num_vertices; ++v) {
+    uint32_t w = v;
+    for (size_t d = 0; d + 1 < h.levels.size(); ++d) w = child_of_vertex(w, h.levels[d].num_quads);
+    f.last_of[v] = h.out_index.empty() ? w : h.out_index[w];
+  }
+  return f;
+}
+
+refined::FaceLevel FirstLevelFaces::face_level() const {
+  return quad_level(static_cast<uint32_t>(last_of.size()), verts, twin, edge_sharpness, vertex_sharpness);
 }
 
 Hierarchy refine(const ControlMesh& m, const Far::TopologyRefiner& level1, int depth) {

@@ -84,6 +84,16 @@ struct Hierarchy {
 // InputError naming the mesh for what the paper's structure does not take.
 Hierarchy refine(const ControlMesh& mesh, const OpenSubdiv::Far::TopologyRefiner& level1, int depth);
 
+// Level 1 (depth 1) as the limit plan's early level (harness/refined/limit.h, EarlyLevel): its
+// mesh quads as faces in the level's own numbers (a ghost's points are in no face), and each of
+// its vertices' number in the output at the hierarchy's depth (kNone: not output).
+struct FirstLevelFaces {
+  std::vector<uint32_t> verts, twin, last_of;
+  std::vector<float> edge_sharpness, vertex_sharpness;
+  refined::FaceLevel face_level() const;
+};
+FirstLevelFaces first_level_faces(const Hierarchy& h);
+
 // Quads and vertices of depth k (ghosts included), for size checks before anything is made.
 struct Counts {
   double quads = 0, vertices = 0;

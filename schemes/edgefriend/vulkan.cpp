@@ -5,6 +5,7 @@
 
 #include "harness/gpu/gpu.h"
 #include "harness/refined/limit_vulkan.h"
+#include "harness/refined/requests.h"
 #include "schemes/edgefriend/surface.h"
 #include "sdb_refined_shaders.h"
 #include "sdb_scheme_edgefriend_shaders.h"
@@ -58,7 +59,6 @@ class VulkanEvaluation final : public Evaluation {
     return s_.out;
   }
   size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::vector<std::string> notes() const override { return s_.notes(); }
   std::optional<GpuTimes> gpu_times() const override {
     auto passes = timer_->read_passes();
     if (!passes) return std::nullopt;
@@ -143,7 +143,7 @@ class VulkanEvaluation final : public Evaluation {
     const LevelBuffers& last = buffers_.back();
     if (s_.project) {
       limit_.emplace(*ctx_, s_.limit);
-      limit_->bind(last.points, positions_, normals_);
+      limit_->bind(last.points, buffers_[s_.early >= 0 ? s_.early : buffers_.size() - 1].points, positions_, normals_);
     } else {
       output_ = gpu::shared_compute_pipeline(*ctx_, {sdb_refined_shaders::get("points_out.comp"), {U, S}, sizeof(OutputPush), {{0, kLocalSize}}});
       output_set_ = gpu::DescriptorSet(*output_, {last.points.texels(kPoint), positions_.texels(kFloat)});
@@ -213,14 +213,8 @@ class VulkanEvaluation final : public Evaluation {
 
 }  // namespace
 
-std::optional<std::string> vulkan_unavailable() {
-  static const gpu::DeviceInfo device = gpu::probe();
-  if (!device.available) return "no Vulkan device: " + device.reason;
-  return std::nullopt;  // eight texel views a pass: within Vulkan's minimum limits
-}
-
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, int depth, bool project_to_limit) {
-  if (auto why = vulkan_unavailable()) throw gpu::Unsupported(*why);
+  if (auto why = refined::vulkan_unavailable()) throw gpu::Unsupported(*why);
   return std::make_unique<VulkanEvaluation>(mesh, depth, project_to_limit, gpu::shared_context());
 }
 

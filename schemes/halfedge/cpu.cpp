@@ -1,32 +1,23 @@
 // cpu and cpu-mt: each level's passes (halfedge/rules.h) as loops over the new points, on this
 // thread or on TBB's; then the limit projection of the last level (harness/refined/limit.h).
-#include <tbb/task_arena.h>
-
+#include "harness/refined/cpu_frame.h"
 #include "schemes/halfedge/surface.h"
 
 namespace sdb::halfedge {
 namespace {
 
-class CpuEvaluation final : public Evaluation {
+class CpuEvaluation final : public refined::CpuFrame {
  public:
   CpuEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool multithreaded, int threads, bool project)
-      : control_(mesh.positions), s_(mesh, rule, depth, project), multithreaded_(multithreaded) {
-    if (multithreaded_ && threads > 0) arena_ = std::make_unique<tbb::task_arena>(threads);
+      : CpuFrame(multithreaded, threads), control_(mesh.positions), s_(mesh, rule, depth, project) {
     points_.resize(s_.hierarchy.levels.size());
     for (size_t d = 0; d < points_.size(); ++d) points_[d].resize(s_.hierarchy.levels[d].num_vertices);
   }
 
-  void execute() override {
-    auto go = [&] { run(); };
-    if (arena_) arena_->execute(go);
-    else go();
-  }
-  const Tessellation& result() override { return s_.out; }
-  size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::vector<std::string> notes() const override { return semi_sharp_notes(s_); }
+  const Tessellation& output() const override { return s_.out; }
 
  private:
-  void run() {
+  void run() override {
     std::vector<Point3>& level0 = points_[0];
     const std::vector<uint32_t>& base = s_.hierarchy.base_vertices;
     for (size_t v = 0; v < level0.size(); ++v)
@@ -41,7 +32,8 @@ class CpuEvaluation final : public Evaluation {
     Tessellation& out = s_.out;
     if (s_.project) {
       refined::Projection p{last[0].data(), 3,
-                            {s_.origin[0], s_.origin[1], s_.origin[2]}, out.positions.data(), out.normals.data()};
+                            {s_.origin[0], s_.origin[1], s_.origin[2]}, out.positions.data(), out.normals.data(),
+                            s_.early >= 0 ? points_[s_.early][0].data() : nullptr};
       refined::project(s_.limit, p, multithreaded_);
       return;
     }
@@ -51,8 +43,6 @@ class CpuEvaluation final : public Evaluation {
 
   std::vector<Point3> control_;
   Surface s_;
-  bool multithreaded_;
-  std::unique_ptr<tbb::task_arena> arena_;
   std::vector<std::vector<Point3>> points_;
 };
 

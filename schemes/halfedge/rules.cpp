@@ -5,17 +5,16 @@
 
 #include <cmath>
 
+#include "harness/refined/float3.h"
 #include "harness/refined/vertex_rule.h"
 
 namespace sdb::halfedge {
 namespace {
 
-struct P3 {
-  float x, y, z;
-};
-inline P3 at(const Point3* p, uint32_t i) { return {p[i][0], p[i][1], p[i][2]}; }
-inline P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline P3 operator*(P3 a, float w) { return {a.x * w, a.y * w, a.z * w}; }
+using refined::P3;
+using refined::at;
+using refined::operator+;
+using refined::operator*;
 inline void store(Point3* p, uint32_t i, P3 v) { p[i] = {v.x, v.y, v.z}; }
 
 using refined::kCornerRule, refined::kCreaseRule, refined::kDartRule, refined::kSmoothRule, refined::vertex_rule;
@@ -61,44 +60,9 @@ Ring walk(const Step& s, uint32_t v, bool catmark, bool creased) {
   return r;
 }
 
-// Sdc::Scheme::ComputeVertexVertexMask on the ring: the parent's mask, blended with the child's
-// by the fractional weight where the rule changes (smooth ring weights `ring`, vertex `centre`),
-// as coefficients of the ring's sums: vertex, face sum, edge sum, parent and child crease ends.
-struct Coefficients {
-  float vertex = 0, faces = 0, edges = 0, parent_ends = 0, child_ends = 0;
-};
-// One rule's mask as coefficients; a crease's ends are the parent's or the child's sharp edges.
-Coefficients mask_of(int rule, bool parent, float centre, float ring, bool catmark) {
-  Coefficients k;
-  if (rule == kSmoothRule || rule == kDartRule) {
-    k.vertex = centre, k.edges = ring, k.faces = catmark ? ring : 0.0f;
-  } else if (rule == kCreaseRule) {
-    k.vertex = 0.75f;
-    (parent ? k.parent_ends : k.child_ends) = 0.125f;
-  } else {
-    k.vertex = 1.0f;
-  }
-  return k;
-}
-
-Coefficients vertex_mask(const Ring& r, float parent_vs, float child_vs, float centre, float ring, bool catmark) {
-  const int prule = vertex_rule(parent_vs, r.parent_sharp), crule = vertex_rule(child_vs, r.child_sharp);
-  const Coefficients parent = mask_of(prule, true, centre, ring, catmark);
-  if (prule == kSmoothRule || prule == kDartRule || crule == prule) return parent;
-  const float pw = refined::parent_mask_weight(r.transitions, r.transition_sum, parent_vs, child_vs);
-  const float cw = 1.0f - pw;
-  // CombineVertexVertexMasks: the parent's weights times pw plus the child's times cw.
-  const Coefficients child = mask_of(crule, false, centre, ring, catmark);
-  Coefficients k;
-  k.vertex = pw * parent.vertex + cw * child.vertex;
-  k.faces = pw * parent.faces + cw * child.faces;
-  k.edges = pw * parent.edges + cw * child.edges;
-  k.parent_ends = pw * parent.parent_ends;
-  k.child_ends = cw * child.child_ends;
-  return k;
-}
-
-P3 apply(const Coefficients& k, const Ring& r, P3 centre) {
+// The vertex point: Sdc::Scheme::ComputeVertexVertexMask's coefficients (refined::vertex_point_mask)
+// on the ring's sums, in the shader's order.
+P3 apply(const refined::RuleMask& k, const Ring& r, P3 centre) {
   return ((r.faces * k.faces + r.edges * k.edges) + (r.parent_ends * k.parent_ends + r.child_ends * k.child_ends)) +
          centre * k.vertex;
 }
@@ -114,7 +78,9 @@ void vertex_points(const Step& s, uint32_t first, uint32_t last, bool catmark) {
     const uint32_t n = r.num_faces < uint32_t(kMaxValence) ? r.num_faces : uint32_t(kMaxValence);
     const float pvs = s.creased ? p.sharpness_of_vertex(v) : 0.0f;
     const float cvs = s.creased ? s.c->sharpness_of_vertex(v) : 0.0f;
-    const Coefficients k = vertex_mask(r, pvs, cvs, s.weights->vertex[n], s.weights->ring[n], catmark);
+    const float centre = s.weights->vertex[n], ring = s.weights->ring[n];
+    const refined::RuleMask k = refined::vertex_point_mask({centre, ring, catmark ? ring : 0.0f}, pvs, r.parent_sharp, cvs,
+                                                           r.child_sharp, r.transitions, r.transition_sum);
     store(s.dst, v, apply(k, r, at(s.src, v)));
   }
 }

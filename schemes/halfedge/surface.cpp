@@ -3,8 +3,10 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <numeric>
 
 #include "harness/core/errors.h"
+#include "harness/mesh/osd_topology.h"
 #include "harness/refined/coords.h"
 
 namespace sdb::halfedge {
@@ -36,11 +38,22 @@ Surface::Surface(const ControlMesh& mesh, SubdivisionRule r, int d, bool p)
   const Level& l = last();
   const uint32_t n = rule == SubdivisionRule::Loop ? 3 : 4;
   if (l.face_size != n) throw std::logic_error("halfedge: the last level's faces are not all of one size");
-  if (project) limit = refined::plan_limit(l.face_level(), rule);
-  // Coords: the first level of one face size (level 0, or level 1 of a Catmull-Clark mesh with
-  // other faces), then a corner split per level.
-  refined::LevelCorners corners = refined::first_uniform_corners(mesh, rule);
+  // The first level of one face size (level 0, or level 1 of a Catmull-Clark mesh with other
+  // faces): its vertices keep their numbers on every level after it.
   const int first = hierarchy.levels[0].face_size == n ? 0 : 1;
+  if (project) {
+    refined::EarlyLevel at_first;
+    const refined::FaceLevel first_level = hierarchy.levels[first].face_level();
+    if (first < d) {
+      early = first;
+      at_first.level = &first_level;
+      at_first.last_of.resize(first_level.num_vertices);
+      std::iota(at_first.last_of.begin(), at_first.last_of.end(), 0u);
+    }
+    limit = refined::plan_limit(l.face_level(), rule, sdc_options(mesh), early >= 0 ? &at_first : nullptr);
+  }
+  // Coords: the first level of one face size, then a corner split per level.
+  refined::LevelCorners corners = refined::first_uniform_corners(mesh, rule);
   for (int k = first; k < d; ++k) corners = refined::split_corners(corners, n);
   out.coords = refined::vertex_coords(corners, l.vert.data(), l.num_vertices);
   out.triangles = refined::level_triangles(l.vert.data(), l.num_halfedges, n);
@@ -50,10 +63,6 @@ Surface::Surface(const ControlMesh& mesh, SubdivisionRule r, int d, bool p)
   // the limit from the plan's rings): free them.
   Level& kept = hierarchy.levels.back();
   for (auto* v : {&kept.twin, &kept.vert, &kept.edge, &kept.edge_corner, &kept.vertex_corner}) std::vector<uint32_t>().swap(*v);
-}
-
-std::vector<std::string> semi_sharp_notes(const Surface& s) {
-  return s.project ? refined::semi_sharp_notes(s.limit, s.depth) : std::vector<std::string>{};
 }
 
 }  // namespace sdb::halfedge

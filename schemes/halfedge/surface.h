@@ -21,6 +21,7 @@ struct Surface {
   Hierarchy hierarchy;
   SmoothWeights weights;
   refined::LimitPlan limit;  // empty without projection
+  int early = -1;            // the level whose points the plan's early table reads (-1: none)
   float origin[3];           // the control box's centre: levels are refined relative to it (float keeps its precision)
   Tessellation out;          // triangles and coords; positions and normals sized
   // The last level: its counts and sharpness (its halfedges are freed once the output is laid out).
@@ -30,12 +31,6 @@ struct Surface {
 // Throws Unsupported where the request's levels would not fit 32-bit indices or this machine's
 // memory (`bytes_per_vertex_on_device`: a GPU backend's own buffers, 0 for the CPU).
 void check_size(const ControlMesh& mesh, SubdivisionRule rule, int depth);
-
-// The note a row carries where a semi-sharp crease outlasts the depth: Far's limit masks, which
-// the projection applies, take the sharpness left as infinite there, so the projected points are
-// not on the limit surface (issue 39 part A's rule, projecting from a level deep enough, is where
-// this goes once it lands). None where none is left.
-std::vector<std::string> semi_sharp_notes(const Surface& s);
 
 // cpu and cpu-mt (TBB, `threads` 0: TBB's default): each level's passes as parallel loops.
 std::unique_ptr<Evaluation> make_cpu_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,

@@ -5,6 +5,7 @@
 
 #include "harness/gpu/gpu.h"
 #include "harness/refined/limit_vulkan.h"
+#include "harness/refined/requests.h"
 #include "schemes/halfedge/surface.h"
 #include "sdb_refined_shaders.h"
 #include "sdb_scheme_halfedge_shaders.h"
@@ -63,7 +64,6 @@ class VulkanEvaluation final : public Evaluation {
     return s_.out;
   }
   size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::vector<std::string> notes() const override { return semi_sharp_notes(s_); }
   std::optional<GpuTimes> gpu_times() const override {
     auto passes = timer_->read_passes();
     if (!passes) return std::nullopt;
@@ -163,7 +163,7 @@ class VulkanEvaluation final : public Evaluation {
     const LevelBuffers& last = buffers_.back();  // its points only
     if (s_.project) {
       limit_.emplace(*ctx_, s_.limit);
-      limit_->bind(last.points, positions_, normals_);
+      limit_->bind(last.points, buffers_[s_.early >= 0 ? s_.early : buffers_.size() - 1].points, positions_, normals_);
     } else {
       output_ = gpu::shared_compute_pipeline(
           *ctx_, {sdb_refined_shaders::get("points_out.comp"), {gpu::Binding::UniformTexelBuffer, gpu::Binding::StorageTexelBuffer},
@@ -238,15 +238,9 @@ class VulkanEvaluation final : public Evaluation {
 
 }  // namespace
 
-std::optional<std::string> vulkan_unavailable() {
-  static const gpu::DeviceInfo device = gpu::probe();
-  if (!device.available) return "no Vulkan device: " + device.reason;
-  return std::nullopt;  // fourteen texel views a pass: within Vulkan's minimum limits
-}
-
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,
                                                    bool project_to_limit) {
-  if (auto why = vulkan_unavailable()) throw gpu::Unsupported(*why);
+  if (auto why = refined::vulkan_unavailable()) throw gpu::Unsupported(*why);
   return std::make_unique<VulkanEvaluation>(mesh, rule, depth, project_to_limit, gpu::shared_context());
 }
 

@@ -3,15 +3,10 @@
 #pragma once
 
 #include <memory>
-#include <optional>
-#include <string>
 
 #include "harness/core/scheme.h"
 
 namespace sdb::halfedge {
-
-// Why there is no Vulkan device to run on, or nullopt.
-std::optional<std::string> vulkan_unavailable();
 
 // Throws Unsupported where the device's limits or memory do not take the request.
 std::unique_ptr<Evaluation> make_vulkan_evaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth,
