@@ -78,7 +78,13 @@ def main():
 
     step("configure", ["cmake", "-S", source, "-B", build, f"-DSUBDIVBENCH_SCHEME_DIRS={outside}",
                        "-DSUBDIVBENCH_IN_TREE_SCHEMES=peers"] + args.cmake_arg)
-    step("build", ["cmake", "--build", build, "-j", args.jobs, "--target", "subdivbench", f"{FAMILY}_test"])
+    # With ccache as the launcher (scripts/build makes it so), as scripts/build hashes: paths
+    # relative to a folder holding the source and both builds, and depend mode.
+    ccache_env = dict(os.environ)
+    ccache_env.setdefault("CCACHE_BASEDIR", os.path.commonpath([source, work]))
+    ccache_env.setdefault("CCACHE_DEPEND", "1")
+    step("build", ["cmake", "--build", build, "-j", args.jobs, "--target", "subdivbench", f"{FAMILY}_test"],
+         env=ccache_env)
 
     out = step("conformance suite", ["ctest", "--test-dir", build, "-R", f"^{FAMILY}_test", "--output-on-failure"])
     check("100% tests passed" in out and "No tests were found" not in out,
