@@ -9,6 +9,7 @@
 
 #include "harness/mesh/osd_topology.h"
 #include "schemes/mipgh/regular_patches.h"
+#include "schemes/mipgh/tile.h"
 
 namespace sdb::mipgh {
 namespace {
@@ -148,13 +149,23 @@ std::vector<float> compose(const Ring& ring, const Sdc::Options& options, int si
 
 thread_local std::vector<V3> t_differences;
 
-// Unit T1 x T2 of node (i, j) from the 1-ring's differences.
-V3 node_normal(const float* w, int size, const V3* d) {
-  V3 a{0, 0, 0}, b{0, 0, 0};
-  for (int c = 1; c < size; ++c) a = a + w[c] * d[c], b = b + w[size + c] * d[c];
-  const V3 x = cross(a, b);
-  const float inv = 1.0f / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z + 1e-37f);
-  return inv * x;
+// Type::by_point's layout of level sigma's node weights `w` (the interior, then the sides).
+void lay_out_by_point(const std::vector<float>& w, int size, int sigma, std::vector<float>& out, size_t& pitch) {
+  const int n = (1 << sigma) + 1, inner = n - 2;
+  std::vector<RowColumn> nodes;
+  for (int i = 1; i + 1 < n; ++i)
+    for (int j = 1; j + 1 < n; ++j) nodes.push_back({i, j});
+  for (int side = 0; side < 4; ++side)
+    for (int a = 1; a <= inner; ++a) nodes.push_back(side_ij(4, side, n, a, 0));
+  pitch = (nodes.size() + 7 + 7) & ~size_t(7);  // tile::weighted_normals reads up to 8 past a run
+  out.assign(2 * size_t(size - 1) * pitch, 0.0f);
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    const float* node = &w[(size_t(nodes[k].i) * n + size_t(nodes[k].j)) * 2 * size_t(size)];
+    for (int c = 1; c < size; ++c) {
+      out[2 * size_t(c - 1) * pitch + k] = node[c];
+      out[(2 * size_t(c - 1) + 1) * pitch + k] = node[size + c];
+    }
+  }
 }
 
 }  // namespace
@@ -174,7 +185,11 @@ FacetMasks compose_facet_masks(const ControlMesh& mesh, const DAtlas& atlas, con
       FacetMasks::Type t;
       t.size = int(ring.vertices.size());
       t.weights.resize(size_t(depth) + 1);
-      for (int sigma = 1; sigma <= depth; ++sigma) t.weights[size_t(sigma)] = compose(ring, options, sigma);
+      t.by_point.resize(size_t(depth) + 1), t.pitch.assign(size_t(depth) + 1, 0);
+      for (int sigma = 1; sigma <= depth; ++sigma) {
+        t.weights[size_t(sigma)] = compose(ring, options, sigma);
+        lay_out_by_point(t.weights[size_t(sigma)], t.size, sigma, t.by_point[size_t(sigma)], t.pitch[size_t(sigma)]);
+      }
       out.types.push_back(std::move(t));
     }
     out.facet[size_t(f)] = int32_t(out.facets.size());
@@ -200,23 +215,18 @@ const V3* differences(const FacetMasks& m, const FacetMasks::Facet& f, int size,
 void FacetMasks::interior_normals(int f, int sigma, const V3* base, V3* out) const {
   const Facet& facet_ = facets[size_t(facet[size_t(f)])];
   const Type& t = types[facet_.type];
-  const V3* d = differences(*this, facet_, t.size, base);
-  const int n = (1 << sigma) + 1;
-  const float* w = t.weights[size_t(sigma)].data();
-  for (int i = 1; i + 1 < n; ++i)
-    for (int j = 1; j + 1 < n; ++j) *out++ = node_normal(w + (size_t(i) * n + size_t(j)) * 2 * size_t(t.size), t.size, d);
+  const int inner = (1 << sigma) - 1;
+  tile::weighted_normals(t.by_point[size_t(sigma)].data(), t.pitch[size_t(sigma)],
+                         differences(*this, facet_, t.size, base) + 1, t.size - 1, inner * inner, out);
 }
 
 void FacetMasks::side_normals(int f, int sigma, int side, const V3* base, V3* out) const {
   const Facet& facet_ = facets[size_t(facet[size_t(f)])];
   const Type& t = types[facet_.type];
-  const V3* d = differences(*this, facet_, t.size, base);
-  const int n = (1 << sigma) + 1;
-  const float* w = t.weights[size_t(sigma)].data();
-  for (int a = 1; a + 1 < n; ++a) {
-    const RowColumn p = side_ij(4, side, n, a, 0);
-    out[a - 1] = node_normal(w + (size_t(p.i) * n + size_t(p.j)) * 2 * size_t(t.size), t.size, d);
-  }
+  const int inner = (1 << sigma) - 1;
+  tile::weighted_normals(t.by_point[size_t(sigma)].data() + size_t(inner) * size_t(inner + side),
+                         t.pitch[size_t(sigma)], differences(*this, facet_, t.size, base) + 1, t.size - 1, inner,
+                         out);
 }
 
 }  // namespace sdb::mipgh

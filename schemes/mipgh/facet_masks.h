@@ -37,6 +37,12 @@ struct FacetMasks {
     // Per level sigma, per grid node (i, j) row-major over its n x n grid: `size` weights in T1,
     // then `size` in T2 (the corners' unused: the D-vertices' tangents are vertex_tangents.h's).
     std::vector<std::vector<float>> weights;
+    // The same per level, laid out for the per-frame sums (tile::weighted_normals): by control
+    // point 1 .. size - 1 (the first's difference is zero), a row of T1 weights then one of T2,
+    // `pitch[sigma]` floats each, over the nodes in the order they are written: the interior
+    // row-major, then sides 0 .. 3 (a = 1 .. n - 2 each).
+    std::vector<std::vector<float>> by_point;
+    std::vector<size_t> pitch;
   };
   std::vector<Type> types;
 

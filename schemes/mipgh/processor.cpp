@@ -443,12 +443,16 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
   // A regular D-facet's normals from its patch on level 0 (regular_patches.h), straight into the
   // tile's normal planes; the stencils then give the positions alone.
+  // Or from its 1-ring's composed masks (facet_masks.h), written over the normals after assembly
+  // (the planes' normals are then whatever the last tile left, never read).
   const bool patch = n >= 3 && base && base->patches && base->patches->regular(facets.first);
-  if (patch) {
+  const bool masked = !patch && n >= 3 && base && base->masks && base->masks->has(facets.first);
+  if (patch || masked) {
     tile::quad_limit_positions(t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]),
                                at(s.v[0][1]), at(s.v[0][2]));
-    base->patches->interior_planes(facets.first, sigma, base->points, w, s.normal[0].data(), s.normal[1].data(),
-                                   s.normal[2].data());
+    if (patch)
+      base->patches->interior_planes(facets.first, sigma, base->points, w, s.normal[0].data(), s.normal[1].data(),
+                                     s.normal[2].data());
   } else {
     (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
         t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]),
@@ -456,9 +460,7 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   }
   auto assemble = [&](int f, bool turned) {
     tile::assemble_limit(s, n, w, l.s, quad, turned, offset, position + l.interior(f), normal + l.interior(f));
-    // Or from its 1-ring's composed masks (facet_masks.h).
-    if (!patch && n >= 3 && base && base->masks && base->masks->has(f))
-      base->masks->interior_normals(f, sigma, base->points, normal + l.interior(f));
+    if (masked) base->masks->interior_normals(f, sigma, base->points, normal + l.interior(f));
   };
   assemble(facets.first, false);
   if (facets.second >= 0) assemble(facets.second, true);
@@ -466,29 +468,27 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
 
 void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
                                  const BaseLevel* base) const {
-  project_edge_nodes(sigma, e, src, position, normal, offset);
   // A D-edge of a D-facet whose normals come from level 0 (regular_patches.h, facet_masks.h): from
-  // the major's patch or masks, else the minor's, whose side runs the other way.
+  // the major's patch or masks, else the minor's, whose side runs the other way; the stencils then
+  // give its positions alone.
   const LevelLayout& l = lod_.layout(sigma);
-  if (!base || l.s == 0) return;
   const DEdge& d = atlas_.edges[e];
-  V3* out = normal + l.edge_node(e, 0);
-  auto from = [&](const HalfEdge& h) {
-    if (base->patches && base->patches->regular(h.facet)) {
-      base->patches->side_normals(h.facet, sigma, h.side, base->points, out);
-      return true;
-    }
-    if (base->masks && base->masks->has(h.facet)) {
-      base->masks->side_normals(h.facet, sigma, h.side, base->points, out);
-      return true;
-    }
-    return false;
+  auto from_base = [&](const HalfEdge& h) {
+    return (base->patches && base->patches->regular(h.facet)) || (base->masks && base->masks->has(h.facet));
   };
-  if (!from(d.major) && !d.minor.null() && from(d.minor)) std::reverse(out, out + l.s);
+  const bool major = base && l.s > 0 && from_base(d.major);
+  const bool minor = base && l.s > 0 && !major && !d.minor.null() && from_base(d.minor);
+  project_edge_nodes(sigma, e, src, position, normal, offset, !(major || minor));
+  if (!major && !minor) return;
+  const HalfEdge& h = major ? d.major : d.minor;
+  V3* out = normal + l.edge_node(e, 0);
+  if (base->patches && base->patches->regular(h.facet)) base->patches->side_normals(h.facet, sigma, h.side, base->points, out);
+  else base->masks->side_normals(h.facet, sigma, h.side, base->points, out);
+  if (minor) std::reverse(out, out + l.s);
 }
 
-void MeshProcessor::project_edge_nodes(int sigma, int e, const V3* src, V3* position, V3* normal,
-                                       const V3* offset) const {
+void MeshProcessor::project_edge_nodes(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
+                                       bool normals) const {
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
   if (!fast_edge(e)) {
@@ -511,7 +511,8 @@ void MeshProcessor::project_edge_nodes(int sigma, int e, const V3* src, V3* posi
       if (s.quad_major) {  // counter-clockwise seen from the major D-facet, as strip_disk orders them
         const V3 ring[4] = {A[t + 1], B[t], A[t - 1], C[t]};
         const V3 diag[4] = {B[t + 1], B[t - 1], C[t - 1], C[t + 1]};
-        catmark_limit_regular(A[t], ring, diag, p, q);
+        if (normals) catmark_limit_regular(A[t], ring, diag, p, q);
+        else p = catmark_limit_position(A[t], ring, diag);
       } else {
         const V3 ring[6] = {A[t + 1], B[t], B[t - 1], A[t - 1], C[t - 1], C[t]};
         loop_limit_regular(A[t], ring, p, q);
@@ -524,9 +525,13 @@ void MeshProcessor::project_edge_nodes(int sigma, int e, const V3* src, V3* posi
   const bool quad = load_strip_rows(sigma, e, src);
   const tile::Tile& rows = t_strip_rows;
   tile::Planes& s = t_strip_planes;
-  (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
-      rows.plane(0) + n, rows.plane(1) + n, rows.plane(2) + n, n, n, s.v[0][0].data(), s.v[0][1].data(),
-      s.v[0][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data());
+  if (quad && !normals)  // the planes' normals then whatever the last strip left, overwritten by the caller
+    tile::quad_limit_positions(rows.plane(0) + n, rows.plane(1) + n, rows.plane(2) + n, n, n, s.v[0][0].data(),
+                               s.v[0][1].data(), s.v[0][2].data());
+  else
+    (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
+        rows.plane(0) + n, rows.plane(1) + n, rows.plane(2) + n, n, n, s.v[0][0].data(), s.v[0][1].data(),
+        s.v[0][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data());
   const float *px = s.v[0][0].data(), *py = s.v[0][1].data(), *pz = s.v[0][2].data();
   const float *nx = s.normal[0].data(), *ny = s.normal[1].data(), *nz = s.normal[2].data();
   V3 *p = position + l.edge_node(e, 0), *q = normal + l.edge_node(e, 0);

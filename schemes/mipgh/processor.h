@@ -114,8 +114,10 @@ class MeshProcessor {
   const int32_t* side_rows(int sigma, int size, int side, int depth) const;
   void project_facets(int sigma, TileFacets facets, const V3* src, V3* position, V3* normal, const V3* offset,
                       const BaseLevel* base) const;
-  // The limit of D-edge e's nodes by the stencils and masks of level sigma alone.
-  void project_edge_nodes(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset) const;
+  // The limit of D-edge e's nodes by the stencils and masks of level sigma alone; without
+  // `normals` (taken from level 0 instead) the normals of a tag-free quad strip are left unwritten.
+  void project_edge_nodes(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
+                          bool normals) const;
   void project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
                     const BaseLevel* base) const;
   void project_vertex(int sigma, int v, const V3* src, V3* position, V3* normal, const V3* offset,

@@ -115,62 +115,44 @@ void RegularPatches::interior_planes(int f, int sigma, const V3* base, int strid
   // n - 1 is the side's, in the tile but never read from these planes): at n = 17, 15 columns left
   // seven to a scalar tail.
   const int n = (1 << sigma) + 1, columns = std::min(((n - 2) + 7) & ~7, n - 1);
-  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
-  // Per net row a and coordinate k, the patch along u (value) and d/du (slope) at columns 1 .. n - 2.
   thread_local std::vector<float> t_rows;
   t_rows.resize(24 * size_t(columns));
-  const float* value[4][3];
-  const float* slope[4][3];
-  for (int a = 0; a < 4; ++a)
-    for (int k = 0; k < 3; ++k) {
-      float* v = &t_rows[size_t((a * 3 + k) * 2) * size_t(columns)];
-      float* s = v + columns;
-      auto coordinate = [&](const V3& p) { return k == 0 ? p.x : k == 1 ? p.y : p.z; };
-      const float r0 = coordinate(D[4 * a]), r1 = coordinate(D[4 * a + 1]), r2 = coordinate(D[4 * a + 2]),
-                  r3 = coordinate(D[4 * a + 3]);
-      tile::cubic_row(by_function[size_t(sigma)].data() + 1, n, r0, r1, r2, r3, columns, v, s);
-      value[a][k] = v, slope[a][k] = s;
-    }
-  for (int i = 1; i + 1 < n; ++i) {
-    const size_t row = size_t(i) * size_t(stride) + 1;
-    tile::sum_normals(value, slope, B + 4 * i, dB + 4 * i, columns, nx + row, ny + row, nz + row);
-  }
+  tile::patch_normals(by_function[size_t(sigma)].data() + 1, n, D, basis[size_t(sigma)].data(),
+                      derivative[size_t(sigma)].data(), n - 2, columns, stride, t_rows.data(), nx, ny, nz);
 }
 
 void RegularPatches::side_normals(int f, int sigma, int side, const V3* base, V3* out) const {
-  const int n = (1 << sigma) + 1;
-  if (n < 3) return;
+  const int n = (1 << sigma) + 1, count = n - 2;
+  if (count < 1) return;
+  // Side k's nodes run along one row (sides 0, 2) or column (1, 3) of the grid (lod.h's side_ij),
+  // forwards (0, 1) or backwards. The net reduced once to that line (four points for the patch
+  // along it, four for its derivative across), then two four-term sums per node; along a column
+  // u and v trade places (T2 x T1: the normal turned round).
+  const bool row = side == 0 || side == 2, backwards = side >= 2;
   const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
   const V3 c = base[q[5]];
-  V3 D[16];
-  for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
-  const float *B = basis[size_t(sigma)].data(), *dB = derivative[size_t(sigma)].data();
-  // Side k's nodes run along one row (sides 0, 2) or column (1, 3) of the grid (lod.h's side_ij):
-  // the patch's cubic there, fixed in the other parameter, as four points per tangent.
-  const RowColumn first = side_ij(4, side, n, 0, 0);
-  const bool row = side == 0 || side == 2;
-  const int fixed = row ? first.i : first.j;
-  const float *b = B + 4 * fixed, *d = dB + 4 * fixed;
-  V3 along[4], across[4];  // T1 = sum B'(u) along (rows), T2 = sum B(u) across; or by columns
-  for (int k = 0; k < 4; ++k) {
-    V3 x{0, 0, 0}, y{0, 0, 0};
-    for (int m = 0; m < 4; ++m) {
-      const V3 p = row ? D[4 * m + k] : D[4 * k + m];  // row: net column k over rows m; column: net row k
-      x = x + b[m] * p, y = y + d[m] * p;
-    }
-    along[k] = x, across[k] = y;
+  const int fixed = side == 0 || side == 3 ? 0 : n - 1;
+  const float *b = basis[size_t(sigma)].data() + 4 * fixed, *d = derivative[size_t(sigma)].data() + 4 * fixed;
+  V3 along[4], across[4];
+  for (int k = 0; k < 4; ++k) {  // line k: net column k across the rows (a row side), or net row k
+    V3 p[4];
+    for (int m = 0; m < 4; ++m) p[m] = base[q[row ? 4 * m + k : 4 * k + m]] - c;
+    along[k] = (b[0] * p[0] + b[1] * p[1]) + (b[2] * p[2] + b[3] * p[3]);
+    across[k] = (d[0] * p[0] + d[1] * p[1]) + (d[2] * p[2] + d[3] * p[3]);
   }
-  for (int a = 1; a + 1 < n; ++a) {
-    const RowColumn p = side_ij(4, side, n, a, 0);
-    const int t = row ? p.j : p.i;
-    const float *bt = B + 4 * t, *dt = dB + 4 * t;
-    V3 t1{0, 0, 0}, t2{0, 0, 0};
-    for (int k = 0; k < 4; ++k) {
-      if (row) t1 = t1 + dt[k] * along[k], t2 = t2 + bt[k] * across[k];
-      else t1 = t1 + bt[k] * across[k], t2 = t2 + dt[k] * along[k];
-    }
-    const V3 x = cross(t1, t2);
-    out[a - 1] = (1.0f / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z + 1e-37f)) * x;
+  // Points 1 .. n - 2, rounded up to whole SIMD vectors where the table has room (as interior_planes).
+  const int points = std::min((count + 7) & ~7, n - 1);
+  constexpr int kOnStack = 64;
+  float stack[3 * kOnStack];
+  thread_local std::vector<float> t_normals;
+  if (points > kOnStack) t_normals.resize(3 * size_t(points));
+  float* nx = points > kOnStack ? t_normals.data() : stack;
+  float *ny = nx + points, *nz = ny + points;
+  tile::line_normals(by_function[size_t(sigma)].data() + 1, n, along, across, points, nx, ny, nz);
+  const float sign = row ? 1.0f : -1.0f;
+  for (int a = 0; a < count; ++a) {
+    const int t = backwards ? count - 1 - a : a;
+    out[a] = {sign * nx[t], sign * ny[t], sign * nz[t]};
   }
 }
 

@@ -153,8 +153,11 @@ V3 catmark_vertex_smooth(const VertexDisk& disk);
 
 // Limit projection of a tag-free regular node: Catmull-Clark's (16, 4, 1)/36 and Figure 21's
 // derivative stencils; Loop's 1/2 and 1/12 per neighbour and its regular tangent masks.
+inline V3 catmark_limit_position(V3 c, const V3 e[4], const V3 d[4]) {
+  return (1.0f / 36) * (16.0f * c + 4.0f * ((e[0] + e[2]) + (e[1] + e[3])) + ((d[0] + d[2]) + (d[1] + d[3])));
+}
 inline void catmark_limit_regular(V3 c, const V3 e[4], const V3 d[4], V3& position, V3& normal) {
-  position = (1.0f / 36) * (16.0f * c + 4.0f * ((e[0] + e[2]) + (e[1] + e[3])) + ((d[0] + d[2]) + (d[1] + d[3])));
+  position = catmark_limit_position(c, e, d);
   // Figure 21: T1 towards e0, T2 towards e1; d[i] lies between e[i] and e[i + 1].
   const V3 t1 = 4.0f * (e[0] - e[2]) + ((d[0] + d[3]) - (d[1] + d[2]));
   const V3 t2 = 4.0f * (e[1] - e[3]) + ((d[0] + d[1]) - (d[2] + d[3]));

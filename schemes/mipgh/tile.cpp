@@ -92,8 +92,12 @@ SDB_TILE_CLONES void quad_limit_positions(const float* __restrict X, const float
   for (int L = 0; L < count; ++L) px[L] = quad_limit_at(X, w, L).pos, py[L] = quad_limit_at(Y, w, L).pos, pz[L] = quad_limit_at(Z, w, L).pos;
 }
 
-SDB_TILE_CLONES void cubic_row(const float* __restrict f, int n, float r0, float r1, float r2, float r3, int count,
-                               float* __restrict v, float* __restrict s) {
+namespace {
+
+// A cubic's value and slope at `count` points from its four coefficients r: v = sum_m B_m r_m,
+// s = sum_m B'_m r_m, B_m at f[m * n + k] and B'_m at f[(4 + m) * n + k] for point k.
+[[gnu::always_inline]] inline void cubic_row(const float* __restrict f, int n, float r0, float r1, float r2, float r3,
+                                             int count, float* __restrict v, float* __restrict s) {
   const float *__restrict b0 = f, *__restrict b1 = f + n, *__restrict b2 = f + 2 * n, *__restrict b3 = f + 3 * n;
   const float *__restrict d0 = f + 4 * n, *__restrict d1 = f + 5 * n, *__restrict d2 = f + 6 * n, *__restrict d3 = f + 7 * n;
   for (int k = 0; k < count; ++k) {
@@ -102,9 +106,11 @@ SDB_TILE_CLONES void cubic_row(const float* __restrict f, int n, float r0, float
   }
 }
 
-SDB_TILE_CLONES void sum_normals(const float* const (&value)[4][3], const float* const (&slope)[4][3], const float* b,
-                                 const float* d, int count, float* __restrict nx, float* __restrict ny,
-                                 float* __restrict nz) {
+// Unit normals (T1 x T2) of `count` nodes from tangents that are sums over four rows: T1 = sum_a
+// b[a] slope_a, T2 = sum_a d[a] value_a, per coordinate k the rows value[a][k], slope[a][k].
+[[gnu::always_inline]] inline void sum_normals(const float* const (&value)[4][3], const float* const (&slope)[4][3],
+                                               const float* b, const float* d, int count, float* __restrict nx,
+                                               float* __restrict ny, float* __restrict nz) {
   const float b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], d0 = d[0], d1 = d[1], d2 = d[2], d3 = d[3];
   const float *__restrict sx0 = slope[0][0], *__restrict sx1 = slope[1][0], *__restrict sx2 = slope[2][0], *__restrict sx3 = slope[3][0];
   const float *__restrict sy0 = slope[0][1], *__restrict sy1 = slope[1][1], *__restrict sy2 = slope[2][1], *__restrict sy3 = slope[3][1];
@@ -121,6 +127,69 @@ SDB_TILE_CLONES void sum_normals(const float* const (&value)[4][3], const float*
     const float cy = (d0 * vy0[j] + d1 * vy1[j]) + (d2 * vy2[j] + d3 * vy3[j]);
     const float cz = (d0 * vz0[j] + d1 * vz1[j]) + (d2 * vz2[j] + d3 * vz3[j]);
     unit_cross(ax, ay, az, cx, cy, cz, nx[j], ny[j], nz[j]);
+  }
+}
+
+}  // namespace
+
+SDB_TILE_CLONES void patch_normals(const float* f, int n, const V3 (&net)[16], const float* b, const float* d,
+                                   int rows, int columns, int stride, float* scratch, float* nx, float* ny,
+                                   float* nz) {
+  const float* value[4][3];
+  const float* slope[4][3];
+  for (int a = 0; a < 4; ++a) {
+    const V3 *r = &net[4 * a];
+    float* v = scratch + size_t(a * 6) * size_t(columns);
+    cubic_row(f, n, r[0].x, r[1].x, r[2].x, r[3].x, columns, v, v + columns);
+    cubic_row(f, n, r[0].y, r[1].y, r[2].y, r[3].y, columns, v + 2 * columns, v + 3 * columns);
+    cubic_row(f, n, r[0].z, r[1].z, r[2].z, r[3].z, columns, v + 4 * columns, v + 5 * columns);
+    for (int k = 0; k < 3; ++k) value[a][k] = v + 2 * k * columns, slope[a][k] = v + (2 * k + 1) * columns;
+  }
+  for (int i = 1; i <= rows; ++i) {
+    const size_t at = size_t(i) * size_t(stride) + 1;
+    sum_normals(value, slope, b + 4 * i, d + 4 * i, columns, nx + at, ny + at, nz + at);
+  }
+}
+
+// Eight nodes' sums in one vector each (GCC's generic vectors: one AVX register, or two SSE ones),
+// spelled out: left to itself the compiler vectorises across the terms instead.
+using F8 = float __attribute__((vector_size(32)));
+
+SDB_TILE_CLONES void weighted_normals(const float* __restrict w, size_t pitch, const V3* __restrict p, int terms,
+                                      int count, V3* __restrict out) {
+  constexpr int kLanes = 8;
+  for (int first = 0; first < count; first += kLanes) {
+    F8 ax{}, ay{}, az{}, bx{}, by{}, bz{};
+    for (int c = 0; c < terms; ++c) {
+      const float* u = w + 2 * size_t(c) * pitch + size_t(first);
+      F8 s, t;
+      __builtin_memcpy(&s, u, sizeof s), __builtin_memcpy(&t, u + pitch, sizeof t);
+      const float x = p[c].x, y = p[c].y, z = p[c].z;
+      ax += s * x, ay += s * y, az += s * z;
+      bx += t * x, by += t * y, bz += t * z;
+    }
+    float nx[kLanes], ny[kLanes], nz[kLanes];
+    for (int l = 0; l < kLanes; ++l) unit_cross(ax[l], ay[l], az[l], bx[l], by[l], bz[l], nx[l], ny[l], nz[l]);
+    const int lanes = count - first < kLanes ? count - first : kLanes;
+    for (int l = 0; l < lanes; ++l) out[first + l] = {nx[l], ny[l], nz[l]};
+  }
+}
+
+SDB_TILE_CLONES void line_normals(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
+                                  int count, float* __restrict nx, float* __restrict ny, float* __restrict nz) {
+  const float *__restrict b0 = f, *__restrict b1 = f + n, *__restrict b2 = f + 2 * n, *__restrict b3 = f + 3 * n;
+  const float *__restrict d0 = f + 4 * n, *__restrict d1 = f + 5 * n, *__restrict d2 = f + 6 * n, *__restrict d3 = f + 7 * n;
+  const V3 P0 = along[0], P1 = along[1], P2 = along[2], P3 = along[3];
+  const V3 Q0 = across[0], Q1 = across[1], Q2 = across[2], Q3 = across[3];
+#pragma GCC ivdep
+  for (int k = 0; k < count; ++k) {
+    const float ax = (d0[k] * P0.x + d1[k] * P1.x) + (d2[k] * P2.x + d3[k] * P3.x);
+    const float ay = (d0[k] * P0.y + d1[k] * P1.y) + (d2[k] * P2.y + d3[k] * P3.y);
+    const float az = (d0[k] * P0.z + d1[k] * P1.z) + (d2[k] * P2.z + d3[k] * P3.z);
+    const float cx = (b0[k] * Q0.x + b1[k] * Q1.x) + (b2[k] * Q2.x + b3[k] * Q3.x);
+    const float cy = (b0[k] * Q0.y + b1[k] * Q1.y) + (b2[k] * Q2.y + b3[k] * Q3.y);
+    const float cz = (b0[k] * Q0.z + b1[k] * Q1.z) + (b2[k] * Q2.z + b3[k] * Q3.z);
+    unit_cross(ax, ay, az, cx, cy, cz, nx[k], ny[k], nz[k]);
   }
 }
 
