@@ -39,6 +39,13 @@ MeasureOptions options_from(const json& j) {
   return o;
 }
 
+}  // namespace
+
+std::string options_line(const MeasureOptions& o) { return one_line(options_json(o)); }
+MeasureOptions options_from_line(const std::string& line) { return options_from(json::parse(line)); }
+
+namespace {
+
 json run_json(const RunSpec& spec) {
   return {{"scheme", spec.scheme}, {"mesh", spec.mesh}, {"backend", to_string(spec.backend)}, {"level", spec.level}};
 }
