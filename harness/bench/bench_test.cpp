@@ -11,6 +11,7 @@
 #include "harness/bench/measure.h"
 #include "harness/bench/plan.h"
 #include "harness/bench/results.h"
+#include "harness/bench/row_worker.h"
 #include "harness/core/errors.h"
 
 using namespace sdb;
@@ -191,4 +192,27 @@ TEST(MannWhitney, MatchesScipyOnTheSameInputs) {
     pclose(p);
     EXPECT_NEAR(mann_whitney_p(a, b), std::stod(buf), 1e-9) << list(a) << " vs " << list(b);
   }
+}
+
+// A row worker measures under the options run gave it: every field that shapes a row survives
+// the job's JSON line (the worker once dropped the quick set's hausdorff_only_without_coords and
+// computed a Hausdorff distance on every row).
+TEST(RowWorker, OptionsReachTheWorkerWhole) {
+  MeasureOptions o;
+  o.reps = 7, o.min_time_s = 0.125, o.time = false, o.validate = false, o.hausdorff = false;
+  o.hausdorff_only_without_coords = true, o.unjudged_deviation = false, o.rays = 1234, o.seed = 99, o.threads = 3;
+  o.deviation_ply = "out.ply", o.refusals_as_rows = true;
+  const MeasureOptions back = options_from_line(options_line(o));
+  EXPECT_EQ(back.reps, 7);
+  EXPECT_EQ(back.min_time_s, 0.125);
+  EXPECT_FALSE(back.time);
+  EXPECT_FALSE(back.validate);
+  EXPECT_FALSE(back.hausdorff);
+  EXPECT_TRUE(back.hausdorff_only_without_coords);
+  EXPECT_FALSE(back.unjudged_deviation);
+  EXPECT_EQ(back.rays, 1234);
+  EXPECT_EQ(back.seed, 99u);
+  EXPECT_EQ(back.threads, 3);
+  EXPECT_EQ(back.deviation_ply, "out.ply");
+  EXPECT_TRUE(back.refusals_as_rows);
 }

@@ -338,6 +338,27 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
   }
 }
 
+void validate_once(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, const MeasureOptions& o,
+                   MeasureContext& ctx) {
+  const VerdictSubject subject{row.spec, row.mesh, row.level, s.input.get(), s.accepted.get(), row.bound, row.own_bound};
+  const bool shared = o.deviation_ply.empty();
+  if (shared) {
+    if (const ValidatedOutputs::Earlier* earlier = ctx.validated_outputs().find(subject, t)) {
+      apply_verdict(row, earlier->verdict);
+      row.validation_of = earlier->run;
+      return;
+    }
+  }
+  // Validated on a blank row carrying what validation reads (its mesh and bounds): the verdict
+  // alone, which this row and any row with the same bytes take.
+  RunRow blank;
+  blank.mesh = row.mesh, blank.bound = row.bound, blank.own_bound = row.own_bound;
+  validate_into(blank, t, s, o, ctx);
+  Verdict verdict{blank.watertight, blank.deviation, blank.status == RunStatus::Failed, blank.message};
+  apply_verdict(row, verdict);
+  if (shared) ctx.validated_outputs().remember(subject, t, row.name(), std::move(verdict));
+}
+
 namespace {
 
 benchmark::internal::Benchmark* register_timing(const std::string& name, std::function<Evaluation*()> eval,
@@ -566,8 +587,7 @@ RunRow measure_one(const RunSpec& spec, const MeasureOptions& o, MeasureContext&
   record_output(row, *eval);
   if (o.validate) {
     enter_stage(o, "validate", row);
-    const Tessellation& out = eval->result();
-    validate_into(row, out, d.surfaces, o, ctx);
+    validate_once(row, eval->result(), d.surfaces, o, ctx);
   }
   const bool gpu = is_gpu(spec.backend);
   if (!o.time) {

@@ -11,6 +11,7 @@
 #include "harness/bench/machine.h"
 #include "harness/bench/results.h"
 #include "harness/bench/run_spec.h"
+#include "harness/bench/shared_validation.h"
 #include "harness/core/registry.h"
 #include "harness/core/scheme.h"
 #include "harness/mesh/facts.h"
@@ -85,6 +86,9 @@ class MeasureContext {
   // A dense tessellation of the same limit and its Embree scene, for Hausdorff distances; built
   // once per mesh and rule.
   const DenseLimit& dense_reference(const std::shared_ptr<const ControlMesh>& mesh, SubdivisionRule rule);
+  // Outputs validated by this context's rows, whose verdicts a row with the same bytes takes
+  // (shared_validation.h).
+  ValidatedOutputs& validated_outputs() { return validated_; }
   const MachineInfo& machine() const { return machine_; }
   // The bandwidth probes, taken once the selection is known to be good (machine.h).
   void probe_bandwidth() { add_bandwidth_probes(machine_); }
@@ -103,6 +107,7 @@ class MeasureContext {
   std::map<std::pair<size_t, int>, DenseLimit> dense_;
   std::map<std::pair<size_t, int>, std::unique_ptr<LimitProjector>> projectors_;
   std::vector<std::shared_ptr<const ControlMesh>> keep_alive_;  // meshes the caches point at
+  ValidatedOutputs validated_;
 };
 
 // Evaluation::execute() as a backend means it: on `cpu`, inside a one-thread TBB arena.
@@ -182,6 +187,13 @@ LimitDistance input_limit_distance(const Tessellation& t, const JudgedSurfaces& 
 // control mesh of its own (Tessellation::reference), its distance from that mesh's limit at its
 // coords as the second figure (deviation.own).
 void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& surfaces, const MeasureOptions& options,
+                   MeasureContext& context);
+
+// validate_into once per output content: where an earlier row of this context, of the same scheme,
+// mesh, level and bounds, wrote the same bytes (compared byte for byte), the row takes its verdict
+// and names it in validation_of; otherwise the output is validated and kept for the rows after it.
+// Never shared where a deviation PLY is written (one per row).
+void validate_once(RunRow& row, const Tessellation& t, const JudgedSurfaces& surfaces, const MeasureOptions& options,
                    MeasureContext& context);
 
 }  // namespace sdb

@@ -131,6 +131,7 @@ void to_json(json& j, const RunRow& r) {
   if (r.own_bound.pos_rel_diag >= 0 || r.own_bound.normal_deg >= 0)
     j["own_deviation_bound"] = {{"pos_rel_diag", r.own_bound.pos_rel_diag}, {"normal_deg", r.own_bound.normal_deg}};
   if (!r.limit.empty()) j["limit"] = r.limit;
+  if (!r.validation_of.empty()) j["validation_of"] = r.validation_of;
   if (r.gpu_time_ms) j["gpu_time_ms"] = *r.gpu_time_ms;
   if (!r.gpu_passes.empty()) {
     json passes = json::array();
@@ -176,6 +177,7 @@ void from_json(const json& j, RunRow& r) {
     r.own_bound.normal_deg = j["own_deviation_bound"].value("normal_deg", -1.0);
   }
   r.limit = j.value("limit", "");
+  r.validation_of = j.value("validation_of", "");
   r.mesh = j.at("mesh");
   r.mesh_faces = whole(j, "mesh_faces", 0), r.mesh_vertices = whole(j, "mesh_vertices", 0);
   r.extraordinary_fraction = number(j, "extraordinary_fraction", 0.0);

@@ -82,6 +82,10 @@ struct RunRow {
   DeviationFigures deviation;
   RunStatus status = RunStatus::Ok;
   std::string message;
+  // The row whose validation (watertight, deviation, and the verdict of both) this one shares: an
+  // earlier row of the same scheme, mesh and level whose output was the same bytes, compared byte
+  // for byte (measure.h, MeasureContext::validated_output). Empty: validated on its own output.
+  std::string validation_of;
   std::string name() const;  // spec/backend/mesh/level (run_spec.h)
   // The scheme as spelled: spec, or the registered name where a row (an older file) has none.
   const std::string& spelled() const { return spec.empty() ? scheme : spec; }

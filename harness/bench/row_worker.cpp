@@ -24,7 +24,8 @@ json options_json(const MeasureOptions& o) {
   return {{"reps", o.reps},         {"min_time_s", o.min_time_s}, {"time", o.time},
           {"validate", o.validate}, {"hausdorff", o.hausdorff},   {"rays", o.rays},
           {"seed", o.seed},         {"threads", o.threads},       {"deviation_ply", o.deviation_ply},
-          {"refusals_as_rows", o.refusals_as_rows}};
+          {"refusals_as_rows", o.refusals_as_rows}, {"hausdorff_only_without_coords", o.hausdorff_only_without_coords},
+          {"unjudged_deviation", o.unjudged_deviation}};
 }
 
 MeasureOptions options_from(const json& j) {
@@ -33,8 +34,17 @@ MeasureOptions options_from(const json& j) {
   j.at("validate").get_to(o.validate), j.at("hausdorff").get_to(o.hausdorff), j.at("rays").get_to(o.rays);
   j.at("seed").get_to(o.seed), j.at("threads").get_to(o.threads), j.at("deviation_ply").get_to(o.deviation_ply);
   j.at("refusals_as_rows").get_to(o.refusals_as_rows);
+  j.at("hausdorff_only_without_coords").get_to(o.hausdorff_only_without_coords);
+  j.at("unjudged_deviation").get_to(o.unjudged_deviation);
   return o;
 }
+
+}  // namespace
+
+std::string options_line(const MeasureOptions& o) { return one_line(options_json(o)); }
+MeasureOptions options_from_line(const std::string& line) { return options_from(json::parse(line)); }
+
+namespace {
 
 json run_json(const RunSpec& spec) {
   return {{"scheme", spec.scheme}, {"mesh", spec.mesh}, {"backend", to_string(spec.backend)}, {"level", spec.level}};

@@ -22,6 +22,11 @@ namespace sdb {
 
 class ChannelProcess;
 
+// The options as a job carries them to the worker (one JSON line), and back: every field that
+// shapes a row (on_stage, a function, stays with the process that set it).
+std::string options_line(const MeasureOptions& options);
+MeasureOptions options_from_line(const std::string& line);
+
 class RowWorker {
  public:
   // `executable`: the binary to start (this one: its schemes are the ones planned).
