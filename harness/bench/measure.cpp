@@ -338,9 +338,16 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
   }
 }
 
+// The options that decide what a validation computes (VerdictSubject::checks).
+std::string validation_checks(const MeasureOptions& o) {
+  return "rays " + std::to_string(o.rays) + " seed " + std::to_string(o.seed) + (o.hausdorff ? " hausdorff" : "") +
+         (o.hausdorff_only_without_coords ? " without-coords" : "") + (o.unjudged_deviation ? " unjudged" : "");
+}
+
 void validate_once(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, const MeasureOptions& o,
                    MeasureContext& ctx) {
-  const VerdictSubject subject{row.spec, row.mesh, row.level, s.input.get(), s.accepted.get(), row.bound, row.own_bound};
+  const VerdictSubject subject{row.spec,          row.mesh,  row.level,     s.input.get(),
+                               s.accepted.get(),  row.bound, row.own_bound, validation_checks(o)};
   const bool shared = o.deviation_ply.empty();
   if (shared) {
     if (const ValidatedOutputs::Earlier* earlier = ctx.validated_outputs().find(subject, t)) {

@@ -30,7 +30,7 @@ bool same_bound(const DeviationBound& a, const DeviationBound& b) {
 
 bool same_subject(const VerdictSubject& a, const VerdictSubject& b) {
   return a.spec == b.spec && a.mesh == b.mesh && a.level == b.level && a.input == b.input && a.accepted == b.accepted &&
-         same_bound(a.bound, b.bound) && same_bound(a.own_bound, b.own_bound);
+         same_bound(a.bound, b.bound) && same_bound(a.own_bound, b.own_bound) && a.checks == b.checks;
 }
 
 }  // namespace

@@ -38,6 +38,9 @@ struct VerdictSubject {
   const void* input = nullptr;  // the judged surfaces (JudgedSurfaces' meshes), by identity
   const void* accepted = nullptr;
   DeviationBound bound, own_bound;
+  // What the validation was asked to compute (rays and their seed, Hausdorff, the unjudged
+  // deviation: MeasureOptions): a verdict-only run does not take a full run's figures, nor the other way.
+  std::string checks;
 };
 
 // Outputs validated in this run, kept whole for the byte comparison. Only one scheme+mesh's
