@@ -113,6 +113,9 @@ TEST(SharedValidation, SameBytesOtherSubjectNotShared) {
   VerdictSubject other_bound = subject;
   other_bound.bound.pos_rel_diag = 1e-6;
   EXPECT_EQ(kept.find(other_bound, t), nullptr);
+  VerdictSubject other_checks = subject;  // e.g. a verdict-only run against a full one
+  other_checks.checks = "rays 100 seed 1";
+  EXPECT_EQ(kept.find(other_checks, t), nullptr);
   Tessellation flipped = t;
   flipped.triangles = {0, 2, 1};
   EXPECT_EQ(kept.find(subject, flipped), nullptr);
