@@ -71,6 +71,22 @@ std::vector<char> refine_marks(const Far::TopologyRefiner& r, const std::vector<
   return out;
 }
 
+LocalMesh ring_mesh(int edges, int faces, const std::vector<float>& edge_sharpness, float vertex_sharpness,
+                    bool catmark) {
+  LocalMesh m;
+  m.points.assign(1 + edges + (catmark ? faces : 0), Point3d{0, 0, 0});
+  for (int i = 0; i < faces; ++i) {
+    const int a = 1 + i, b = 1 + (i + 1) % edges;
+    if (catmark) m.face_sizes.push_back(4), m.face_vertices.insert(m.face_vertices.end(), {0, a, 1 + edges + i, b});
+    else m.face_sizes.push_back(3), m.face_vertices.insert(m.face_vertices.end(), {0, a, b});
+  }
+  for (int i = 0; i < edges; ++i)
+    if (edge_sharpness[i] > 0.0f)
+      m.crease_pairs.insert(m.crease_pairs.end(), {0, 1 + i}), m.crease_weights.push_back(edge_sharpness[i]);
+  if (vertex_sharpness > 0.0f) m.corner_vertices.push_back(0), m.corner_weights.push_back(vertex_sharpness);
+  return m;
+}
+
 std::vector<int> faces_around(const Far::TopologyLevel& l, int f) {
   std::vector<int> out = {f};
   for (int v : l.GetFaceVertices(f))

@@ -39,6 +39,13 @@ LocalMesh cut_faces(const OpenSubdiv::Far::TopologyLevel& level, const std::vect
 // marked vertices.
 std::vector<char> refine_marks(const OpenSubdiv::Far::TopologyRefiner& r, const std::vector<char>& marks);
 
+// A vertex's ring as a mesh of its own: vertex 0 the centre, 1 + i the far end of edge i
+// (counter-clockwise), under Catmull-Clark 1 + edges + i the corner opposite it in face i (between
+// edges i and i + 1; quads only); edge i creased by edge_sharpness[i] where above 0, the centre a
+// corner of `vertex_sharpness` where above 0; points at the origin (the ring's masks are weights).
+LocalMesh ring_mesh(int edges, int faces, const std::vector<float>& edge_sharpness, float vertex_sharpness,
+                    bool catmark);
+
 // The faces around face f's corners (f first).
 std::vector<int> faces_around(const OpenSubdiv::Far::TopologyLevel& level, int f);
 

@@ -33,21 +33,6 @@ struct Scalar {
 
 using Matrix = std::vector<std::vector<double>>;  // [row][column]
 
-LocalMesh local_mesh(const RingDisk& d, bool catmark) {
-  LocalMesh m;
-  m.points.assign(d.slots(catmark), Point3d{0, 0, 0});
-  for (int i = 0; i < d.faces; ++i) {
-    const int a = 1 + i, b = 1 + (i + 1) % d.edges;
-    if (catmark) m.face_sizes.push_back(4), m.face_vertices.insert(m.face_vertices.end(), {0, a, 1 + d.edges + i, b});
-    else m.face_sizes.push_back(3), m.face_vertices.insert(m.face_vertices.end(), {0, a, b});
-  }
-  for (int i = 0; i < d.edges; ++i)
-    if (d.edge_sharpness[i] > 0.0f)
-      m.crease_pairs.insert(m.crease_pairs.end(), {0, 1 + i}), m.crease_weights.push_back(d.edge_sharpness[i]);
-  if (d.vertex_sharpness > 0.0f) m.corner_vertices.push_back(0), m.corner_weights.push_back(d.vertex_sharpness);
-  return m;
-}
-
 // Values at the disk's slots of each unit vector's image: out[slot][column].
 template <class Apply>
 Matrix of_unit_vectors(int slots, Apply apply) {
@@ -64,7 +49,7 @@ Matrix of_unit_vectors(int slots, Apply apply) {
 Matrix refine_disk(RingDisk& d, SubdivisionRule rule, const Sdc::Options& options) {
   const bool catmark = rule == SubdivisionRule::CatmullClark;
   const int slots = d.slots(catmark);
-  auto refiner = refiner_of(local_mesh(d, catmark), rule, options);
+  auto refiner = refiner_of(ring_mesh(d.edges, d.faces, d.edge_sharpness, d.vertex_sharpness, catmark), rule, options);
   Far::TopologyRefiner::UniformOptions uniform(1);
   uniform.fullTopologyInLastLevel = true;
   refiner->RefineUniform(uniform);
@@ -106,7 +91,7 @@ std::vector<double> on_slots(const std::vector<double>& w, const std::vector<int
 RingMasks stationary_masks(const RingDisk& d, SubdivisionRule rule, const Sdc::Options& options) {
   const bool catmark = rule == SubdivisionRule::CatmullClark;
   const int slots = d.slots(catmark);
-  auto refiner = refiner_of(local_mesh(d, catmark), rule, options);
+  auto refiner = refiner_of(ring_mesh(d.edges, d.faces, d.edge_sharpness, d.vertex_sharpness, catmark), rule, options);
   const Far::TopologyLevel& l = refiner->GetLevel(0);
   RingMasks m;
   // Far's masks, as PrimvarRefiner::Limit applies them, by unit vectors.

@@ -159,18 +159,8 @@ class ExactLimitMasks {
     if (catmark)
       for (int i = 0; i < disk.faces; ++i)
         if (disk.face_size[i] != 4) return {};
-    LocalMesh ring;
-    ring.points.assign(1 + disk.edges + (catmark ? disk.faces : 0), Point3d{0, 0, 0});
-    for (int i = 0; i < disk.faces; ++i) {
-      const int a = 1 + i, b = 1 + (i + 1) % disk.edges;
-      if (catmark) ring.face_sizes.push_back(4), ring.face_vertices.insert(ring.face_vertices.end(), {0, a, 1 + disk.edges + i, b});
-      else ring.face_sizes.push_back(3), ring.face_vertices.insert(ring.face_vertices.end(), {0, a, b});
-    }
-    for (int i = 0; i < disk.edges; ++i)
-      if (disk.edge_sharpness[i] > 0)
-        ring.crease_pairs.insert(ring.crease_pairs.end(), {0, 1 + i}), ring.crease_weights.push_back(disk.edge_sharpness[i]);
-    if (disk.sharpness > 0) ring.corner_vertices.push_back(0), ring.corner_weights.push_back(disk.sharpness);
-    const auto refiner = refiner_of(ring, rule_, options_);
+    const auto refiner =
+        refiner_of(ring_mesh(disk.edges, disk.faces, disk.edge_sharpness, disk.sharpness, catmark), rule_, options_);
     const Far::TopologyLevel& l = refiner->GetLevel(0);
     Entry out;
     if (l.IsVertexNonManifold(0) || vertex_sharpness_decays(l, 0)) return out;
