@@ -7,8 +7,6 @@
 namespace sdb {
 namespace {
 
-bool declared(const DeviationBound& b) { return b.pos_rel_diag >= 0 || b.normal_deg >= 0; }
-
 std::string figure(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", x);
@@ -18,7 +16,7 @@ std::string figure(double x) {
 // One bound against one pair of figures; `against` names the surface they were measured from.
 BoundJudgement judge_one(const DeviationBound& bound, bool measured, double position, double normal,
                          const std::string& against) {
-  if (!declared(bound)) return {BoundState::None, "no bound declared"};
+  if (!bound_declared(bound)) return {BoundState::None, "no bound declared"};
   if (!measured) return {BoundState::Unmeasured, "deviation from " + against + " not measured"};
   std::string past;
   if (bound.pos_rel_diag >= 0 && position > bound.pos_rel_diag)
@@ -38,6 +36,8 @@ BoundJudgement judge_one(const DeviationBound& bound, bool measured, double posi
 
 }  // namespace
 
+bool bound_declared(const DeviationBound& b) { return b.pos_rel_diag >= 0 || b.normal_deg >= 0; }
+
 std::string_view to_string(BoundState s) {
   switch (s) {
     case BoundState::Kept: return "kept";
@@ -52,7 +52,7 @@ BoundJudgement judge_bounds(const RunRow& row) {
   const DeviationFigures& d = row.deviation;
   std::vector<BoundJudgement> judged = {
       judge_one(row.bound, d.measured, d.pos_max_rel_diag, d.normal_max_deg, "the input's limit")};
-  if (declared(row.own_bound))
+  if (bound_declared(row.own_bound))
     judged.push_back(judge_one(row.own_bound, d.measured && d.own.has_value(), d.own ? d.own->pos_max_rel_diag : 0,
                                d.own ? d.own->normal_max_deg : 0, "the limit of its own control mesh"));
   for (const BoundState state : {BoundState::Past, BoundState::Kept, BoundState::Unmeasured}) {

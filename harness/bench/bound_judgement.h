@@ -18,6 +18,9 @@ struct BoundJudgement {
   std::string words;  // "within the bound (position 1.2e-07 <= 1e-06 of the diagonal)", "position deviation ... past the bound ..."
 };
 
+// Whether a scheme declares the bound (either figure; -1 each where it declares none).
+bool bound_declared(const DeviationBound& bound);
+
 // The row's deviation from the input's limit against RunRow::bound and, where the scheme declares
 // one, its distance from its own control mesh's limit (deviation.own) against RunRow::own_bound.
 // Past where either is past; else kept where one is kept; else unmeasured where a bound is

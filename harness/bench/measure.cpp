@@ -210,8 +210,6 @@ const LimitProjector& MeasureContext::projector(const std::shared_ptr<const Cont
 namespace {
 
 // What is past `bound` of a position (fraction of the diagonal) and a normal figure, in words.
-bool bounded(const DeviationBound& bound) { return bound.pos_rel_diag >= 0 || bound.normal_deg >= 0; }
-
 // A row past its scheme's declared bound fails, like a crack: the scheme promised the bound.
 void judge_deviation(RunRow& row) {
   const BoundJudgement j = judge_bounds(row);
@@ -301,7 +299,7 @@ void validate_into(RunRow& row, const Tessellation& t, const JudgedSurfaces& s, 
   try {
     if (t.triangles.empty()) return;
     // By nearest points (no coords on the input) the yardstick is a LimitProjector, the costliest.
-    const bool input_figure = o.unjudged_deviation || at_coords || bounded(row.bound);
+    const bool input_figure = o.unjudged_deviation || at_coords || bound_declared(row.bound);
     const LimitDistance d = input_figure ? input_limit_distance(t, s, ctx) : LimitDistance{};
     const DeviationReport& r = d.report;
     if (input_figure) {

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/bench/bound_judgement.h"
 #include "harness/bench/results_json.h"
 #include "harness/bench/results_check.h"
 
@@ -126,9 +127,9 @@ void to_json(json& j, const RunRow& r) {
        {"status", to_string(r.status)},
        {"message", r.message}};
   if (r.peer_backend) j["peer_backend"] = to_string(*r.peer_backend);
-  if (r.bound.pos_rel_diag >= 0 || r.bound.normal_deg >= 0)
+  if (bound_declared(r.bound))
     j["deviation_bound"] = {{"pos_rel_diag", r.bound.pos_rel_diag}, {"normal_deg", r.bound.normal_deg}};
-  if (r.own_bound.pos_rel_diag >= 0 || r.own_bound.normal_deg >= 0)
+  if (bound_declared(r.own_bound))
     j["own_deviation_bound"] = {{"pos_rel_diag", r.own_bound.pos_rel_diag}, {"normal_deg", r.own_bound.normal_deg}};
   if (!r.limit.empty()) j["limit"] = r.limit;
   if (!r.validation_of.empty()) j["validation_of"] = r.validation_of;
