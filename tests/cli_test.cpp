@@ -125,6 +125,21 @@ TEST(Cli, ValidateOfALevelTheSchemeDeclinesIsBadUsage) {
   EXPECT_NE(b.err.find("one thread only"), std::string::npos) << b.err;
 }
 
+// A run named with --run that the harness refuses up front (here past the size limit) is said
+// with its reason before the others are measured, not found missing after they ran: nothing is
+// timed, nothing written.
+TEST(Cli, BenchRefusesAnOversizedNamedRunBeforeMeasuringTheOthers) {
+  const fs::path out = fs::temp_directory_path() / ("sdb_bench_refused_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const auto r = run_cli("bench --run osd-uniform/cpu/torus-8x8/1 --run osd-uniform/cpu/quadsphere-64/8 --rounds 1 --out " +
+                         out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("osd-uniform/cpu/quadsphere-64/8: a run of about 3.22e+09 output triangles needs about"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("osd-uniform/cpu/torus-8x8/1"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out / "results.json"));
+}
+
 // Issue 42: `run` without a selection is the quick set (README, "The quick set"), `--full` the
 // default set, and `--plan` counts them without measuring or writing anything.
 TEST(Cli, RunWithoutASelectionPlansTheQuickSetAndFullTheDefaultSet) {

@@ -709,6 +709,8 @@ std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureO
   for (const RunSpec& spec : specs) {
     auto lazy = std::make_unique<LazyRun>();
     lazy->run = describe_run(spec, o, ctx);
+    const RunRow& row = lazy->run.row;
+    if (how.every_spec_named && row.status == RunStatus::Unsupported) throw InputError(row.name(), row.message);
     runs.push_back(std::move(lazy));
   }
   for (Backend b : calibration_backends(specs, how)) runs.push_back(calibration_run(b));

@@ -134,6 +134,10 @@ struct BenchRounds {
   double min_time_s = 0;     // > 0: each benchmark's time per round; 0: the flag's
   bool calibration = true;   // rounds: the write probe's rows beside the schemes' (the gate's unit)
   Progress* progress = nullptr;  // rounds: one item per round
+  // Every spec was named on its own (bench --run): one the harness refuses up front (a size
+  // limit, a backend the scheme declines) is an InputError naming its reason before anything is
+  // measured, not a row missing after minutes of the others'.
+  bool every_spec_named = false;
 };
 
 // Registers every spec with Google Benchmark (prepared lazily on first use) and runs them under

@@ -54,11 +54,13 @@ void require_runnable(const std::vector<RunSpec>& runs) {
   }
 }
 
-// Every run named on its own was measured, or the one it lacks is named (a limit met in prepare).
-void require_measured(const std::vector<RunSpec>& runs, const std::vector<RunRow>& rows) {
+// A run named on its own that was not measured (a limit met in its preparation, after the
+// others ran): the error to give once the measured rows are written.
+std::optional<InputError> unmeasured(const std::vector<RunSpec>& runs, const std::vector<RunRow>& rows) {
   for (const RunSpec& spec : runs)
     if (std::none_of(rows.begin(), rows.end(), [&](const RunRow& r) { return r.name() == spec.name(); }))
-      throw InputError(spec.name(), "not measured (a size or device limit; `validate` says which)");
+      return InputError(spec.name(), "not measured (a size or device limit; `validate` says which)");
+  return std::nullopt;
 }
 
 // bench --machine-from FILE: the machine block of a results file written here (gpu-check's device
@@ -103,6 +105,7 @@ int bench(const GateOptions& opts) {
   // Rounds run quietly until the end (one table); their progress is shown instead. Without rounds
   // Google Benchmark's console prints each benchmark as it finishes.
   BenchRounds how{opts.rounds};
+  how.every_spec_named = named;
   std::optional<Progress> progress;
   if (opts.rounds > 0)
     how.progress = &progress.emplace(std::cout, stdout_is_terminal(), size_t(opts.rounds), Progress::steady_seconds, terminal_columns());
@@ -110,7 +113,8 @@ int bench(const GateOptions& opts) {
   if (progress) progress->close();
   const bool filtered = std::any_of(opts.bench_flags.begin(), opts.bench_flags.end(),
                                     [](const std::string& f) { return f.rfind("--benchmark_filter", 0) == 0; });
-  if (named && !filtered) require_measured(plan.runs, results.runs);
+  // A failure never destroys what was measured: the rows that ran are printed and written first.
+  const std::optional<InputError> missing = named && !filtered ? unmeasured(plan.runs, results.runs) : std::nullopt;
   if (opts.rounds > 0) {
     for (const RunRow& r : results.runs)
       std::printf("%-44s median %9.4f ms  min %9.4f ms  over %d rounds\n", r.name().c_str(), r.time_ms.median,
@@ -124,6 +128,7 @@ int bench(const GateOptions& opts) {
     write_results(results, (fs::path(opts.out) / "results.json").string());
     std::printf("wrote %s\n", (fs::path(opts.out) / "results.json").string().c_str());
   }
+  if (missing) throw *missing;
   return 0;
 }
 
