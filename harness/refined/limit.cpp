@@ -7,12 +7,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <tuple>
 
+#include "harness/mesh/sdc_mask.h"
 #include "harness/refined/exact_masks.h"
 #include "harness/refined/float3.h"
 
@@ -64,49 +66,29 @@ class Hood {
   const float* edge_sharpness_;
 };
 
-// Sdc's MASK concept over caller-owned arrays.
-class Mask {
- public:
-  typedef float Weight;
-  Mask(float* v, float* e, float* f) : v_(v), e_(e), f_(f) {}
-  int GetNumVertexWeights() const { return nv_; }
-  int GetNumEdgeWeights() const { return ne_; }
-  int GetNumFaceWeights() const { return nf_; }
-  void SetNumVertexWeights(int n) { nv_ = n; }
-  void SetNumEdgeWeights(int n) { ne_ = n; }
-  void SetNumFaceWeights(int n) { nf_ = n; }
-  const float& VertexWeight(int i) const { return v_[i]; }
-  const float& EdgeWeight(int i) const { return e_[i]; }
-  const float& FaceWeight(int i) const { return f_[i]; }
-  float& VertexWeight(int i) { return v_[i]; }
-  float& EdgeWeight(int i) { return e_[i]; }
-  float& FaceWeight(int i) { return f_[i]; }
-  bool AreFaceWeightsForFaceCenters() const { return centres_; }
-  void SetFaceWeightsForFaceCenters(bool on) { centres_ = on; }
-
- private:
-  float *v_, *e_, *f_;
-  int nv_ = 0, ne_ = 0, nf_ = 0;
-  bool centres_ = false;
-};
-
+// Position, first and second tangent masks of one vertex, as Sdc fills them (harness/mesh/sdc_mask.h);
+// weights a mask leaves unset stay 0.
 struct Masks {
-  std::vector<float> w;  // three masks of 1 + edges + faces weights each
   int edges = 0, faces = 0;
-  float* at(int mask) { return w.data() + mask * (1 + edges + faces); }
+  SdcMask position, first, second;
+  // Weight of ring slot `slot` in mask k: 0 the vertex, 1 + i edge i's end, 1 + edges + i face i's corner.
+  float at(int k, int slot) const {
+    const SdcMask& m = k == 0 ? position : k == 1 ? first : second;
+    if (slot == 0) return m.VertexWeight(0);
+    return slot <= edges ? m.EdgeWeight(slot - 1) : m.FaceWeight(slot - 1 - edges);
+  }
 };
 
 template <Sdc::SchemeType kType>
-void limit_masks(const Hood& hood, Sdc::Crease::Rule rule, Masks& m) {
-  const int size = 1 + m.edges + m.faces;
-  m.w.assign(3 * size, 0.0f);
-  Mask pos(m.at(0), m.at(0) + 1, m.at(0) + 1 + m.edges), t1(m.at(1), m.at(1) + 1, m.at(1) + 1 + m.edges),
-      t2(m.at(2), m.at(2) + 1, m.at(2) + 1 + m.edges);
-  Sdc::Scheme<kType>(Sdc::Options()).ComputeVertexLimitMask(hood, pos, t1, t2, rule);
-  // Weights a mask did not set stay 0 (assign above); face weights are for the opposite vertices.
-  for (Mask* k : {&pos, &t1, &t2})
+Masks limit_masks(const Hood& hood, Sdc::Crease::Rule rule) {
+  const int reserve = std::max(hood.GetNumEdges(), hood.GetNumFaces());
+  Masks m{hood.GetNumEdges(), hood.GetNumFaces(), SdcMask(reserve), SdcMask(reserve), SdcMask(reserve)};
+  Sdc::Scheme<kType>(Sdc::Options()).ComputeVertexLimitMask(hood, m.position, m.first, m.second, rule);
+  // Face weights are for the opposite vertices.
+  for (const SdcMask* k : {&m.position, &m.first, &m.second})
     if (k->GetNumFaceWeights() > 0 && k->AreFaceWeightsForFaceCenters())
       throw std::logic_error("a limit mask with face-centre weights");
+  return m;
 }
 
 bool regular(const FaceLevel& l, const Ring& r, int sharp_edges, float vertex_sharpness) {
@@ -259,7 +241,6 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule, const Sdc::Option
   ExactMaskCache exact(rule, options);
   const EarlyRings early_rings(early, l);
   plan.regular_ring.assign(size_t(plan.ring_size) * l.num_vertices, kNone);
-  Masks masks;
   for (uint32_t v = 0; v < l.num_vertices; ++v) {
     const uint32_t start = corners[v];
     if (start == kNone) continue;  // in no face: no limit (Far leaves it), none written
@@ -298,16 +279,14 @@ LimitPlan plan_limit(const FaceLevel& l, SubdivisionRule rule, const Sdc::Option
       sharpness.clear();
       for (uint32_t k : r.corners) sharpness.push_back(l.edge_sharpness(k));
     }
-    masks.edges = static_cast<int>(r.edges());
-    masks.faces = static_cast<int>(r.corners.size());
-    const Hood hood(masks.edges, masks.faces, vs, sharpness.data());
-    if (catmark) limit_masks<Sdc::SCHEME_CATMARK>(hood, vrule, masks);
-    else limit_masks<Sdc::SCHEME_LOOP>(hood, vrule, masks);
+    const Hood hood(static_cast<int>(r.edges()), static_cast<int>(r.corners.size()), vs, sharpness.data());
+    const Masks masks =
+        catmark ? limit_masks<Sdc::SCHEME_CATMARK>(hood, vrule) : limit_masks<Sdc::SCHEME_LOOP>(hood, vrule);
     SpecialTable& table = plan.special;
     table.vertex.push_back(v);
     auto add = [&](uint32_t vertex, int slot) {
       table.ring.push_back(vertex);
-      for (int k = 0; k < 3; ++k) table.weights.push_back(masks.at(k)[slot]);
+      for (int k = 0; k < 3; ++k) table.weights.push_back(masks.at(k, slot));
     };
     if (catmark)
       for (size_t i = 0; i < r.corners.size(); ++i) {

@@ -4,10 +4,9 @@
 #include <cstdio>
 
 #include "harness/gpu/gpu.h"
-#include "harness/refined/limit_vulkan.h"
 #include "harness/refined/requests.h"
+#include "harness/refined/vulkan_frame.h"
 #include "schemes/edgefriend/surface.h"
-#include "sdb_refined_shaders.h"
 #include "sdb_scheme_edgefriend_shaders.h"
 
 namespace sdb::edgefriend {
@@ -15,9 +14,7 @@ namespace {
 
 namespace shaders = sdb_scheme_edgefriend_shaders;
 using gpu::BufferUsage;
-constexpr uint32_t kLocalSize = 64;
-constexpr VkFormat kPoint = VK_FORMAT_R32G32B32A32_SFLOAT, kWord = VK_FORMAT_R32_UINT, kFloat = VK_FORMAT_R32_SFLOAT,
-                   kWord4 = VK_FORMAT_R32G32B32A32_UINT;
+constexpr VkFormat kWord4 = VK_FORMAT_R32G32B32A32_UINT;
 constexpr uint32_t kCreased = 1, kVertexSharp = 2, kOutIndex = 4;  // shaders/level.comp
 
 struct LevelPush {
@@ -26,81 +23,55 @@ struct LevelPush {
 struct StencilPush {
   uint32_t count = 0, flags = 0;
 };
-struct OutputPush {
-  uint32_t count = 0, pad[3] = {0, 0, 0};
-  float origin[4] = {0, 0, 0, 0};
-};
 
 // A level's buffers on the device: its points and, but on the last level, its quads.
 struct LevelBuffers {
   gpu::Buffer points, quads, friends, vertex_corner, vertex_sharpness;
 };
 
-class VulkanEvaluation final : public Evaluation {
+class VulkanEvaluation final : public refined::VulkanFrame {
  public:
   VulkanEvaluation(const ControlMesh& mesh, int depth, bool project, std::shared_ptr<gpu::Context> ctx)
-      : ctx_(std::move(ctx)), control_(mesh.positions), s_(mesh, depth, project) {
+      : VulkanEvaluation(std::make_unique<Surface>(mesh, depth, project), mesh, std::move(ctx)) {}
+
+ private:
+  VulkanEvaluation(std::unique_ptr<Surface> s, const ControlMesh& mesh, std::shared_ptr<gpu::Context> ctx)
+      : VulkanFrame(std::move(ctx), mesh.positions, {}, s->origin, s->out), s_(std::move(s)) {
     check_device();
     make_buffers();
     make_sets();
-    record_frame();
-    readback_.emplace(*ctx_, positions_, normals_, output_bytes_);
+    record_frame(control_points_, uint32_t(s_->depth), [&](gpu::Commands& cmd, gpu::GpuTimer& timer) { record_levels(cmd, timer); });
   }
 
-  void execute() override {
-    for (size_t v = 0; v < control_.size(); ++v)
-      relative_[v] = {control_[v][0] - s_.origin[0], control_[v][1] - s_.origin[1], control_[v][2] - s_.origin[2], 0.0f};
-    staging_.write(relative_);
-    ctx_->submit(*frame_);
-    readback_->invalidate();
-  }
-  const Tessellation& result() override {
-    readback_->read_into(s_.out);
-    return s_.out;
-  }
-  size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::optional<GpuTimes> gpu_times() const override {
-    auto passes = timer_->read_passes();
-    if (!passes) return std::nullopt;
-    readback_->append_passes(*passes);
-    return gpu::to_gpu_times(*passes);
-  }
-
- private:
-  const std::vector<Level>& levels() const { return s_.hierarchy.levels; }
-  uint32_t points_of(size_t d) const { return d + 1 == levels().size() ? s_.hierarchy.out_vertices : levels()[d].num_vertices; }
+  const std::vector<Level>& levels() const { return s_->hierarchy.levels; }
+  uint32_t points_of(size_t d) const { return d + 1 == levels().size() ? s_->hierarchy.out_vertices : levels()[d].num_vertices; }
 
   // Every buffer against the device's limits and heaps before one is made.
   void check_device() {
-    uint64_t device = 16 * uint64_t(control_.size()) + 4 * (s_.stencils.begin.size() + 2 * s_.stencils.source.size());
+    uint64_t device = 16 * uint64_t(uploaded()) + 4 * (s_->stencils.begin.size() + 2 * s_->stencils.source.size());
     for (size_t d = 0; d < levels().size(); ++d) {
       const Level& l = levels()[d];
-      gpu::check_texel_binding(*ctx_, points_of(d), "a level's points");
+      gpu::check_texel_binding(ctx(), points_of(d), "a level's points");
       device += 16 * uint64_t(points_of(d));
       if (d + 1 < levels().size()) {
-        gpu::check_texel_binding(*ctx_, l.num_vertices, "a level's vertices");
+        gpu::check_texel_binding(ctx(), l.num_vertices, "a level's vertices");
         device += 32 * uint64_t(l.num_quads) + 4 * uint64_t(l.num_vertices) + 4 * l.vertex_sharpness.size();
       }
     }
-    device += 4 * s_.hierarchy.out_index.size() + 12 * (kMaxValence + 1);
-    output_bytes_ = std::max<uint64_t>(12 * uint64_t(s_.hierarchy.out_vertices), 16);
-    gpu::check_texel_binding(*ctx_, 3 * uint64_t(s_.hierarchy.out_vertices), "the output's floats");
-    if (s_.project) device += refined::VulkanLimit::table_bytes(s_.limit);
-    device += 2 * output_bytes_;
-    gpu::check_memory(*ctx_, {device, 2 * output_bytes_ + 16 * uint64_t(control_.size())}, "depth " + std::to_string(s_.depth));
+    device += 4 * s_->hierarchy.out_index.size() + 12 * (kMaxValence + 1);
+    VulkanFrame::check_device(device, s_->project ? &s_->limit : nullptr, "depth " + std::to_string(s_->depth));
   }
 
   void make_buffers() {
-    gpu::Context& c = *ctx_;
-    relative_.resize(control_.size());
-    staging_ = gpu::Buffer::upload(c, std::max<uint64_t>(16 * uint64_t(control_.size()), 16), "control points (staging)");
-    control_points_ = gpu::Buffer::device(c, std::max<uint64_t>(16 * uint64_t(control_.size()), 16), BufferUsage::UniformTexel,
+    gpu::Context& c = ctx();
+    make_output_buffers();
+    control_points_ = gpu::Buffer::device(c, std::max<uint64_t>(16 * uint64_t(uploaded()), 16), BufferUsage::UniformTexel,
                                           "control points");
-    const StencilTable& t = s_.stencils;
+    const StencilTable& t = s_->stencils;
     begin_ = gpu::texel_table(c, t.begin, "first step: stencil rows");
     source_ = gpu::texel_table(c, t.source, "first step: stencil sources");
     weight_ = gpu::texel_table(c, t.weight, "first step: stencil weights");
-    out_index_ = gpu::texel_table(c, s_.hierarchy.out_index, "output numbering");
+    out_index_ = gpu::texel_table(c, s_->hierarchy.out_index, "output numbering");
     for (size_t d = 0; d < levels().size(); ++d) {
       const Level& l = levels()[d];
       const std::string at = " (depth " + std::to_string(d + 1) + ")";
@@ -117,22 +88,19 @@ class VulkanEvaluation final : public Evaluation {
       }
       buffers_.push_back(std::move(b));
     }
-    std::vector<float> weights = s_.weights.vertex;
-    weights.insert(weights.end(), s_.weights.edge.begin(), s_.weights.edge.end());
-    weights.insert(weights.end(), s_.weights.diagonal.begin(), s_.weights.diagonal.end());
+    std::vector<float> weights = s_->weights.vertex;
+    weights.insert(weights.end(), s_->weights.edge.begin(), s_->weights.edge.end());
+    weights.insert(weights.end(), s_->weights.diagonal.begin(), s_->weights.diagonal.end());
     weights_ = gpu::texel_table(c, weights, "smooth masks");
-    const BufferUsage out = BufferUsage::StorageTexel | BufferUsage::Storage;
-    positions_ = gpu::Buffer::device(c, output_bytes_, out, "positions");
-    normals_ = gpu::Buffer::device(c, output_bytes_, out, "normals");
   }
 
   void make_sets() {
     using gpu::Binding;
     constexpr auto U = Binding::UniformTexelBuffer, S = Binding::StorageTexelBuffer;
-    first_ = gpu::shared_compute_pipeline(*ctx_, {shaders::get("first_step.comp"), {U, S, U, U, U, U}, sizeof(StencilPush), {{0, kLocalSize}}});
+    first_ = gpu::shared_compute_pipeline(ctx(), {shaders::get("first_step.comp"), {U, S, U, U, U, U}, sizeof(StencilPush), {{0, kLocalSize}}});
     first_set_ = gpu::DescriptorSet(*first_, {control_points_.texels(kPoint), buffers_[0].points.texels(kPoint), begin_.texels(kWord),
                                               source_.texels(kWord), weight_.texels(kFloat), out_index_.texels(kWord)});
-    level_ = gpu::shared_compute_pipeline(*ctx_, {shaders::get("level.comp"), {U, S, U, U, U, U, U, U}, sizeof(LevelPush), {{0, kLocalSize}}});
+    level_ = gpu::shared_compute_pipeline(ctx(), {shaders::get("level.comp"), {U, S, U, U, U, U, U, U}, sizeof(LevelPush), {{0, kLocalSize}}});
     for (size_t d = 0; d + 1 < levels().size(); ++d) {
       const LevelBuffers &p = buffers_[d], &n = buffers_[d + 1];
       sets_.emplace_back(*level_, std::vector<gpu::BufferRange>{p.points.texels(kPoint), n.points.texels(kPoint), p.quads.texels(kWord4),
@@ -140,75 +108,43 @@ class VulkanEvaluation final : public Evaluation {
                                                                 p.vertex_sharpness.texels(kFloat), weights_.texels(kFloat),
                                                                 out_index_.texels(kWord)});
     }
-    const LevelBuffers& last = buffers_.back();
-    if (s_.project) {
-      limit_.emplace(*ctx_, s_.limit);
-      limit_->bind(last.points, buffers_[s_.early >= 0 ? s_.early : buffers_.size() - 1].points, positions_, normals_);
-    } else {
-      output_ = gpu::shared_compute_pipeline(*ctx_, {sdb_refined_shaders::get("points_out.comp"), {U, S}, sizeof(OutputPush), {{0, kLocalSize}}});
-      output_set_ = gpu::DescriptorSet(*output_, {last.points.texels(kPoint), positions_.texels(kFloat)});
+    bind_output(s_->project ? &s_->limit : nullptr, buffers_.back().points,
+                buffers_[s_->early >= 0 ? s_->early : buffers_.size() - 1].points);
+  }
+
+  // "depth 1: first step", then one "depth d: edge-friend" dispatch a level.
+  void record_levels(gpu::Commands& cmd, gpu::GpuTimer& timer) {
+    const bool out_index = !s_->hierarchy.out_index.empty();
+    StencilPush sp;
+    sp.count = s_->stencils.rows();
+    sp.flags = s_->depth == 1 && out_index ? kOutIndex : 0;
+    timer.begin(cmd, gpu::PassKind::Kernel, "depth 1: first step");
+    cmd.bind(*first_, first_set_);
+    cmd.push(sp);
+    cmd.dispatch(gpu::groups_for(sp.count, kLocalSize, ctx().limits()));
+    timer.end(cmd);
+    cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
+    for (int d = 1; d < s_->depth; ++d) {
+      const Level& l = levels()[d - 1];
+      LevelPush p;
+      p.count = invocations(l), p.vertices = l.num_vertices, p.quads = l.num_quads;
+      p.flags = (l.creased ? kCreased : 0) | (l.vertex_sharpness.empty() ? 0 : kVertexSharp) |
+                (d + 1 == s_->depth && out_index ? kOutIndex : 0);
+      timer.begin(cmd, gpu::PassKind::Kernel, "depth " + std::to_string(d + 1) + ": edge-friend");
+      cmd.bind(*level_, sets_[d - 1]);
+      cmd.push(p);
+      cmd.dispatch(gpu::groups_for(p.count, kLocalSize, ctx().limits()));
+      timer.end(cmd);
+      cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
     }
   }
 
-  void record_frame() {
-    timer_.emplace(*ctx_, uint32_t(s_.depth + 5));
-    const bool out_index = !s_.hierarchy.out_index.empty();
-    frame_ = ctx_->record([&](gpu::Commands& cmd) {
-      timer_->reset(cmd);
-      timer_->begin(cmd, gpu::PassKind::Upload, "upload");
-      cmd.upload(staging_, control_points_, 16 * uint64_t(control_.size()));
-      timer_->end(cmd);
-      StencilPush sp;
-      sp.count = s_.stencils.rows();
-      sp.flags = s_.depth == 1 && out_index ? kOutIndex : 0;
-      timer_->begin(cmd, gpu::PassKind::Kernel, "depth 1: first step");
-      cmd.bind(*first_, first_set_);
-      cmd.push(sp);
-      cmd.dispatch(gpu::groups_for(sp.count, kLocalSize, ctx_->limits()));
-      timer_->end(cmd);
-      cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
-      for (int d = 1; d < s_.depth; ++d) {
-        const Level& l = levels()[d - 1];
-        LevelPush p;
-        p.count = invocations(l), p.vertices = l.num_vertices, p.quads = l.num_quads;
-        p.flags = (l.creased ? kCreased : 0) | (l.vertex_sharpness.empty() ? 0 : kVertexSharp) |
-                  (d + 1 == s_.depth && out_index ? kOutIndex : 0);
-        timer_->begin(cmd, gpu::PassKind::Kernel, "depth " + std::to_string(d + 1) + ": edge-friend");
-        cmd.bind(*level_, sets_[d - 1]);
-        cmd.push(p);
-        cmd.dispatch(gpu::groups_for(p.count, kLocalSize, ctx_->limits()));
-        timer_->end(cmd);
-        cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
-      }
-      if (limit_) {
-        limit_->record(cmd, *timer_, s_.origin);
-        return;
-      }
-      OutputPush p;
-      p.count = s_.hierarchy.out_vertices;
-      for (int k = 0; k < 3; ++k) p.origin[k] = s_.origin[k];
-      timer_->begin(cmd, gpu::PassKind::Kernel, "output");
-      cmd.bind(*output_, output_set_);
-      cmd.push(p);
-      cmd.dispatch(gpu::groups_for(p.count, kLocalSize, ctx_->limits()));
-      timer_->end(cmd);
-    });
-  }
-
-  std::shared_ptr<gpu::Context> ctx_;
-  std::vector<Point3> control_;
-  Surface s_;
-  uint64_t output_bytes_ = 0;
-  std::vector<std::array<float, 4>> relative_;
-  gpu::Buffer staging_, control_points_, begin_, source_, weight_, out_index_, weights_, positions_, normals_;
+  std::unique_ptr<Surface> s_;
+  gpu::Buffer control_points_, begin_, source_, weight_, out_index_, weights_;
   std::vector<LevelBuffers> buffers_;
-  std::shared_ptr<const gpu::ComputePipeline> first_, level_, output_;
-  gpu::DescriptorSet first_set_, output_set_;
+  std::shared_ptr<const gpu::ComputePipeline> first_, level_;
+  gpu::DescriptorSet first_set_;
   std::vector<gpu::DescriptorSet> sets_;
-  std::optional<refined::VulkanLimit> limit_;
-  std::optional<gpu::GpuTimer> timer_;
-  std::optional<gpu::Recording> frame_;
-  std::optional<gpu::OutputReadback> readback_;
 };
 
 }  // namespace

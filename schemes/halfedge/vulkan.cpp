@@ -2,12 +2,12 @@
 
 #include <array>
 #include <cstdio>
+#include <stdexcept>
 
 #include "harness/gpu/gpu.h"
-#include "harness/refined/limit_vulkan.h"
 #include "harness/refined/requests.h"
+#include "harness/refined/vulkan_frame.h"
 #include "schemes/halfedge/surface.h"
-#include "sdb_refined_shaders.h"
 #include "sdb_scheme_halfedge_shaders.h"
 
 namespace sdb::halfedge {
@@ -15,17 +15,11 @@ namespace {
 
 namespace shaders = sdb_scheme_halfedge_shaders;
 using gpu::BufferUsage;
-constexpr uint32_t kLocalSize = 64;
-constexpr VkFormat kPoint = VK_FORMAT_R32G32B32A32_SFLOAT, kWord = VK_FORMAT_R32_UINT, kFloat = VK_FORMAT_R32_SFLOAT;
 constexpr uint32_t kCreased = 1, kChildSharp = 2;  // halfedge.glsl
 
 struct Push {
   uint32_t count = 0, vertices = 0, faces = 0, edges = 0, face_size = 0, flags = 0;
   uint32_t base_next = 0, base_prev = 0, base_face = 0, base_first = 0;
-};
-struct OutputPush {
-  uint32_t count = 0, pad[3] = {0, 0, 0};
-  float origin[4] = {0, 0, 0, 0};
 };
 
 // A level's buffers on the device: its halfedges and, where it has any, its sharpness.
@@ -38,68 +32,45 @@ gpu::Buffer table(gpu::Context& c, const std::vector<T>& values, const std::stri
   return gpu::texel_table(c, values, name);
 }
 
-class VulkanEvaluation final : public Evaluation {
+class VulkanEvaluation final : public refined::VulkanFrame {
  public:
   VulkanEvaluation(const ControlMesh& mesh, SubdivisionRule rule, int depth, bool project, std::shared_ptr<gpu::Context> ctx)
-      : ctx_(std::move(ctx)), control_(mesh.positions), s_(mesh, rule, depth, project) {
+      : VulkanEvaluation(std::make_unique<Surface>(mesh, rule, depth, project), mesh, std::move(ctx)) {}
+
+ private:
+  VulkanEvaluation(std::unique_ptr<Surface> s, const ControlMesh& mesh, std::shared_ptr<gpu::Context> ctx)
+      : VulkanFrame(std::move(ctx), mesh.positions, s->hierarchy.base_vertices, s->origin, s->out), s_(std::move(s)) {
+    if (uploaded() != levels()[0].num_vertices) throw std::logic_error("halfedge: level 0 is not the uploaded points");
     check_device();
     make_buffers();
     make_sets();
-    record_frame();
-    readback_.emplace(*ctx_, positions_, normals_, output_bytes_);
+    record_frame(buffers_[0].points, uint32_t(passes_.size()) * s_->depth,
+                 [&](gpu::Commands& cmd, gpu::GpuTimer& timer) {
+                   for (int d = 0; d < s_->depth; ++d) record_level(cmd, timer, d);
+                 });
   }
 
-  void execute() override {
-    const std::vector<uint32_t>& base = s_.hierarchy.base_vertices;
-    for (size_t v = 0; v < level0_.size(); ++v) {
-      const Point3& p = control_[base.empty() ? v : base[v]];
-      level0_[v] = {p[0] - s_.origin[0], p[1] - s_.origin[1], p[2] - s_.origin[2], 0.0f};
-    }
-    staging_.write(level0_);
-    ctx_->submit(*frame_);
-    readback_->invalidate();
-  }
-  const Tessellation& result() override {
-    readback_->read_into(s_.out);
-    return s_.out;
-  }
-  size_t bytes_out() const override { return s_.out.positions.size() * 2 * sizeof(Point3); }
-  std::optional<GpuTimes> gpu_times() const override {
-    auto passes = timer_->read_passes();
-    if (!passes) return std::nullopt;
-    readback_->append_passes(*passes);
-    return gpu::to_gpu_times(*passes);
-  }
-
- private:
-  const std::vector<Level>& levels() const { return s_.hierarchy.levels; }
+  const std::vector<Level>& levels() const { return s_->hierarchy.levels; }
 
   // Every buffer against the device's limits and heaps before one is made.
   void check_device() {
     uint64_t device = 0;
-    const Level& last = s_.last();
+    const Level& last = s_->last();
     for (size_t d = 0; d < levels().size(); ++d) {
       const Level& l = levels()[d];
       device += 16 * uint64_t(l.num_vertices);
       if (&l != &last) {
-        gpu::check_texel_binding(*ctx_, l.num_halfedges, "a level's halfedges");
+        gpu::check_texel_binding(ctx(), l.num_halfedges, "a level's halfedges");
         device += 4 * (3 * l.num_halfedges + l.num_edges + l.num_vertices);
       }
       device += 4 * (l.edge_sharpness.size() + l.vertex_sharpness.size());
     }
-    output_bytes_ = std::max<uint64_t>(12 * uint64_t(last.num_vertices), 16);
-    gpu::check_texel_binding(*ctx_, 3 * uint64_t(last.num_vertices), "the output's floats");
-    if (s_.project) device += refined::VulkanLimit::table_bytes(s_.limit);
-    device += 2 * output_bytes_;
-    gpu::check_memory(*ctx_, {device, 2 * output_bytes_ + 16 * uint64_t(levels()[0].num_vertices)},
-                      "depth " + std::to_string(s_.depth));
+    VulkanFrame::check_device(device, s_->project ? &s_->limit : nullptr, "depth " + std::to_string(s_->depth));
   }
 
   void make_buffers() {
-    gpu::Context& c = *ctx_;
-    const uint32_t v0 = levels()[0].num_vertices;
-    level0_.resize(v0);
-    staging_ = gpu::Buffer::upload(c, std::max<uint64_t>(16 * uint64_t(v0), 16), "control points (staging)");
+    gpu::Context& c = ctx();
+    make_output_buffers();
     const std::vector<float> none{0.0f};
     for (size_t d = 0; d < levels().size(); ++d) {
       const Level& l = levels()[d];
@@ -128,14 +99,11 @@ class VulkanEvaluation final : public Evaluation {
       base.insert(base.end(), l0.face_first.begin(), l0.face_first.end());
     }
     base_ = table(c, base, "base level's next, prev, face");
-    const SmoothWeights& w = s_.weights;
+    const SmoothWeights& w = s_->weights;
     std::vector<float> weights = w.vertex;
     weights.insert(weights.end(), w.ring.begin(), w.ring.end());
     weights.insert(weights.end(), w.inverse.begin(), w.inverse.end());
     weights_ = table(c, weights, "smooth masks");
-    const BufferUsage out = BufferUsage::StorageTexel | BufferUsage::Storage;
-    positions_ = gpu::Buffer::device(c, output_bytes_, out, "positions");
-    normals_ = gpu::Buffer::device(c, output_bytes_, out, "normals");
   }
 
   gpu::ComputePipelineDesc desc(const char* shader) const {
@@ -146,11 +114,11 @@ class VulkanEvaluation final : public Evaluation {
   }
 
   void make_sets() {
-    const bool loop = s_.rule == SubdivisionRule::Loop;
+    const bool loop = s_->rule == SubdivisionRule::Loop;
     passes_ = loop ? std::vector<std::string>{"loop_edges.comp", "loop_vertices.comp"}
                    : std::vector<std::string>{"cc_faces.comp", "cc_edges.comp", "cc_vertices.comp"};
-    for (const std::string& p : passes_) pipelines_.push_back(gpu::shared_compute_pipeline(*ctx_, desc(p.c_str())));
-    for (int d = 0; d < s_.depth; ++d) {
+    for (const std::string& p : passes_) pipelines_.push_back(gpu::shared_compute_pipeline(ctx(), desc(p.c_str())));
+    for (int d = 0; d < s_->depth; ++d) {
       const LevelBuffers &p = buffers_[d], &c = buffers_[d + 1];
       sets_.emplace_back(*pipelines_[0],
                          std::vector<gpu::BufferRange>{p.points.texels(kPoint), c.points.texels(kPoint), c.points.texels(kPoint),
@@ -161,79 +129,39 @@ class VulkanEvaluation final : public Evaluation {
                                                        weights_.texels(kFloat), base_.texels(kWord)});
     }
     const LevelBuffers& last = buffers_.back();  // its points only
-    if (s_.project) {
-      limit_.emplace(*ctx_, s_.limit);
-      limit_->bind(last.points, buffers_[s_.early >= 0 ? s_.early : buffers_.size() - 1].points, positions_, normals_);
-    } else {
-      output_ = gpu::shared_compute_pipeline(
-          *ctx_, {sdb_refined_shaders::get("points_out.comp"), {gpu::Binding::UniformTexelBuffer, gpu::Binding::StorageTexelBuffer},
-                  sizeof(OutputPush), {{0, kLocalSize}}});
-      output_set_ = gpu::DescriptorSet(*output_, {last.points.texels(kPoint), positions_.texels(kFloat)});
-    }
+    bind_output(s_->project ? &s_->limit : nullptr, last.points,
+                buffers_[s_->early >= 0 ? s_->early : buffers_.size() - 1].points);
   }
 
   // Level d's passes: their counts, names and the level's flags.
-  void record_level(gpu::Commands& cmd, int d) {
+  void record_level(gpu::Commands& cmd, gpu::GpuTimer& timer, int d) {
     const Level &l = levels()[d], &c = levels()[d + 1];
     Push push;
     push.vertices = l.num_vertices, push.faces = l.num_faces, push.edges = l.num_edges, push.face_size = l.face_size;
-    push.flags = (s_.hierarchy.creased[d] ? kCreased : 0) | (c.edge_sharpness.empty() ? 0 : kChildSharp);
+    push.flags = (s_->hierarchy.creased[d] ? kCreased : 0) | (c.edge_sharpness.empty() ? 0 : kChildSharp);
     push.base_next = base_next_, push.base_prev = base_prev_, push.base_face = base_face_, push.base_first = base_first_;
-    const bool loop = s_.rule == SubdivisionRule::Loop;
+    const bool loop = s_->rule == SubdivisionRule::Loop;
     const std::array<uint32_t, 3> counts = loop ? std::array<uint32_t, 3>{l.num_edges, l.num_vertices, 0}
                                                 : std::array<uint32_t, 3>{l.num_faces, l.num_edges, l.num_vertices};
     const char* names[3] = {loop ? "edges" : "faces", loop ? "vertices" : "edges", "vertices"};
     for (size_t k = 0; k < passes_.size(); ++k) {
-      timer_->begin(cmd, gpu::PassKind::Kernel, "depth " + std::to_string(d + 1) + ": " + names[k]);
+      timer.begin(cmd, gpu::PassKind::Kernel, "depth " + std::to_string(d + 1) + ": " + names[k]);
       cmd.bind(*pipelines_[k], sets_[d]);
       push.count = counts[k];
       cmd.push(push);
-      if (counts[k] > 0) cmd.dispatch(gpu::groups_for(counts[k], kLocalSize, ctx_->limits()));
-      timer_->end(cmd);
+      if (counts[k] > 0) cmd.dispatch(gpu::groups_for(counts[k], kLocalSize, ctx().limits()));
+      timer.end(cmd);
       cmd.barrier(gpu::Stage::Compute, gpu::Stage::Compute);
     }
   }
 
-  void record_frame() {
-    timer_.emplace(*ctx_, uint32_t(3 * s_.depth + 4));
-    frame_ = ctx_->record([&](gpu::Commands& cmd) {
-      timer_->reset(cmd);
-      timer_->begin(cmd, gpu::PassKind::Upload, "upload");
-      cmd.upload(staging_, buffers_[0].points, 16 * uint64_t(levels()[0].num_vertices));
-      timer_->end(cmd);
-      for (int d = 0; d < s_.depth; ++d) record_level(cmd, d);
-      if (limit_) {
-        limit_->record(cmd, *timer_, s_.origin);
-        return;
-      }
-      OutputPush p;
-      p.count = s_.last().num_vertices;
-      for (int k = 0; k < 3; ++k) p.origin[k] = s_.origin[k];
-      timer_->begin(cmd, gpu::PassKind::Kernel, "output");
-      cmd.bind(*output_, output_set_);
-      cmd.push(p);
-      cmd.dispatch(gpu::groups_for(p.count, kLocalSize, ctx_->limits()));
-      timer_->end(cmd);
-    });
-  }
-
-  std::shared_ptr<gpu::Context> ctx_;
-  std::vector<Point3> control_;
-  Surface s_;
-  uint64_t output_bytes_ = 0;
-  std::vector<std::array<float, 4>> level0_;
-  gpu::Buffer staging_, base_, weights_, positions_, normals_;
+  std::unique_ptr<Surface> s_;
+  gpu::Buffer base_, weights_;
   uint32_t base_next_ = 0, base_prev_ = 0, base_face_ = 0, base_first_ = 0;
   std::vector<LevelBuffers> buffers_;
   std::vector<std::string> passes_;
   std::vector<std::shared_ptr<const gpu::ComputePipeline>> pipelines_;
   std::vector<gpu::DescriptorSet> sets_;
-  std::optional<refined::VulkanLimit> limit_;
-  std::shared_ptr<const gpu::ComputePipeline> output_;
-  gpu::DescriptorSet output_set_;
-  std::optional<gpu::GpuTimer> timer_;
-  std::optional<gpu::Recording> frame_;
-  std::optional<gpu::OutputReadback> readback_;
 };
 
 }  // namespace
