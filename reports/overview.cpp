@@ -6,9 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "harness/bench/paired.h"
-#include "harness/bench/plan.h"
-#include "harness/bench/statistics.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {

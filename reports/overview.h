@@ -9,7 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "harness/bench/bound_judgement.h"
+#include "harness/results/bound_judgement.h"
 #include "harness/bench/results.h"
 
 namespace sdb {
