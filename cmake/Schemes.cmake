@@ -60,7 +60,7 @@ function(sdb_add_scheme family)
     set(experiments ${lib}_experiments)
     add_library(${experiments} STATIC ${S_EXPERIMENTS})
     # The algorithm whole, as everywhere else it is linked: one library linked two ways is refused.
-    target_link_libraries(${experiments} PUBLIC ${lib}_registered sdb_bench sdb_datasets PRIVATE sdb_warnings)
+    target_link_libraries(${experiments} PUBLIC ${lib}_registered sdb_bench sdb_gate sdb_datasets PRIVATE sdb_warnings)
     if(S_COMPILE_OPTIONS)
       target_compile_options(${experiments} PRIVATE ${S_COMPILE_OPTIONS})
     endif()

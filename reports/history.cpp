@@ -5,8 +5,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "harness/bench/statistics.h"
 #include "harness/core/registry.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {

@@ -11,8 +11,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "harness/bench/gate.h"
-#include "harness/bench/results.h"
+#include "harness/gate/gate.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

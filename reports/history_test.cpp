@@ -7,7 +7,6 @@
 
 #include <filesystem>
 
-#include "harness/bench/measure.h"
 #include "tests/timed_rows.h"
 
 using namespace sdb;

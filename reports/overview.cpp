@@ -6,9 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "harness/bench/paired.h"
-#include "harness/bench/plan.h"
-#include "harness/bench/statistics.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {
@@ -74,6 +72,64 @@ double rate_of(const SummaryCell& c) {
   return c.row->triangle_rate_mtris;
 }
 
+// Per row, its single-pass ratio to its peer's row (ReportOverview::row_peer_ratios).
+std::vector<double> single_pass_ratios(const ResultsFile& results) {
+  const auto key = [](const std::string& spec, const std::string& mesh, Backend b, int tessellation) {
+    return cell_key(spec, mesh, b) + "|" + std::to_string(tessellation);
+  };
+  std::map<std::string, const RunRow*> ok_rows;  // the last ok row of each (spec, mesh, backend, tessellation)
+  for (const RunRow& r : results.runs)
+    if (r.status == RunStatus::Ok && r.scheme != kCalibrationScheme)
+      ok_rows[key(r.spelled(), r.mesh, r.backend, r.tessellation)] = &r;
+  std::vector<double> ratios;
+  for (const RunRow& r : results.runs) {
+    double ratio = NAN;
+    if (r.status == RunStatus::Ok && !r.peer.empty() && r.peer_backend) {
+      const auto peer = ok_rows.find(key(r.peer, r.mesh, *r.peer_backend, r.tessellation));
+      if (peer != ok_rows.end() && peer->second->triangle_rate_mtris > 0 && std::isfinite(r.triangle_rate_mtris))
+        ratio = r.triangle_rate_mtris / peer->second->triangle_rate_mtris;
+    }
+    ratios.push_back(ratio);
+  }
+  return ratios;
+}
+
+// The limit table: per (scheme, mesh), over its rows that recorded a claim and a deviation.
+std::vector<LimitCell> limit_cells(const ResultsFile& results) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const RunRow*>> said;
+  for (const RunRow& r : results.runs) {
+    if (r.scheme == kCalibrationScheme || r.status == RunStatus::Unsupported) continue;
+    if (r.limit != "reproduces" && r.limit != "approximates") continue;
+    if (!r.deviation.measured && !(r.deviation.hausdorff_rel >= 0)) continue;  // no deviation recorded
+    const std::string k = r.spelled() + "|" + r.mesh;
+    auto& rows = said[k];
+    if (rows.empty()) order.push_back(k);
+    rows.push_back(&r);
+  }
+  const auto worst = [](double so_far, double x) { return std::isfinite(x) && !(x <= so_far) ? x : so_far; };
+  std::vector<LimitCell> cells;
+  for (const std::string& k : order) {
+    const auto& rows = said[k];
+    LimitCell c{rows.front()->spelled(), rows.front()->mesh};
+    std::set<int> levels;
+    for (const RunRow* r : rows) {
+      if (r->limit != "approximates") continue;
+      c.approximates = true;
+      levels.insert(r->level);
+      if (r->deviation.measured) {
+        c.worst_max_rel_diag = worst(c.worst_max_rel_diag, r->deviation.pos_max_rel_diag);
+        c.worst_p95_rel_diag = worst(c.worst_p95_rel_diag, r->deviation.pos_p95_rel_diag);
+      }
+      c.nearest_point |= r->deviation.measured_by == "nearest-point";
+    }
+    c.approximating_levels.assign(levels.begin(), levels.end());
+    c.some_reproduce = std::any_of(rows.begin(), rows.end(), [](const RunRow* r) { return r->limit == "reproduces"; });
+    cells.push_back(std::move(c));
+  }
+  return cells;
+}
+
 // Marks each point that no other point of the same backend dominates (as fast or faster and as
 // near or nearer, strictly better in one).
 void mark_pareto(std::vector<OverviewPoint>& points) {
@@ -117,12 +173,14 @@ void add_paired_ratio(const ResultsFile& results, SchemeOverview& s) {
 
 // Per mesh and backend, the fastest cell (the highest rate; on a tie the later spelling, as
 // reports/report_summary.py chose it before) is marked.
-std::vector<SummaryCellRef> summary_refs(const std::vector<SummaryCell>& cells) {
+std::vector<SummaryCellRef> summary_refs(const std::vector<SummaryCell>& cells, const ResultsFile& results,
+                                         const std::vector<double>& row_peer_ratios) {
   std::vector<SummaryCellRef> refs;
   std::map<std::string, size_t> fastest;  // mesh|backend: index into refs
   for (const SummaryCell& c : cells) {
     const RunRow& r = *c.row;
-    refs.push_back({r.spelled(), r.mesh, r.backend, r.level, c.paired != nullptr, rate_of(c), false});
+    const double ratio = c.paired ? c.paired->rate_ratio_median : row_peer_ratios[size_t(c.row - results.runs.data())];
+    refs.push_back({r.spelled(), r.mesh, r.backend, r.level, c.paired != nullptr, rate_of(c), false, ratio});
     const SummaryCellRef& mine = refs.back();
     if (!(mine.rate_mtris > 0)) continue;
     const std::string key = r.mesh + "|" + std::string(to_string(r.backend));
@@ -142,11 +200,13 @@ json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr
 ReportOverview make_overview(const ResultsFile& results) {
   ReportOverview o;
   for (const RunRow& r : results.runs) o.row_bounds.push_back(judge_bounds(r));
+  o.row_peer_ratios = single_pass_ratios(results);
+  o.limits = limit_cells(results);
   std::map<Backend, BackendOverview> backends;
   std::map<std::string, SchemeOverview> schemes;
   std::vector<std::string> scheme_order;
   const std::vector<SummaryCell> cells = summary_cells(results);
-  o.cells = summary_refs(cells);
+  o.cells = summary_refs(cells, results, o.row_peer_ratios);
   for (const SummaryCell& c : cells) {
     if (!usable(*c.row)) continue;
     const RunRow& r = *c.row;
@@ -222,12 +282,23 @@ json overview_json(const ReportOverview& o) {
   json cells = json::array();
   for (const SummaryCellRef& c : o.cells)
     cells.push_back({{"scheme", c.scheme}, {"mesh", c.mesh}, {"backend", to_string(c.backend)}, {"level", c.level},
-                     {"paired", c.paired}, {"rate_mtris", c.rate_mtris}, {"fastest", c.fastest}});
+                     {"paired", c.paired}, {"rate_mtris", c.rate_mtris}, {"fastest", c.fastest},
+                     {"ratio", number_or_null(c.ratio)}});
+  json row_peer_ratios = json::array();
+  for (const double ratio : o.row_peer_ratios) row_peer_ratios.push_back(number_or_null(ratio));
+  json limits = json::array();
+  for (const LimitCell& l : o.limits)
+    limits.push_back({{"scheme", l.scheme}, {"mesh", l.mesh}, {"limit", l.approximates ? "approximates" : "reproduces"},
+                      {"worst_max_rel_diag", number_or_null(l.worst_max_rel_diag)},
+                      {"worst_p95_rel_diag", number_or_null(l.worst_p95_rel_diag)},
+                      {"approximating_levels", l.approximating_levels}, {"some_reproduce", l.some_reproduce},
+                      {"nearest_point", l.nearest_point}});
   json row_bounds = json::array();
   for (const BoundJudgement& j : o.row_bounds) row_bounds.push_back({to_string(j.state), j.words});
   return {{"precision_floor_rel_diag", kPrecisionFloorRelDiag}, {"summary_triangles", kSummaryTriangles},
           {"summary_band", {kSummaryLow, kSummaryHigh}},
-          {"backends", backends}, {"schemes", schemes}, {"cells", cells}, {"row_bounds", row_bounds}};
+          {"backends", backends}, {"schemes", schemes}, {"cells", cells}, {"row_bounds", row_bounds},
+          {"row_peer_ratios", row_peer_ratios}, {"limits", limits}};
 }
 
 }  // namespace sdb

@@ -4,13 +4,14 @@
 // watertight on every closed input). Computed here, once, in C++; reports/report.py lays it out.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "harness/bench/bound_judgement.h"
-#include "harness/bench/results.h"
+#include "harness/results/bound_judgement.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 
@@ -70,6 +71,22 @@ struct SummaryCellRef {
   bool paired = false;
   double rate_mtris = 0;  // as OverviewPoint's; 0 where the row is not ok
   bool fastest = false;
+  // Its ratio to its peer: the paired rounds' median where the run paired the cell, else the row's
+  // single-pass ratio (ReportOverview::row_peer_ratios); NaN where it has none.
+  double ratio = NAN;
+};
+
+// What a scheme's rows on one mesh say of the input's limit surface (the report's limit table):
+// every row that recorded a claim and a deviation reproduces it, or some approximate it, and then
+// how closely at worst.
+struct LimitCell {
+  std::string scheme, mesh;
+  bool approximates = false;
+  // Over the approximating rows: the largest max and p95 distance / diagonal; NaN where none measured it.
+  double worst_max_rel_diag = NAN, worst_p95_rel_diag = NAN;
+  std::vector<int> approximating_levels;  // sorted, distinct
+  bool some_reproduce = false;            // only some rows approximate (the others reproduce)
+  bool nearest_point = false;             // an approximating row was measured by nearest points
 };
 
 struct ReportOverview {
@@ -78,11 +95,18 @@ struct ReportOverview {
   // Per row of the results file, in its order: its deviation against its bounds (bound_judgement.h),
   // the words the summary and the validation grid print.
   std::vector<BoundJudgement> row_bounds;
+  // Per row of the results file, in its order: its triangle rate over that of its peer's ok row
+  // (RunRow::peer on RunRow::peer_backend, same mesh and tessellation) measured in the same pass;
+  // NaN where the row is not ok or that row is missing or has no rate.
+  std::vector<double> row_peer_ratios;
+  // Per (scheme, mesh) with a row that said, in the order of the first row of each (calibration and
+  // unsupported rows left out).
+  std::vector<LimitCell> limits;
   std::vector<SchemeOverview> schemes;  // in the rows' order of first appearance
 };
 
 // The summary cells (SummaryCellRef) and, from their ok rows, the figures and the per-scheme table;
-// each row's bound judgement.
+// each row's bound judgement and single-pass peer ratio; the limit table.
 ReportOverview make_overview(const ResultsFile& results);
 
 nlohmann::json overview_json(const ReportOverview& overview);

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 using namespace sdb;
 
@@ -125,4 +127,85 @@ TEST(Overview, PerSchemeRowsRankNoCpuImplementationAndCountClosedInputs) {
   const auto j = overview_json(o);
   EXPECT_EQ(j["backends"][0]["backend"], "cpu");
   EXPECT_EQ(j["schemes"].size(), o.schemes.size());
+}
+
+// The single-pass ratio, once, in C++ (the report's row table and its unpaired summary cells read
+// it): the row's rate over its peer's ok row on the peer backend at the same mesh and tessellation.
+TEST(Overview, SinglePassRatioIsTheRowsRateOverItsPeersRowOfTheSameTessellation) {
+  ResultsFile f;
+  auto at = [](RunRow r, int tessellation, const std::string& peer, std::optional<Backend> peer_backend) {
+    r.tessellation = tessellation, r.peer = peer, r.peer_backend = peer_backend;
+    return r;
+  };
+  f.runs = {
+      at(row("peer", Backend::Cpu, "ball", 3, 1'000'000, 100, "reproduces", 1e-7), 8, "", std::nullopt),
+      at(row("peer", Backend::Cpu, "ball", 4, 4'000'000, 0, "reproduces", 1e-7), 16, "", std::nullopt),
+      at(row("mine", Backend::Cpu, "ball", 3, 1'000'000, 300, "reproduces", 1e-7), 8, "peer", Backend::Cpu),
+      at(row("mine", Backend::Vulkan, "ball", 3, 1'000'000, 50, "reproduces", 1e-7), 8, "peer", Backend::Cpu),
+      at(row("mine", Backend::Cpu, "ball", 4, 4'000'000, 300, "reproduces", 1e-7), 16, "peer", Backend::Cpu),
+      at(row("mine", Backend::CpuMt, "ball", 3, 1'000'000, 900, "reproduces", 1e-7), 8, "peer", Backend::CpuMt),
+      at(row("mine", Backend::Cpu, "cube", 3, 1'000'000, 300, "reproduces", 1e-7), 8, "peer", Backend::Cpu),
+  };
+  f.runs.back().status = RunStatus::Failed;
+  const ReportOverview o = make_overview(f);
+  ASSERT_EQ(o.row_peer_ratios.size(), f.runs.size());
+  EXPECT_TRUE(std::isnan(o.row_peer_ratios[0])) << "the anchor has no peer";
+  EXPECT_DOUBLE_EQ(o.row_peer_ratios[2], 3.0);
+  EXPECT_DOUBLE_EQ(o.row_peer_ratios[3], 0.5) << "a Vulkan row against its peer's cpu row";
+  EXPECT_TRUE(std::isnan(o.row_peer_ratios[4])) << "a peer row without a rate";
+  EXPECT_TRUE(std::isnan(o.row_peer_ratios[5])) << "no peer row on cpu-mt";
+  EXPECT_TRUE(std::isnan(o.row_peer_ratios[6])) << "a failed row";
+  std::map<std::string, SummaryCellRef> cells;
+  for (const auto& c : o.cells) cells[c.scheme + "/" + std::string(to_string(c.backend)) + "/" + c.mesh] = c;
+  EXPECT_DOUBLE_EQ(cells.at("mine/cpu/ball").ratio, 3.0) << "the summary cell nearest 1 M triangles, single pass";
+  EXPECT_DOUBLE_EQ(cells.at("mine/vulkan/ball").ratio, 0.5);
+  EXPECT_TRUE(std::isnan(cells.at("mine/cpu/cube").ratio));
+  const auto j = overview_json(o);
+  EXPECT_EQ(j["row_peer_ratios"][2], 3.0);
+  EXPECT_TRUE(j["row_peer_ratios"][0].is_null());
+  // A paired cell's ratio is its rounds' median, not the single pass.
+  ResultsFile paired = sample();
+  for (const auto& c : make_overview(paired).cells)
+    if (c.scheme == "fast-exact" && c.mesh == "ball" && c.backend == Backend::Cpu) EXPECT_DOUBLE_EQ(c.ratio, 5.0);
+}
+
+// The limit table: per scheme and mesh, "reproduces" unless a row approximates, then the worst max
+// and p95 over the approximating rows and their levels; rows without a claim or a deviation, and
+// unsupported rows, say nothing.
+TEST(Overview, LimitTableTakesTheWorstOfTheApproximatingRows) {
+  ResultsFile f;
+  RunRow coarse = row("approx", Backend::Cpu, "ball", 2, 10'000, 10, "approximates", 4e-4);
+  coarse.deviation.pos_max_rel_diag = 1e-3;
+  RunRow fine = row("approx", Backend::Cpu, "ball", 3, 40'000, 10, "approximates", 3e-4);
+  fine.deviation.pos_max_rel_diag = 2e-3;
+  fine.deviation.measured_by = "nearest-point";
+  RunRow refused = row("approx", Backend::Cpu, "ball", 4, 160'000, 10, "approximates", 9e-1);
+  refused.status = RunStatus::Unsupported;
+  RunRow unmeasured = row("approx", Backend::Vulkan, "ball", 4, 160'000, 10, "approximates", 9e-1);
+  unmeasured.deviation = DeviationFigures{};
+  RunRow unclaimed = row("older", Backend::Cpu, "ball", 1, 10'000, 10, "", 1e-7);
+  f.runs = {row("approx", Backend::Cpu, "ball", 1, 2'500, 10, "reproduces", 1e-7), coarse, fine, refused, unmeasured,
+            row("exact", Backend::Cpu, "cube", 1, 2'500, 10, "reproduces", 1e-7), unclaimed,
+            row("approx", Backend::Cpu, "cube", 2, 10'000, 10, "approximates", 5e-4)};
+  f.runs.back().deviation.pos_max_rel_diag = NAN;  // null in the file: not measured
+  const ReportOverview o = make_overview(f);
+  ASSERT_EQ(o.limits.size(), 3u) << "approx on ball and cube, exact on cube; nothing of the unclaimed row";
+  const LimitCell& ball = o.limits[0];
+  EXPECT_EQ(ball.scheme, "approx");
+  EXPECT_EQ(ball.mesh, "ball");
+  EXPECT_TRUE(ball.approximates);
+  EXPECT_DOUBLE_EQ(ball.worst_max_rel_diag, 2e-3);
+  EXPECT_DOUBLE_EQ(ball.worst_p95_rel_diag, 4e-4) << "the unsupported row's 0.9 is not a figure";
+  EXPECT_EQ(ball.approximating_levels, (std::vector<int>{2, 3}));
+  EXPECT_TRUE(ball.some_reproduce);
+  EXPECT_TRUE(ball.nearest_point);
+  EXPECT_EQ(o.limits[1].scheme, "exact");
+  EXPECT_FALSE(o.limits[1].approximates);
+  EXPECT_EQ(o.limits[2].mesh, "cube");
+  EXPECT_FALSE(o.limits[2].some_reproduce);
+  EXPECT_TRUE(std::isnan(o.limits[2].worst_max_rel_diag)) << "p95 measured, max not: " << o.limits[2].worst_max_rel_diag;
+  const auto j = overview_json(o);
+  EXPECT_EQ(j["limits"][0]["limit"], "approximates");
+  EXPECT_EQ(j["limits"][1]["limit"], "reproduces");
+  EXPECT_TRUE(j["limits"][2]["worst_max_rel_diag"].is_null());
 }

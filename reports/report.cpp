@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "harness/bench/output_folder.h"
-#include "harness/bench/process.h"
-#include "harness/bench/results.h"
-#include "harness/bench/resources.h"
-#include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/results/output_folder.h"
+#include "harness/results/process.h"
+#include "harness/results/resources.h"
+#include "harness/results/results.h"
+#include "harness/results/results_merge.h"
 #include "reports/history.h"
 #include "reports/overview.h"
 #include "reports/report_inputs.h"

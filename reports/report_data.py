@@ -9,7 +9,7 @@ from collections import defaultdict
 
 SCHEMA = 1
 # The summary's common output size: each cell is the row whose output is nearest this.
-CALIBRATION = "calibration"  # harness/bench/measure.h kCalibrationScheme
+CALIBRATION = "calibration"  # harness/results/results.h kCalibrationScheme
 BACKEND_ORDER = ["cpu", "cpu-mt", "vulkan", "opengl"]
 
 # One colour per scheme, the same in every plot and every report: the registry's methods (the
@@ -58,7 +58,7 @@ def timing(r):
 
 def cpu_implementation(machine, backend):
     """The words for a GPU backend whose rows ran on a CPU implementation of its API (the machine
-    block's device type, harness/bench/results.h: lavapipe, llvmpipe), else ""."""
+    block's device type, harness/results/results.h: lavapipe, llvmpipe), else ""."""
     m = machine or {}
     device = {"vulkan": ("vulkan_device", "vulkan_device_type", "Vulkan"),
               "opengl": ("opengl_renderer", "opengl_device_type", "OpenGL")}.get(backend)
@@ -111,13 +111,11 @@ class Results:
         self.rows = [r for r in data["runs"] if r["scheme"] != CALIBRATION]
         self.paired = data.get("paired") or []
         self.schemes = Schemes(registry_order, self.rows)
-        self._by_tess = {}
+        self.limits = overview["limits"]
         self._by_cell = defaultdict(list)  # (spec, mesh, backend): rows; a sweep has thousands of meshes
         self._specs = {}
         for r in self.rows:
             self._by_cell[(spec_of(r), r["mesh"], r["backend"])].append(r)
-            if r["status"] == "ok":
-                self._by_tess[(spec_of(r), r["mesh"], r["backend"], r["tessellation"])] = r
         # Backend cells pair a GPU row with its own scheme's cpu-mt row (harness/bench/paired.h);
         # the summary cells are the peer ones.
         self.backend_pairs = [p for p in self.paired if is_backend_pair(p)]
@@ -136,13 +134,6 @@ class Results:
                                           key=self.schemes.key)
         return self._specs[backend]
 
-    def peer_row(self, r):
-        """The row's peer (its scheme's SchemeInfo::peer, recorded in the row) at the same mesh and
-        tessellation on the row's peer backend, or None."""
-        if not r.get("peer") or not r.get("peer_backend"):
-            return None
-        return self._by_tess.get((r["peer"], r["mesh"], r["peer_backend"], r["tessellation"]))
-
     def paired_cell(self, spec, mesh, backend):
         return self._paired.get((spec, mesh, backend))
 
@@ -154,7 +145,7 @@ class Results:
         if not c:
             return None
         row = next(r for r in self._by_cell[(spec, mesh, backend)] if r["level"] == c["level"])
-        return Cell(row, self, self.paired_cell(spec, mesh, backend) if c["paired"] else None, c["fastest"])
+        return Cell(row, self.paired_cell(spec, mesh, backend) if c["paired"] else None, c)
 
 
 def is_backend_pair(p):
@@ -163,24 +154,22 @@ def is_backend_pair(p):
 
 
 class Cell:
-    """A summary cell: a row, and its ratio to its peer, paired or single pass."""
+    """A summary cell: a row, and its ratio to its peer, paired or single pass (reports/overview.cpp)."""
 
-    def __init__(self, row, results, paired, fastest=False):
+    def __init__(self, row, paired, figures):
+        """figures: the overview's cell (reports/overview.cpp): its rate, ratio and fastest flag."""
         self.row = row
         self.paired = paired
-        self.fastest = fastest  # the fastest on its mesh and backend (reports/overview.cpp)
+        self.fastest = figures["fastest"]  # the fastest on its mesh and backend
+        self._rate = figures["rate_mtris"]
         self.peer = None
         self.ratio = None
         if paired:
-            rr = paired["rate_ratio"]
-            self.ratio = rr.get("median")
+            self.ratio = figures["ratio"]
             self.peer = f"{paired['peer']['scheme']} ({paired['peer']['backend']})"
         elif row["status"] == "ok":
-            peer = results.peer_row(row)
-            if peer and peer["triangle_rate_mtris"] > 0 and finite(row["triangle_rate_mtris"]):
-                self.ratio = row["triangle_rate_mtris"] / peer["triangle_rate_mtris"]
-                self.peer = f"{spec_of(peer)} ({peer['backend']})"
-            elif row.get("peer"):
+            self.ratio = figures["ratio"]
+            if row.get("peer"):
                 self.peer = f"{row['peer']} ({row.get('peer_backend') or '?'})"
 
     @property
@@ -190,14 +179,8 @@ class Cell:
     @property
     def rate(self):
         """M triangles/s: from the paired rounds' median time where the run paired the cell (the
-        single pass can read 40% off), else the row's."""
-        if not self.ok:
-            return None
-        if self.paired:
-            t = (self.paired.get("time_ms") or {}).get("median")
-            if finite(t) and t > 0 and self.paired.get("triangles", 0) > 0:
-                return self.paired["triangles"] / t / 1e3
-        return self.row["triangle_rate_mtris"]
+        single pass can read 40% off), else the row's (reports/overview.cpp)."""
+        return self._rate if self.ok else None
 
     def ratio_range(self):
         if not self.paired:
@@ -246,42 +229,38 @@ def watertight_state(r):
 
 def bound_state(r):
     """('kept' | 'past' | 'none' | 'unmeasured', words): the row's deviation against the bounds it
-    declares, as harness/bench/bound_judgement.cpp judged it (attach_bounds put it in the row)."""
+    declares, as harness/results/bound_judgement.cpp judged it (attach_bounds put it in the row)."""
     return tuple(r["bound_state"])
 
 
 def attach_bounds(data, overview):
-    """Each row's bound judgement from the overview (reports/overview.cpp), by the file's row order."""
-    judged = overview["row_bounds"]
-    if len(judged) != len(data["runs"]):
+    """Each row's bound judgement and single-pass ratio to its peer's row from the overview
+    (reports/overview.cpp), by the file's row order."""
+    judged, ratios = overview["row_bounds"], overview["row_peer_ratios"]
+    if len(judged) != len(data["runs"]) or len(ratios) != len(data["runs"]):
         raise ValueError(f"the overview judges {len(judged)} rows, the results file has {len(data['runs'])}")
-    for r, j in zip(data["runs"], judged):
+    for r, j, ratio in zip(data["runs"], judged, ratios):
         r["bound_state"] = j
+        r["peer_ratio"] = ratio
 
 
 def percent_of_diagonal(x):
     return f"{100 * x:.2g}%" if finite(x) else "–"
 
 
-def limit_words(rows):
-    """What a scheme's rows on one mesh say of the input's limit surface: 'reproduces' where every
-    measured row does, else 'approximates: max M, p95 P' (the largest of the approximating rows'
-    figures, % of the diagonal), naming the levels when only some approximate; None when no row
-    recorded it (files written before rows said)."""
-    said = [r for r in rows if r.get("limit") in ("reproduces", "approximates") and (r.get("deviation") or {})]
-    if not said:
-        return None
-    approximating = [r for r in said if r["limit"] == "approximates"]
-    if not approximating:
+def limit_words(cell):
+    """What a scheme's rows on one mesh say of the input's limit surface, from the overview's limit
+    cell (reports/overview.cpp): 'reproduces' where every measured row does, else 'approximates:
+    max M, p95 P' (the largest of the approximating rows' figures, % of the diagonal), naming the
+    levels when only some approximate."""
+    if cell["limit"] != "approximates":
         return "reproduces"
-    dev = [r["deviation"] for r in approximating]
-    worst_max = max((d.get("pos_max_rel_diag") for d in dev if finite(d.get("pos_max_rel_diag"))), default=None)
-    worst_p95 = max((d.get("pos_p95_rel_diag") for d in dev if finite(d.get("pos_p95_rel_diag"))), default=None)
-    text = f"approximates: max {percent_of_diagonal(worst_max)}, p95 {percent_of_diagonal(worst_p95)}"
-    if len(approximating) < len(said):
-        levels = sorted({r["level"] for r in approximating})
+    text = (f"approximates: max {percent_of_diagonal(cell['worst_max_rel_diag'])}, "
+            f"p95 {percent_of_diagonal(cell['worst_p95_rel_diag'])}")
+    if cell["some_reproduce"]:
+        levels = cell["approximating_levels"]
         text += f" (at level{'s' if len(levels) > 1 else ''} {', '.join(map(str, levels))}; reproduces at the others)"
-    if any((r["deviation"].get("measured_by") == "nearest-point") for r in approximating):
+    if cell["nearest_point"]:
         text += ", by nearest points"
     return text
 

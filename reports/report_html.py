@@ -395,15 +395,14 @@ def row_html(r, results):
     dev = r.get("deviation") or {}
     own = dev.get("own_reference") or {}
     wt = r.get("watertight", {})
-    peer = results.peer_row(r)
     ok = r["status"] == "ok"
-    ratio = r["triangle_rate_mtris"] / peer["triangle_rate_mtris"] if ok and peer and peer["triangle_rate_mtris"] > 0 else None
+    ratio = r["peer_ratio"]  # reports/overview.cpp: the row's rate over its peer's row's, same pass
     t = timing(r)["median"] if r["status"] != "unsupported" else None
     cracks = wt.get("ray_cracks", -1)
     values = [
         (spec_of(r), None), (r["backend"], None), (r["mesh"], None), (str(r["level"]), r["level"]),
         (fmt(r["triangles"]), r["triangles"]), (fmt(t), t), (fmt(r["triangle_rate_mtris"]) if ok else "–", r["triangle_rate_mtris"] if ok else None),
-        (fmt(ratio), ratio), (f"{peer and spec_of(peer) or r.get('peer') or '–'}", None),
+        (fmt(ratio), ratio), (r.get("peer") or "–", None),
         (fmt(100 * r.get("bandwidth_fraction", 0)), 100 * r.get("bandwidth_fraction", 0)),
         (fmt(wt.get("open_edges")) if finite(wt.get("open_edges")) and wt["open_edges"] >= 0 else "–", wt.get("open_edges")),
         (f"{int(cracks)} / {int(wt.get('rays', 0)):,}" if finite(cracks) and cracks >= 0 else "–", cracks),

@@ -129,13 +129,10 @@ def validation_grid(results):
 
 def limit_table(results):
     """{spec: {mesh: words}}: whether each scheme reproduces its input's limit surface on each mesh
-    or approximates it, and how closely (limit_words), in the registry's order."""
+    or approximates it, and how closely (the overview's limit cells, limit_words), in the registry's order."""
     table = {}
-    for (spec, mesh), rows in group([r for r in results.rows if r["status"] != "unsupported"],
-                                    lambda r: (spec_of(r), r["mesh"])).items():
-        words = limit_words(rows)
-        if words:
-            table.setdefault(spec, {})[mesh] = words
+    for cell in results.limits:
+        table.setdefault(cell["scheme"], {})[cell["mesh"]] = limit_words(cell)
     return {spec: table[spec] for spec in sorted(table, key=results.schemes.key)}
 
 

@@ -13,14 +13,14 @@
 
 #include "harness/bench/gpu_check_plan.h"
 #include "harness/bench/gpu_check_summary.h"
-#include "harness/bench/line_file.h"
 #include "harness/bench/machine.h"
-#include "harness/bench/process.h"
-#include "harness/bench/results_json.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gl/context.h"
 #include "harness/gpu/device_info.h"
+#include "harness/results/line_file.h"
+#include "harness/results/process.h"
+#include "harness/results/results_json.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

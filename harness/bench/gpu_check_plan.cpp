@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {

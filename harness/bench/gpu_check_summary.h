@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/bench/results.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

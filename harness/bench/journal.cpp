@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/bench/results_check.h"
-#include "harness/bench/line_file.h"
-#include "harness/bench/results_json.h"
 #include "harness/core/errors.h"
+#include "harness/results/line_file.h"
+#include "harness/results/results_check.h"
+#include "harness/results/results_json.h"
 
 namespace sdb {
 

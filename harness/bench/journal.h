@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/bench/line_file.h"
 #include "harness/bench/plan.h"
-#include "harness/bench/results.h"
+#include "harness/results/line_file.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

@@ -1,6 +1,6 @@
 #include "harness/bench/machine.h"
-#include "harness/bench/resources.h"
 #include "harness/gl/context.h"
+#include "harness/results/resources.h"
 
 #include "harness/gpu/device_info.h"
 #include "harness/gpu/gpu.h"

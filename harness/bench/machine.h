@@ -1,7 +1,7 @@
 // The machine block of results.json, and the calibration probe every row is read against.
 #pragma once
 
-#include "harness/bench/results.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

@@ -16,13 +16,13 @@
 #include <regex>
 
 #include "datasets/manifest.h"
-#include "harness/bench/bound_judgement.h"
 #include "harness/bench/progress.h"
-#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/mesh/acceptance.h"
 #include "harness/mesh/facts.h"
+#include "harness/results/bound_judgement.h"
+#include "harness/results/statistics.h"
 #include "harness/validate/deviation.h"
 #include "harness/validate/deviation_ply.h"
 #include "harness/validate/watertight.h"

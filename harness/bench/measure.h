@@ -9,8 +9,6 @@
 #include <vector>
 
 #include "harness/bench/machine.h"
-#include "harness/bench/results.h"
-#include "harness/bench/run_spec.h"
 #include "harness/bench/shared_validation.h"
 #include "harness/core/registry.h"
 #include "harness/core/scheme.h"
@@ -18,6 +16,8 @@
 #include "harness/mesh/placement.h"
 #include "harness/reference/dense_limit.h"
 #include "harness/reference/limit_evaluator.h"
+#include "harness/results/results.h"
+#include "harness/results/run_spec.h"
 #include "harness/validate/limit_distance.h"
 #include "harness/validate/limit_projector.h"
 

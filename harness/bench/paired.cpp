@@ -6,8 +6,8 @@
 #include <set>
 
 #include "harness/bench/progress.h"
-#include "harness/bench/statistics.h"
 #include "harness/core/backend.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {
@@ -61,7 +61,6 @@ std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows,
   return cells;
 }
 
-bool is_backend_cell(const PairedCell& c) { return c.peer.scheme == c.row.scheme && c.peer.backend != c.row.backend; }
 bool is_backend_cell(const PairedPlanCell& c) { return c.peer.spelled() == c.row.spelled() && c.peer.backend != c.row.backend; }
 
 PairedCell pair_rounds(const std::string& mesh, const RunRow& row, const RunRow& peer) {

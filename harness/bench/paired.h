@@ -9,13 +9,11 @@
 #include <vector>
 
 #include "harness/bench/measure.h"
-#include "harness/bench/results.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 
 class Progress;
-
-inline constexpr long kSummaryTriangles = 1'000'000;
 
 // A cell to measure: two ok rows of the run, the scheme's and its peer's, on one mesh.
 struct PairedPlanCell {
@@ -28,8 +26,8 @@ struct PairedPlanCell {
 // has one: how the device path of a method compares with its CPU path, measured in the same rounds.
 std::vector<PairedPlanCell> choose_paired_cells(const std::vector<RunRow>& rows, long target = kSummaryTriangles);
 
-// A backend cell (above): the peer side is the row's own scheme on the CPU.
-bool is_backend_cell(const PairedCell& c);
+// A backend cell (above): the peer side is the row's own scheme on the CPU (results.h has the
+// results file's PairedCell's).
 bool is_backend_cell(const PairedPlanCell& c);
 
 // The cell from its two sides measured in the same `rounds` rounds: sample r of each in round r

@@ -7,11 +7,11 @@
 #include <set>
 
 #include "datasets/manifest.h"
-#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gl/context.h"
 #include "harness/gpu/device_info.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {

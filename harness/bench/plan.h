@@ -71,10 +71,9 @@ struct QuickMesh {
   SubdivisionRule rule;
 };
 
-// The summary cell's size band: within a factor of two of kSummaryTriangles. A scheme whose levels
+// The summary cell's size band (kSummaryLow..kSummaryHigh, results.h). A scheme whose levels
 // cannot reach it on a quick mesh (cpatch-1pass's N <= 9 on lavapipe: 12 k triangles on the quad
 // sphere) runs on its rule's larger built-in instead (quick_fallback_mesh).
-inline constexpr long kSummaryLow = kSummaryTriangles / 2, kSummaryHigh = kSummaryTriangles * 2;
 // A built-in of some ten thousand faces: the c-patch paper's Frog Party stand-in (11,628 random
 // quads, 59% extraordinary; random quads past 1,300 are refused as too slow to make), or the
 // icosphere subdivided to 20,480 triangles.

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <optional>
 
-#include "harness/bench/process.h"
-#include "harness/bench/results_json.h"
 #include "harness/core/errors.h"
+#include "harness/results/process.h"
+#include "harness/results/results_json.h"
 
 namespace sdb {
 

@@ -8,11 +8,11 @@
 #include <set>
 
 #include "harness/bench/machine.h"
-#include "harness/bench/output_folder.h"
-#include "harness/bench/process.h"
 #include "harness/bench/row_worker.h"
 #include "harness/core/content_hash.h"
 #include "harness/core/errors.h"
+#include "harness/results/output_folder.h"
+#include "harness/results/process.h"
 
 namespace fs = std::filesystem;
 

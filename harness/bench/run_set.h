@@ -10,8 +10,8 @@
 #include <string>
 
 #include "harness/bench/journal.h"
-#include "harness/bench/output_folder.h"
 #include "harness/bench/plan.h"
+#include "harness/results/output_folder.h"
 
 namespace sdb {
 

@@ -11,9 +11,9 @@
 #include <set>
 
 #include "harness/bench/plan.h"
-#include "harness/bench/results_merge.h"
 #include "harness/bench/run_set.h"
 #include "harness/core/errors.h"
+#include "harness/results/results_merge.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/bench/results.h"
 #include "harness/core/tessellation.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

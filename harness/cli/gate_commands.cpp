@@ -8,19 +8,20 @@
 #include <memory>
 #include <optional>
 
-#include "harness/bench/callgrind.h"
-#include "harness/bench/gate.h"
+#include "harness/bench/callgrind_workload.h"
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
 #include "harness/bench/paired.h"
 #include "harness/bench/plan.h"
-#include "harness/bench/process.h"
 #include "harness/bench/progress.h"
-#include "harness/bench/resources.h"
 #include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
+#include "harness/gate/callgrind.h"
+#include "harness/gate/gate.h"
+#include "harness/results/process.h"
+#include "harness/results/resources.h"
 #include "reports/report.h"
 
 namespace fs = std::filesystem;

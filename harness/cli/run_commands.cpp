@@ -18,16 +18,16 @@
 #include "harness/bench/paired.h"
 #include "harness/bench/plan.h"
 #include "harness/bench/progress.h"
-#include "harness/bench/results.h"
 #include "harness/bench/row_worker.h"
 #include "harness/bench/run_set.h"
 #include "harness/bench/run_summary.h"
 #include "harness/cli/commands.h"
 #include "harness/core/errors.h"
-#include "harness/core/registry.h"
 #include "harness/core/printable.h"
+#include "harness/core/registry.h"
 #include "harness/gpu/context.h"
 #include "harness/pictures/pictures.h"
+#include "harness/results/results.h"
 #include "reports/report.h"
 
 namespace sdb::cli {

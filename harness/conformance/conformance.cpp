@@ -12,6 +12,7 @@
 #include "harness/mesh/acceptance.h"
 #include "harness/mesh/facts.h"
 #include "harness/reference/limit_evaluator.h"
+#include "harness/results/bound_judgement.h"
 #include "harness/validate/deviation.h"
 #include "harness/validate/watertight.h"
 
@@ -231,7 +232,7 @@ TEST_P(SchemeConformance, IsWatertightWithinItsBoundAndAgreesAcrossBackends) {
   // harness's rule: measure.h), and the own bound against the scheme's own control mesh.
   const bool judged = reproduces_limit(info, request_for(s, c.backend, c.level), *accepted) ||
                       info.limit == LimitClaim::Approximates;
-  if (judged && (info.bound.pos_rel_diag >= 0 || info.bound.normal_deg >= 0)) {
+  if (judged && bound_declared(info.bound)) {
     MeasureContext context{MachineInfo{}};
     const JudgedSurfaces surfaces{std::make_shared<const ControlMesh>(mesh_named(c.mesh)), accepted,
                                   accepted_keeps_limit(*accepted), info.reference};
@@ -239,7 +240,7 @@ TEST_P(SchemeConformance, IsWatertightWithinItsBoundAndAgreesAcrossBackends) {
     if (info.bound.pos_rel_diag >= 0) EXPECT_LE(d.pos_max_rel_diag, info.bound.pos_rel_diag) << "past the declared bound";
     if (info.bound.normal_deg >= 0) EXPECT_LE(d.normal_max_deg, info.bound.normal_deg) << "past the declared bound";
   }
-  if (t.reference && (info.own_bound.pos_rel_diag >= 0 || info.own_bound.normal_deg >= 0)) {
+  if (t.reference && bound_declared(info.own_bound)) {
     const DeviationReport own = measure_deviation(t, ref);
     if (info.own_bound.pos_rel_diag >= 0)
       EXPECT_LE(own.pos_max_rel_diag, info.own_bound.pos_rel_diag) << "past the declared bound on its own mesh";

@@ -5,8 +5,7 @@
 // crash or a hang; and none may let it pass a run in which a baseline benchmark has no row.
 #include <cmath>
 
-#include "harness/bench/gate.h"
-#include "harness/bench/measure.h"
+#include "harness/gate/gate.h"
 #include "tests/fuzz/contract.h"
 
 namespace {

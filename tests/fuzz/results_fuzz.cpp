@@ -8,9 +8,8 @@
 #include <cmath>
 #include <set>
 
-#include "harness/bench/gate.h"
-#include "harness/bench/measure.h"
-#include "harness/bench/results.h"
+#include "harness/gate/gate.h"
+#include "harness/results/results.h"
 #include "tests/fuzz/contract.h"
 
 namespace {

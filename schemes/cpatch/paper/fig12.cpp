@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <sstream>
 
-#include "harness/bench/markdown.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gpu/errors.h"
 #include "harness/gpu/gpu.h"
+#include "harness/results/markdown.h"
 #include "harness/validate/deviation.h"
 #include "schemes/cpatch/cpu.h"
 #include "schemes/cpatch/paper/paper.h"

@@ -7,12 +7,12 @@
 #include <map>
 #include <sstream>
 
-#include "harness/bench/markdown.h"
-#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gpu/errors.h"
 #include "harness/gpu/gpu.h"
+#include "harness/results/markdown.h"
+#include "harness/results/statistics.h"
 #include "schemes/cpatch/paper/paper.h"
 #include "schemes/cpatch/vulkan.h"
 

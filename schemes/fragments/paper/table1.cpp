@@ -6,14 +6,14 @@
 #include <sstream>
 
 #include "harness/bench/machine.h"
-#include "harness/bench/markdown.h"
 #include "harness/bench/measure.h"
 #include "harness/bench/paper_output.h"
-#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gpu/errors.h"
 #include "harness/mesh/facts.h"
+#include "harness/results/markdown.h"
+#include "harness/results/statistics.h"
 #include "schemes/fragments/vulkan.h"
 
 namespace sdb::fragments {

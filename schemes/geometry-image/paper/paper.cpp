@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "harness/bench/machine.h"
-#include "harness/bench/markdown.h"
 #include "harness/bench/measure.h"
 #include "harness/core/paper_table.h"
 #include "harness/core/registry.h"
 #include "harness/gpu/gpu.h"
+#include "harness/results/markdown.h"
 #include "schemes/geometry-image/geometry_image.h"
 
 namespace sdb {

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "datasets/manifest.h"
-#include "harness/bench/statistics.h"
 #include "harness/mesh/mesh_io.h"
 #include "harness/mesh/osd_topology.h"
 #include "harness/reference/dense_limit.h"
+#include "harness/results/statistics.h"
 #include "harness/validate/deviation.h"
 #include "harness/validate/limit_distance.h"
 #include "schemes/geometry-image/closed_mesh.h"

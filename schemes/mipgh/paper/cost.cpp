@@ -1,18 +1,18 @@
 // shiue2003-cost: the paper's cost claim (Section 1), "refining and adjusting a 1000-node input
 // mesh with four attributes per node four times costs ca. 5 million ALU instructions", beside the
 // instructions the cpu path executes for the same work, counted by callgrind (the gate's
-// deterministic mode, harness/bench/callgrind.h): four mutation steps of mipgh-cc on a
+// deterministic mode, harness/gate/callgrind.h): four mutation steps of mipgh-cc on a
 // 1000-node all-quad torus (torus-40x25), the steps alone (limit=0) and with limit projection.
 #include <sstream>
 
-#include "harness/bench/callgrind.h"
+#include "datasets/manifest.h"
 #include "harness/bench/machine.h"
 #include "harness/bench/paper_output.h"
-#include "harness/bench/process.h"
 #include "harness/core/errors.h"
 #include "harness/core/paper_table.h"
 #include "harness/core/registry.h"
-#include "datasets/manifest.h"
+#include "harness/gate/callgrind.h"
+#include "harness/results/process.h"
 #include "schemes/mipgh/atlas.h"
 #include "schemes/mipgh/lod.h"
 

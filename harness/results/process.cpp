@@ -1,4 +1,4 @@
-#include "harness/bench/process.h"
+#include "harness/results/process.h"
 
 #include <fcntl.h>
 #include <signal.h>

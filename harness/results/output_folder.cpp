@@ -1,4 +1,4 @@
-#include "harness/bench/output_folder.h"
+#include "harness/results/output_folder.h"
 
 #include <fcntl.h>
 #include <sys/file.h>

@@ -1,10 +1,10 @@
-#include "harness/bench/results.h"
+#include "harness/results/results.h"
 
 #include <nlohmann/json.hpp>
 
-#include "harness/bench/bound_judgement.h"
-#include "harness/bench/results_json.h"
-#include "harness/bench/results_check.h"
+#include "harness/results/bound_judgement.h"
+#include "harness/results/results_check.h"
+#include "harness/results/results_json.h"
 
 #include <fstream>
 #include <limits>
@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "harness/bench/run_spec.h"
 #include "harness/core/errors.h"
+#include "harness/results/run_spec.h"
 
 namespace sdb {
 
@@ -371,6 +371,8 @@ ResultsFile read_results(const std::string& path) {
   check_results(r, path, j.contains("machine") && j["machine"].is_object());
   return r;
 }
+
+bool is_backend_cell(const PairedCell& c) { return c.peer.scheme == c.row.scheme && c.peer.backend != c.row.backend; }
 
 const RunRow* same_run_on(const RunRow& row, Backend backend, const std::vector<RunRow>& runs) {
   for (const RunRow& r : runs)

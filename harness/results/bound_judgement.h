@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "harness/bench/results.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

@@ -1,4 +1,4 @@
-#include "harness/bench/resources.h"
+#include "harness/results/resources.h"
 
 #include <array>
 #include <cstdio>

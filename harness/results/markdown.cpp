@@ -1,4 +1,4 @@
-#include "harness/bench/markdown.h"
+#include "harness/results/markdown.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "harness/bench/statistics.h"
+#include "harness/results/statistics.h"
 
 #include <algorithm>
 #include <cmath>

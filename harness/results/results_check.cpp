@@ -1,4 +1,4 @@
-#include "harness/bench/results_check.h"
+#include "harness/results/results_check.h"
 
 #include <algorithm>
 #include <cmath>

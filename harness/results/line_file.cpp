@@ -1,4 +1,4 @@
-#include "harness/bench/line_file.h"
+#include "harness/results/line_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -137,6 +137,15 @@ struct PairedCell {
   double time_ms_median = 0, peer_time_ms_median = 0;
 };
 
+// A backend cell (paired.h): the peer side is the row's own scheme on the CPU, not its peer.
+bool is_backend_cell(const PairedCell& c);
+
+// The summary cell's size: the level nearest a million output triangles, which `run` pairs
+// (paired.h) and the report reads; its band, within a factor of two of it, is where a quick
+// mesh's cell must land (plan.h).
+inline constexpr long kSummaryTriangles = 1'000'000;
+inline constexpr long kSummaryLow = kSummaryTriangles / 2, kSummaryHigh = kSummaryTriangles * 2;
+
 // Whether `backend`'s rows ran on a CPU implementation of the GPU API (lavapipe, llvmpipe): such rows
 // test the device paths' correctness, their rates are not GPU figures.
 bool on_cpu_implementation(const MachineInfo& m, Backend backend);

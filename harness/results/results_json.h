@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/bench/results.h"
+#include "harness/results/results.h"
 
 namespace sdb {
 

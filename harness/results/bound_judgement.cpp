@@ -1,4 +1,4 @@
-#include "harness/bench/bound_judgement.h"
+#include "harness/results/bound_judgement.h"
 
 #include <cmath>
 #include <cstdio>

@@ -3,10 +3,10 @@
 // behaviour or a value the gate cannot judge with.
 #include <gtest/gtest.h>
 
-#include "harness/bench/gate.h"
-#include "harness/bench/results.h"
 #include "harness/core/errors.h"
 #include "harness/core/input_error_of_file.h"
+#include "harness/gate/gate.h"
+#include "harness/results/results.h"
 
 using namespace sdb;
 

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <set>
 
-#include "harness/bench/results.h"
-#include "harness/bench/results_merge.h"
 #include "harness/core/errors.h"
 #include "harness/core/input_error_of_file.h"
+#include "harness/results/results.h"
+#include "harness/results/results_merge.h"
 
 using namespace sdb;
 namespace fs = std::filesystem;

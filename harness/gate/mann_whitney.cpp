@@ -1,4 +1,4 @@
-#include "harness/bench/mann_whitney.h"
+#include "harness/gate/mann_whitney.h"
 
 #include <algorithm>
 #include <cmath>

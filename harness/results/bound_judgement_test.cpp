@@ -1,6 +1,6 @@
 // A row's deviation against its bounds (bound_judgement.h): the one judgement measure.cpp fails
 // rows by and the report prints. Hand-made rows, nothing measured.
-#include "harness/bench/bound_judgement.h"
+#include "harness/results/bound_judgement.h"
 
 #include <gtest/gtest.h>
 

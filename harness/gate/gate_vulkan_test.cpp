@@ -7,8 +7,7 @@
 #include <filesystem>
 #include <functional>
 
-#include "harness/bench/gate.h"
-#include "harness/bench/measure.h"
+#include "harness/gate/gate.h"
 #include "tests/timed_rows.h"
 
 using namespace sdb;

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/bench/results.h"
-#include "harness/bench/run_spec.h"
+#include "harness/results/results.h"
+#include "harness/results/run_spec.h"
 
 namespace sdb {
 

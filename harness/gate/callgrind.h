@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/bench/run_spec.h"
+#include "harness/results/run_spec.h"
 
 namespace sdb {
 
@@ -20,9 +20,7 @@ struct CallgrindConfig {
 // The "callgrind" section of a gate configuration; InputError for a malformed file or workload.
 CallgrindConfig read_callgrind_config(const std::string& path);
 
-// What the child process runs (`subdivbench workload ...`): prepare untimed, then `iterations`
-// executions between callgrind's instrumentation start and stop. InputError for a bad spec.
-void run_callgrind_workload(const RunSpec& spec, int iterations);
+// The child process (`subdivbench workload ...`) is measurement's: harness/bench/callgrind_workload.h.
 
 // Why valgrind cannot run `executable` on this machine at all, or nullopt: valgrind stops (SIGILL)
 // at an instruction it cannot decode that a library runs while loading (seen: libhwy's rdtscp,

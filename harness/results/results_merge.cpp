@@ -1,4 +1,4 @@
-#include "harness/bench/results_merge.h"
+#include "harness/results/results_merge.h"
 
 #include <map>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "harness/bench/gate.h"
+#include "harness/gate/gate.h"
 
 #include <nlohmann/json.hpp>
 
@@ -11,9 +11,9 @@
 #include <optional>
 #include <regex>
 
-#include "harness/bench/mann_whitney.h"
-#include "harness/bench/statistics.h"
 #include "harness/core/errors.h"
+#include "harness/gate/mann_whitney.h"
+#include "harness/results/statistics.h"
 
 namespace sdb {
 namespace {

@@ -1,4 +1,4 @@
-#include "harness/bench/run_spec.h"
+#include "harness/results/run_spec.h"
 
 #include <charconv>
 
