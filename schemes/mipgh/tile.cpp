@@ -6,10 +6,18 @@ namespace sdb::mipgh::tile {
 
 // The tile's loops in AVX2 lanes where the CPU has them, SSE2 otherwise (as the fragments' kernel).
 #define SDB_TILE_CLONES __attribute__((target_clones("avx2", "default")))
+// The quads' and the patches' kernels also with fused multiply-adds (x86-64-v3: AVX2 and FMA),
+// which GCC contracts their products and sums into: fewer instructions for the same lanes. Not
+// the triangles' (triangle_classes, triangle_limit_normals): two triangles share a tile, the second
+// turned, and its targets equal the unturned ones' only because each sum adds the same pairs
+// swapped (tile.h); a fused a * b + c * d rounds the two products differently, so the turn would no
+// longer be exact. Every quad target is computed by one kernel (no turn), so cpu, cpu-mt and the
+// adaptive levels still agree bit for bit among themselves.
+#define SDB_TILE_CLONES_FMA __attribute__((target_clones("arch=x86-64-v3", "avx2", "default")))
 
 // Figure 20's stencils at every square of one coordinate's plane, rows w apart: vertex points
 // (class 0), horizontal edge points (1), vertical ones (2), facet points (3).
-SDB_TILE_CLONES void quad_classes(const float* __restrict P, int w, int count, float* __restrict vv, float* __restrict eh,
+SDB_TILE_CLONES_FMA void quad_classes(const float* __restrict P, int w, int count, float* __restrict vv, float* __restrict eh,
                                   float* __restrict ev, float* __restrict fv) {
   for (int L = 0; L < count; ++L) {
     vv[L] = 0.5625f * P[L] + 0.09375f * ((P[L + 1] + P[L - 1]) + (P[L + w] + P[L - w])) +
@@ -73,7 +81,7 @@ template <class Stencil>
   }
 }
 
-SDB_TILE_CLONES void quad_limit_normals(const float* __restrict X, const float* __restrict Y, const float* __restrict Z,
+SDB_TILE_CLONES_FMA void quad_limit_normals(const float* __restrict X, const float* __restrict Y, const float* __restrict Z,
                                         int w, int count, float* __restrict px, float* __restrict py,
                                         float* __restrict pz, float* __restrict nx, float* __restrict ny,
                                         float* __restrict nz) {
@@ -86,7 +94,7 @@ SDB_TILE_CLONES void triangle_limit_normals(const float* __restrict X, const flo
   limit_normals(triangle_limit_at, X, Y, Z, w, count, px, py, pz, nx, ny, nz);
 }
 
-SDB_TILE_CLONES void quad_limit_positions(const float* __restrict X, const float* __restrict Y,
+SDB_TILE_CLONES_FMA void quad_limit_positions(const float* __restrict X, const float* __restrict Y,
                                           const float* __restrict Z, int w, int count, float* __restrict px,
                                           float* __restrict py, float* __restrict pz) {
   for (int L = 0; L < count; ++L) px[L] = quad_limit_at(X, w, L).pos, py[L] = quad_limit_at(Y, w, L).pos, pz[L] = quad_limit_at(Z, w, L).pos;
@@ -106,11 +114,13 @@ namespace {
   }
 }
 
-// Unit normals (T1 x T2) of `count` nodes from tangents that are sums over four rows: T1 = sum_a
-// b[a] slope_a, T2 = sum_a d[a] value_a, per coordinate k the rows value[a][k], slope[a][k].
-[[gnu::always_inline]] inline void sum_normals(const float* const (&value)[4][3], const float* const (&slope)[4][3],
-                                               const float* b, const float* d, int count, float* __restrict nx,
-                                               float* __restrict ny, float* __restrict nz) {
+// Limit positions and unit normals (T1 x T2) of `count` nodes from sums over four rows: the
+// position corner + sum_a b[a] value_a, T1 = sum_a b[a] slope_a, T2 = sum_a d[a] value_a, per
+// coordinate k the rows value[a][k], slope[a][k].
+[[gnu::always_inline]] inline void sum_limit(const float* const (&value)[4][3], const float* const (&slope)[4][3],
+                                             const float* b, const float* d, V3 corner, int count,
+                                             float* __restrict px, float* __restrict py, float* __restrict pz,
+                                             float* __restrict nx, float* __restrict ny, float* __restrict nz) {
   const float b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], d0 = d[0], d1 = d[1], d2 = d[2], d3 = d[3];
   const float *__restrict sx0 = slope[0][0], *__restrict sx1 = slope[1][0], *__restrict sx2 = slope[2][0], *__restrict sx3 = slope[3][0];
   const float *__restrict sy0 = slope[0][1], *__restrict sy1 = slope[1][1], *__restrict sy2 = slope[2][1], *__restrict sy3 = slope[3][1];
@@ -120,6 +130,9 @@ namespace {
   const float *__restrict vz0 = value[0][2], *__restrict vz1 = value[1][2], *__restrict vz2 = value[2][2], *__restrict vz3 = value[3][2];
 #pragma GCC ivdep
   for (int j = 0; j < count; ++j) {
+    px[j] = corner.x + ((b0 * vx0[j] + b1 * vx1[j]) + (b2 * vx2[j] + b3 * vx3[j]));
+    py[j] = corner.y + ((b0 * vy0[j] + b1 * vy1[j]) + (b2 * vy2[j] + b3 * vy3[j]));
+    pz[j] = corner.z + ((b0 * vz0[j] + b1 * vz1[j]) + (b2 * vz2[j] + b3 * vz3[j]));
     const float ax = (b0 * sx0[j] + b1 * sx1[j]) + (b2 * sx2[j] + b3 * sx3[j]);
     const float ay = (b0 * sy0[j] + b1 * sy1[j]) + (b2 * sy2[j] + b3 * sy3[j]);
     const float az = (b0 * sz0[j] + b1 * sz1[j]) + (b2 * sz2[j] + b3 * sz3[j]);
@@ -132,9 +145,9 @@ namespace {
 
 }  // namespace
 
-SDB_TILE_CLONES void patch_normals(const float* f, int n, const V3 (&net)[16], const float* b, const float* d,
-                                   int rows, int columns, int stride, float* scratch, float* nx, float* ny,
-                                   float* nz) {
+SDB_TILE_CLONES_FMA void patch_limit(const float* f, int n, const V3 (&net)[16], V3 corner, const float* b,
+                                     const float* d, int rows, int columns, int stride, float* scratch, float* px,
+                                     float* py, float* pz, float* nx, float* ny, float* nz) {
   const float* value[4][3];
   const float* slope[4][3];
   for (int a = 0; a < 4; ++a) {
@@ -147,7 +160,7 @@ SDB_TILE_CLONES void patch_normals(const float* f, int n, const V3 (&net)[16], c
   }
   for (int i = 1; i <= rows; ++i) {
     const size_t at = size_t(i) * size_t(stride) + 1;
-    sum_normals(value, slope, b + 4 * i, d + 4 * i, columns, nx + at, ny + at, nz + at);
+    sum_limit(value, slope, b + 4 * i, d + 4 * i, corner, columns, px + at, py + at, pz + at, nx + at, ny + at, nz + at);
   }
 }
 
@@ -155,7 +168,7 @@ SDB_TILE_CLONES void patch_normals(const float* f, int n, const V3 (&net)[16], c
 // spelled out: left to itself the compiler vectorises across the terms instead.
 using F8 = float __attribute__((vector_size(32)));
 
-SDB_TILE_CLONES void weighted_normals(const float* __restrict w, size_t pitch, const V3* __restrict p, int terms,
+SDB_TILE_CLONES_FMA void weighted_normals(const float* __restrict w, size_t pitch, const V3* __restrict p, int terms,
                                       int count, V3* __restrict out) {
   constexpr int kLanes = 8;
   for (int first = 0; first < count; first += kLanes) {
@@ -175,7 +188,7 @@ SDB_TILE_CLONES void weighted_normals(const float* __restrict w, size_t pitch, c
   }
 }
 
-SDB_TILE_CLONES void line_normals(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
+SDB_TILE_CLONES_FMA void line_normals(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
                                   int count, float* __restrict nx, float* __restrict ny, float* __restrict nz) {
   const float *__restrict b0 = f, *__restrict b1 = f + n, *__restrict b2 = f + 2 * n, *__restrict b3 = f + 3 * n;
   const float *__restrict d0 = f + 4 * n, *__restrict d1 = f + 5 * n, *__restrict d2 = f + 6 * n, *__restrict d3 = f + 7 * n;
