@@ -6,18 +6,10 @@ namespace sdb::mipgh::tile {
 
 // The tile's loops in AVX2 lanes where the CPU has them, SSE2 otherwise (as the fragments' kernel).
 #define SDB_TILE_CLONES __attribute__((target_clones("avx2", "default")))
-// The quads' and the patches' kernels also with fused multiply-adds (x86-64-v3: AVX2 and FMA),
-// which GCC contracts their products and sums into: fewer instructions for the same lanes. Not
-// the triangles' (triangle_classes, triangle_limit_normals): two triangles share a tile, the second
-// turned, and its targets equal the unturned ones' only because each sum adds the same pairs
-// swapped (tile.h); a fused a * b + c * d rounds the two products differently, so the turn would no
-// longer be exact. Every quad target is computed by one kernel (no turn), so cpu, cpu-mt and the
-// adaptive levels still agree bit for bit among themselves.
-#define SDB_TILE_CLONES_FMA __attribute__((target_clones("arch=x86-64-v3", "avx2", "default")))
 
 // Figure 20's stencils at every square of one coordinate's plane, rows w apart: vertex points
 // (class 0), horizontal edge points (1), vertical ones (2), facet points (3).
-SDB_TILE_CLONES_FMA void quad_classes(const float* __restrict P, int w, int count, float* __restrict vv, float* __restrict eh,
+SDB_TILE_CLONES void quad_classes(const float* __restrict P, int w, int count, float* __restrict vv, float* __restrict eh,
                                   float* __restrict ev, float* __restrict fv) {
   for (int L = 0; L < count; ++L) {
     vv[L] = 0.5625f * P[L] + 0.09375f * ((P[L + 1] + P[L - 1]) + (P[L + w] + P[L - w])) +
@@ -81,7 +73,7 @@ template <class Stencil>
   }
 }
 
-SDB_TILE_CLONES_FMA void quad_limit_normals(const float* __restrict X, const float* __restrict Y, const float* __restrict Z,
+SDB_TILE_CLONES void quad_limit_normals(const float* __restrict X, const float* __restrict Y, const float* __restrict Z,
                                         int w, int count, float* __restrict px, float* __restrict py,
                                         float* __restrict pz, float* __restrict nx, float* __restrict ny,
                                         float* __restrict nz) {
@@ -94,7 +86,7 @@ SDB_TILE_CLONES void triangle_limit_normals(const float* __restrict X, const flo
   limit_normals(triangle_limit_at, X, Y, Z, w, count, px, py, pz, nx, ny, nz);
 }
 
-SDB_TILE_CLONES_FMA void quad_limit_positions(const float* __restrict X, const float* __restrict Y,
+SDB_TILE_CLONES void quad_limit_positions(const float* __restrict X, const float* __restrict Y,
                                           const float* __restrict Z, int w, int count, float* __restrict px,
                                           float* __restrict py, float* __restrict pz) {
   for (int L = 0; L < count; ++L) px[L] = quad_limit_at(X, w, L).pos, py[L] = quad_limit_at(Y, w, L).pos, pz[L] = quad_limit_at(Z, w, L).pos;
@@ -145,7 +137,7 @@ namespace {
 
 }  // namespace
 
-SDB_TILE_CLONES_FMA void patch_limit(const float* f, int n, const V3 (&net)[16], V3 corner, const float* b,
+SDB_TILE_CLONES void patch_limit(const float* f, int n, const V3 (&net)[16], V3 corner, const float* b,
                                      const float* d, int rows, int columns, int stride, float* scratch, float* px,
                                      float* py, float* pz, float* nx, float* ny, float* nz) {
   const float* value[4][3];
@@ -168,7 +160,7 @@ SDB_TILE_CLONES_FMA void patch_limit(const float* f, int n, const V3 (&net)[16],
 // spelled out: left to itself the compiler vectorises across the terms instead.
 using F8 = float __attribute__((vector_size(32)));
 
-SDB_TILE_CLONES_FMA void weighted_normals(const float* __restrict w, size_t pitch, const V3* __restrict p, int terms,
+SDB_TILE_CLONES void weighted_normals(const float* __restrict w, size_t pitch, const V3* __restrict p, int terms,
                                       int count, V3* __restrict out) {
   constexpr int kLanes = 8;
   for (int first = 0; first < count; first += kLanes) {
@@ -188,7 +180,7 @@ SDB_TILE_CLONES_FMA void weighted_normals(const float* __restrict w, size_t pitc
   }
 }
 
-SDB_TILE_CLONES_FMA void line_normals(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
+SDB_TILE_CLONES void line_normals(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
                                   int count, float* __restrict nx, float* __restrict ny, float* __restrict nz) {
   const float *__restrict b0 = f, *__restrict b1 = f + n, *__restrict b2 = f + 2 * n, *__restrict b3 = f + 3 * n;
   const float *__restrict d0 = f + 4 * n, *__restrict d1 = f + 5 * n, *__restrict d2 = f + 6 * n, *__restrict d3 = f + 7 * n;
