@@ -59,7 +59,7 @@ void CpuMipghEvaluation::run() {
   // The limit is written straight into the output, moved back by the origin there; or over the
   // spare buffer and limit_ where the depth's grid points are picked from a deeper level.
   const std::vector<uint32_t>& pick = m_.pick;
-  const BaseLevel base{m_.base_tangents, base_.data(), &m_.patches, &m_.facet_masks};
+  const BaseLevel base{m_.base_tangents, base_.data(), &m_.patches, &m_.facet_masks, {o[0], o[1], o[2]}};
   if (pick.empty()) {
     const V3 origin{o[0], o[1], o[2]};
     m_.processor.project(m_.inner_depth(), src, reinterpret_cast<V3*>(out_.positions.data()),
@@ -82,7 +82,7 @@ void CpuMipghEvaluation::output_level(int sigma, const V3* src, V3* spare) {
     for (const auto& [at, i] : nodes) out_.positions[i] = {src[at].x + o[0], src[at].y + o[1], src[at].z + o[2]};
     return;
   }
-  const BaseLevel base{m_.base_tangents, base_.data(), &m_.patches, &m_.facet_masks};
+  const BaseLevel base{m_.base_tangents, base_.data(), &m_.patches, &m_.facet_masks, {o[0], o[1], o[2]}};
   m_.processor.project(sigma, src, spare, limit_.data(), adaptive_.homes[sigma], multithreaded_, &base);
   for (const auto& [at, i] : nodes) {
     out_.positions[i] = {spare[at].x + o[0], spare[at].y + o[1], spare[at].z + o[2]};

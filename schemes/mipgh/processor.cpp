@@ -434,6 +434,18 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
                                    const V3* offset, const BaseLevel* base) const {
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
+  // A regular D-facet's interior from its patch on level 0 (regular_patches.h), positions and
+  // normals straight into the planes: its level-sigma nodes are not gathered at all.
+  if (n >= 3 && base && base->patches && base->patches->regular(facets.first)) {
+    tile::Planes& s = t_planes;
+    s.fit(size_t(n) * size_t(n));
+    base->patches->interior_limit(facets.first, sigma, base->points, base->origin, n, s.v[0][0].data(),
+                                  s.v[0][1].data(), s.v[0][2].data(), s.normal[0].data(), s.normal[1].data(),
+                                  s.normal[2].data());
+    tile::assemble_limit(s, n, n, l.s, true, false, offset, position + l.interior(facets.first),
+                         normal + l.interior(facets.first));
+    return;
+  }
   const bool quad = load_tile(sigma, facets, src);
   const tile::Tile& t = t_tile;
   tile::Planes& s = t_planes;
@@ -441,18 +453,13 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   // the interior nodes lie in rows 1 .. n - 2 (tile.h), the first triangle's and the turned one's
   const int first = w, count = whole_lanes((n - 2) * w, t.squares() - first);
   auto at = [&](std::vector<float>& plane) { return plane.data() + first; };
-  // A regular D-facet's normals from its patch on level 0 (regular_patches.h), straight into the
-  // tile's normal planes; the stencils then give the positions alone.
-  // Or from its 1-ring's composed masks (facet_masks.h), written over the normals after assembly
-  // (the planes' normals are then whatever the last tile left, never read).
-  const bool patch = n >= 3 && base && base->patches && base->patches->regular(facets.first);
-  const bool masked = !patch && n >= 3 && base && base->masks && base->masks->has(facets.first);
-  if (patch || masked) {
+  // The other untagged interior quads' normals from their 1-ring's composed masks (facet_masks.h),
+  // written over the normals after assembly (the planes' normals are then whatever the last tile
+  // left, never read); the stencils give their positions.
+  const bool masked = n >= 3 && base && base->masks && base->masks->has(facets.first);
+  if (masked) {
     tile::quad_limit_positions(t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]),
                                at(s.v[0][1]), at(s.v[0][2]));
-    if (patch)
-      base->patches->interior_planes(facets.first, sigma, base->points, w, s.normal[0].data(), s.normal[1].data(),
-                                     s.normal[2].data());
   } else {
     (quad ? tile::quad_limit_normals : tile::triangle_limit_normals)(
         t.plane(0) + first, t.plane(1) + first, t.plane(2) + first, w, count, at(s.v[0][0]), at(s.v[0][1]),

@@ -105,8 +105,8 @@ std::vector<float> RegularPatches::node_weights(int sigma) {
   return w;
 }
 
-void RegularPatches::interior_planes(int f, int sigma, const V3* base, int stride, float* nx, float* ny,
-                                     float* nz) const {
+void RegularPatches::interior_limit(int f, int sigma, const V3* base, V3 origin, int stride, float* px, float* py,
+                                    float* pz, float* nx, float* ny, float* nz) const {
   const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
   const V3 c = base[q[5]];
   V3 D[16];
@@ -117,8 +117,8 @@ void RegularPatches::interior_planes(int f, int sigma, const V3* base, int strid
   const int n = (1 << sigma) + 1, columns = std::min(((n - 2) + 7) & ~7, n - 1);
   thread_local std::vector<float> t_rows;
   t_rows.resize(24 * size_t(columns));
-  tile::patch_normals(by_function[size_t(sigma)].data() + 1, n, D, basis[size_t(sigma)].data(),
-                      derivative[size_t(sigma)].data(), n - 2, columns, stride, t_rows.data(), nx, ny, nz);
+  tile::patch_limit(by_function[size_t(sigma)].data() + 1, n, D, c - origin, basis[size_t(sigma)].data(),
+                    derivative[size_t(sigma)].data(), n - 2, columns, stride, t_rows.data(), px, py, pz, nx, ny, nz);
 }
 
 void RegularPatches::side_normals(int f, int sigma, int side, const V3* base, V3* out) const {

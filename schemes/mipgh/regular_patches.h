@@ -34,10 +34,13 @@ struct RegularPatches {
   // The same by function: B_m at k in [m * n + k], B'_m in [(4 + m) * n + k] (rows of SIMD lanes).
   std::vector<std::vector<float>> by_function;
   bool regular(int f) const { return !patch.empty() && patch[size_t(f)] >= 0; }
-  // The unit normals (u along a row, v across: the stencils' T1 x T2) of regular D-facet f's
-  // interior (rows and columns 1 .. n - 2 of level sigma) from level 0's points `base`, into three
-  // planes, node (i, j) at i * stride + j (a projection tile's normal planes, tile.h).
-  void interior_planes(int f, int sigma, const V3* base, int stride, float* nx, float* ny, float* nz) const;
+  // The limit positions (relative to `origin`, as the levels' nodes are) and unit normals (u along
+  // a row, v across: the stencils' T1 x T2) of regular D-facet f's interior (rows and columns 1 ..
+  // n - 2 of level sigma) from level 0's points `base`, into three planes each, node (i, j) at
+  // i * stride + j (a projection tile's planes, tile.h). The positions too: the patch is the limit
+  // surface there, so the facet's level-sigma nodes need not be gathered for its interior.
+  void interior_limit(int f, int sigma, const V3* base, V3 origin, int stride, float* px, float* py, float* pz,
+                      float* nx, float* ny, float* nz) const;
   // The same at the points (i, j) of side `side` (a = 1 .. n - 2 from corner `side`, lod.h's
   // side_ij), written to out[a - 1].
   void side_normals(int f, int sigma, int side, const V3* base, V3* out) const;

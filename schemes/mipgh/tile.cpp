@@ -106,11 +106,13 @@ namespace {
   }
 }
 
-// Unit normals (T1 x T2) of `count` nodes from tangents that are sums over four rows: T1 = sum_a
-// b[a] slope_a, T2 = sum_a d[a] value_a, per coordinate k the rows value[a][k], slope[a][k].
-[[gnu::always_inline]] inline void sum_normals(const float* const (&value)[4][3], const float* const (&slope)[4][3],
-                                               const float* b, const float* d, int count, float* __restrict nx,
-                                               float* __restrict ny, float* __restrict nz) {
+// Limit positions and unit normals (T1 x T2) of `count` nodes from sums over four rows: the
+// position corner + sum_a b[a] value_a, T1 = sum_a b[a] slope_a, T2 = sum_a d[a] value_a, per
+// coordinate k the rows value[a][k], slope[a][k].
+[[gnu::always_inline]] inline void sum_limit(const float* const (&value)[4][3], const float* const (&slope)[4][3],
+                                             const float* b, const float* d, V3 corner, int count,
+                                             float* __restrict px, float* __restrict py, float* __restrict pz,
+                                             float* __restrict nx, float* __restrict ny, float* __restrict nz) {
   const float b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], d0 = d[0], d1 = d[1], d2 = d[2], d3 = d[3];
   const float *__restrict sx0 = slope[0][0], *__restrict sx1 = slope[1][0], *__restrict sx2 = slope[2][0], *__restrict sx3 = slope[3][0];
   const float *__restrict sy0 = slope[0][1], *__restrict sy1 = slope[1][1], *__restrict sy2 = slope[2][1], *__restrict sy3 = slope[3][1];
@@ -120,6 +122,9 @@ namespace {
   const float *__restrict vz0 = value[0][2], *__restrict vz1 = value[1][2], *__restrict vz2 = value[2][2], *__restrict vz3 = value[3][2];
 #pragma GCC ivdep
   for (int j = 0; j < count; ++j) {
+    px[j] = corner.x + ((b0 * vx0[j] + b1 * vx1[j]) + (b2 * vx2[j] + b3 * vx3[j]));
+    py[j] = corner.y + ((b0 * vy0[j] + b1 * vy1[j]) + (b2 * vy2[j] + b3 * vy3[j]));
+    pz[j] = corner.z + ((b0 * vz0[j] + b1 * vz1[j]) + (b2 * vz2[j] + b3 * vz3[j]));
     const float ax = (b0 * sx0[j] + b1 * sx1[j]) + (b2 * sx2[j] + b3 * sx3[j]);
     const float ay = (b0 * sy0[j] + b1 * sy1[j]) + (b2 * sy2[j] + b3 * sy3[j]);
     const float az = (b0 * sz0[j] + b1 * sz1[j]) + (b2 * sz2[j] + b3 * sz3[j]);
@@ -132,9 +137,9 @@ namespace {
 
 }  // namespace
 
-SDB_TILE_CLONES void patch_normals(const float* f, int n, const V3 (&net)[16], const float* b, const float* d,
-                                   int rows, int columns, int stride, float* scratch, float* nx, float* ny,
-                                   float* nz) {
+SDB_TILE_CLONES void patch_limit(const float* f, int n, const V3 (&net)[16], V3 corner, const float* b,
+                                     const float* d, int rows, int columns, int stride, float* scratch, float* px,
+                                     float* py, float* pz, float* nx, float* ny, float* nz) {
   const float* value[4][3];
   const float* slope[4][3];
   for (int a = 0; a < 4; ++a) {
@@ -147,7 +152,7 @@ SDB_TILE_CLONES void patch_normals(const float* f, int n, const V3 (&net)[16], c
   }
   for (int i = 1; i <= rows; ++i) {
     const size_t at = size_t(i) * size_t(stride) + 1;
-    sum_normals(value, slope, b + 4 * i, d + 4 * i, columns, nx + at, ny + at, nz + at);
+    sum_limit(value, slope, b + 4 * i, d + 4 * i, corner, columns, px + at, py + at, pz + at, nx + at, ny + at, nz + at);
   }
 }
 

@@ -89,21 +89,22 @@ void triangle_limit_normals(const float* X, const float* Y, const float* Z, int 
 // The limit positions alone (a quad whose normals come from level 0: regular_patches.h).
 void quad_limit_positions(const float* X, const float* Y, const float* Z, int stride, int count, float* px, float* py,
                           float* pz);
-// Unit normals (T1 x T2, u along a row) of a bicubic patch at the grid nodes (i, j), i = 1 ..
-// rows, j = 1 .. columns, into three planes at i * stride + j: its 16 control points `net`
-// (row-major, net row a at 4 a), the basis at the columns from f (B_m(j) at f[m * n + j - 1], B'_m
-// at f[(4 + m) * n + j - 1]) and at the rows from b and d (B_m(i) at b[4 i + m], B'_m at d[4 i + m]).
-// Per net row and coordinate, the patch along u and its slope first (24 rows of `columns` in
-// `scratch`), then two four-term sums per node.
-void patch_normals(const float* f, int n, const V3 (&net)[16], const float* b, const float* d, int rows, int columns,
-                   int stride, float* scratch, float* nx, float* ny, float* nz);
+// Limit positions and unit normals (T1 x T2, u along a row) of a bicubic patch at the grid nodes
+// (i, j), i = 1 .. rows, j = 1 .. columns, into three planes each at i * stride + j: its 16
+// control points `net` as differences from `corner` (row-major, net row a at 4 a), the basis at the
+// columns from f (B_m(j) at f[m * n + j - 1], B'_m at f[(4 + m) * n + j - 1]) and at the rows from
+// b and d (B_m(i) at b[4 i + m], B'_m at d[4 i + m]). Per net row and coordinate, the patch along
+// u and its slope first (24 rows of `columns` in `scratch`), then three four-term sums per node.
+void patch_limit(const float* f, int n, const V3 (&net)[16], V3 corner, const float* b, const float* d, int rows,
+                 int columns, int stride, float* scratch, float* px, float* py, float* pz, float* nx, float* ny,
+                 float* nz);
 // Unit normals (T1 x T2) of `count` nodes whose tangents are weighted sums of `terms` points p:
 // T1 = sum_c w[2 c pitch + node] p[c], T2 = sum_c w[(2 c + 1) pitch + node] p[c] (weights by point,
 // nodes contiguous: eight nodes' sums per SIMD lane; rows readable 8 floats past `count`).
 void weighted_normals(const float* w, size_t pitch, const V3* p, int terms, int count, V3* out);
 // Unit normals (C' x X) at `count` points t_k of one line of a bicubic patch: C(t) = sum_m B_m(t)
 // along[m] the patch along it, X(t) = sum_m B_m(t) across[m] its derivative across; B_m(t_k) at
-// f[m * n + k] and B'_m(t_k) at f[(4 + m) * n + k] (patch_normals' table).
+// f[m * n + k] and B'_m(t_k) at f[(4 + m) * n + k] (patch_limit's table).
 void line_normals(const float* f, int n, const V3 (&along)[4], const V3 (&across)[4], int count, float* nx, float* ny,
                   float* nz);
 // A step's targets in one D-facet of the tile whose class planes `s` holds (a quad, the first

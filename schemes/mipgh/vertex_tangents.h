@@ -17,11 +17,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "schemes/mipgh/shader.h"  // V3, which BaseLevel holds
+
 namespace sdb::mipgh {
 
 class MeshProcessor;
 class MeshShader;
-struct V3;
 
 struct BaseTangents {
   // Per D-vertex: the level its limit is projected at, whose limit tangents these are (uniform:
@@ -49,6 +50,7 @@ struct BaseLevel {
   const V3* points;
   const RegularPatches* patches = nullptr;  // the regular D-facets' and D-edges' normals (regular_patches.h)
   const FacetMasks* masks = nullptr;         // the others' next to extraordinary vertices (facet_masks.h)
+  V3 origin{0, 0, 0};  // where the levels' nodes are relative to (positions from the patches are placed so too)
 };
 
 // Every D-vertex's (in one fan of faces, with a face) tangents at its level (`level`, one per

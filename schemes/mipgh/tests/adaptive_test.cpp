@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <tuple>
 
 #include "harness/conformance/far_oracle.h"
@@ -48,19 +49,29 @@ std::vector<std::vector<V3>> levels_of(const MeshMutation& m, const ControlMesh&
   return levels;
 }
 
+// A mutation and every level it refines, built once per shape (uniform) or criterion (adaptive)
+// for all the comparisons that read them.
+struct Refined {
+  std::unique_ptr<const MeshMutation> mutation;
+  std::vector<std::vector<V3>> levels;
+};
+Refined refine(const ControlMesh& mesh, SubdivisionRule rule, bool limit, AdaptiveCriterion c = {}) {
+  auto m = std::make_unique<const MeshMutation>(mesh, mesh_rule(rule), build_atlas(mesh, kinds(rule)), kDepth, limit, c);
+  std::vector<std::vector<V3>> levels = levels_of(*m, mesh);
+  return {std::move(m), std::move(levels)};
+}
+
 // Nodes of refined D-facets that differ from uniform refinement's, and how many were compared.
-std::pair<long, long> refined_against_uniform(const ControlMesh& mesh, SubdivisionRule rule, bool limit,
-                                              AdaptiveCriterion c) {
-  const MeshMutation uniform(mesh, mesh_rule(rule), build_atlas(mesh, kinds(rule)), kDepth, limit);
-  const MeshMutation adaptive(mesh, mesh_rule(rule), build_atlas(mesh, kinds(rule)), kDepth, limit, c);
-  const auto u = levels_of(uniform, mesh), a = levels_of(adaptive, mesh);
+std::pair<long, long> refined_against_uniform(const Refined& uniform, const Refined& adaptive) {
+  const MeshMutation &um = *uniform.mutation, &am = *adaptive.mutation;
+  const auto &u = uniform.levels, &a = adaptive.levels;
   long differ = 0, compared = 0;
-  for (int sigma = 0; sigma <= adaptive.inner_depth(); ++sigma) {
-    const int n = adaptive.lod.layout(sigma).n;
-    for (int f = 0; f < adaptive.atlas.num_facets(); ++f) {
-      if (adaptive.lod.label(f) < sigma) continue;
-      const int size = adaptive.atlas.facet_size[f], count = size == 4 ? n * n : n * (n + 1) / 2;
-      const uint32_t *ia = adaptive.lod.facet(sigma, f), *iu = uniform.lod.facet(sigma, f);
+  for (int sigma = 0; sigma <= am.inner_depth(); ++sigma) {
+    const int n = am.lod.layout(sigma).n;
+    for (int f = 0; f < am.atlas.num_facets(); ++f) {
+      if (am.lod.label(f) < sigma) continue;
+      const int size = am.atlas.facet_size[f], count = size == 4 ? n * n : n * (n + 1) / 2;
+      const uint32_t *ia = am.lod.facet(sigma, f), *iu = um.lod.facet(sigma, f);
       for (int o = 0; o < count; ++o, ++compared)
         differ += std::memcmp(&a[sigma][ia[o]], &u[sigma][iu[o]], sizeof(V3)) != 0;
     }
@@ -116,14 +127,20 @@ void sweep(SubdivisionRule rule) {
         if (i >= mesh.positions.size() || atlas.valence(int(i)) > 0)  // a bare vertex stands at no surface point
           at[l][{uniform[l].coords[i].face, uniform[l].coords[i].u, uniform[l].coords[i].v}] = i;
     }
+    // Uniform refinement's levels, without and with the limit's deeper levels: one each for the
+    // three criteria (they were refined again for every criterion).
+    const Refined uniform_levels[2] = {refine(mesh, rule, false), refine(mesh, rule, true)};
     for (const AdaptiveCriterion& c : kCriteria) {
+      Refined adaptive_limit;  // the mutation the output below is checked against too
       for (bool limit : {false, true}) {
-        const auto [d, n] = refined_against_uniform(mesh, rule, limit, c);
+        Refined adaptive = refine(mesh, rule, limit, c);
+        const auto [d, n] = refined_against_uniform(uniform_levels[limit], adaptive);
         EXPECT_EQ(d, 0) << name << " criterion " << int(c.kind) << " limit " << limit;
         differ += d, compared += n;
+        if (limit) adaptive_limit = std::move(adaptive);
       }
       const Tessellation t = evaluate(mesh, rule, Backend::Cpu, c);
-      const MeshMutation m(mesh, mesh_rule(rule), build_atlas(mesh, kinds(rule)), kDepth, true, c);
+      const MeshMutation& m = *adaptive_limit.mutation;
       EXPECT_EQ(count_open_edges(t), expected_open_edges(m)) << name << " criterion " << int(c.kind);
       Tessellation scratch;
       const AdaptiveOutput homes = compile_adaptive(m.atlas, m.lod, m.render, m.home, scratch);
