@@ -48,7 +48,9 @@ void CpuMipghEvaluation::run() {
     return;
   }
   for (int sigma = 0; sigma < m_.inner_depth(); ++sigma) {
-    m_.processor.step(sigma, src, dst, multithreaded_);
+    // Before the projection, the regular D-facets' targets that it reads alone (processor.h)
+    const bool last = m_.project() && sigma + 1 == m_.inner_depth();
+    m_.processor.step(sigma, src, dst, multithreaded_, last ? &m_.patches : nullptr);
     std::swap(src, dst);
   }
   const size_t n = out_.positions.size();

@@ -103,6 +103,38 @@ void MeshProcessor::visit_facets(int sigma, TileFacets facets, const V3* src, V3
   if (facets.second >= 0) tile::assemble_targets(s, n, w, width, quad, true, dst + next.interior(facets.second));
 }
 
+void MeshProcessor::visit_facet_corners(int sigma, int f, const V3* src, V3* dst) const {
+  const int n = lod_.layout(sigma).n, width = lod_.layout(sigma + 1).s;
+  const uint32_t* idx = lod_.facet(sigma, f);  // a quad's n x n nodes, row-major
+  V3* out = dst + lod_.layout(sigma + 1).interior(f);
+  // The facet point of square (a, b), as quad_classes computes it
+  auto facet_point = [&](int a, int b) {
+    const V3 p = src[idx[a * n + b]], q = src[idx[(a + 1) * n + b + 1]], r = src[idx[a * n + b + 1]],
+             u = src[idx[(a + 1) * n + b]];
+    return V3{0.25f * ((p.x + q.x) + (r.x + u.x)), 0.25f * ((p.y + q.y) + (r.y + u.y)), 0.25f * ((p.z + q.z) + (r.z + u.z))};
+  };
+  out[0] = facet_point(0, 0), out[width - 1] = facet_point(0, n - 2);
+  out[size_t(width - 1) * size_t(width)] = facet_point(n - 2, 0), out[size_t(width) * size_t(width) - 1] = facet_point(n - 2, n - 2);
+}
+
+void MeshProcessor::visit_edge_ends(int sigma, int e, const V3* src, V3* dst) const {
+  const int n = lod_.layout(sigma).n;
+  const DEdge& d = atlas_.edges[e];
+  const uint32_t *f = lod_.facet(sigma, d.major.facet), *g = lod_.facet(sigma, d.minor.facet);
+  const int32_t *on = side_rows(sigma, 4, d.major.side, 0), *in = side_rows(sigma, 4, d.major.side, 1);
+  const int32_t* across = side_rows(sigma, 4, d.minor.side, 1);
+  V3* out = dst + lod_.layout(sigma + 1).edge_node(e, 0);
+  // strip_stencils' edge point of micro-edge (t, t + 1): a along the edge, b one in on the
+  // major's side, c on the minor's (whose row runs the other way)
+  auto edge_point = [&](int t) {
+    const auto a = [&](int k) { return widen(src[f[on[k]]]); };
+    const auto b = [&](int k) { return widen(src[f[in[k]]]); };
+    const auto c = [&](int k) { return widen(src[g[across[n - 1 - k]]]); };
+    return narrow(edge_vertex(a(t), a(t + 1), b(t), b(t + 1), c(t), c(t + 1)));
+  };
+  out[0] = edge_point(0), out[2 * (n - 2)] = edge_point(n - 2);
+}
+
 MeshProcessor::MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const MeshShader& shader)
     : atlas_(atlas), lod_(lod), tags_(tags), shader_(shader), vertex_order_(atlas.num_vertices) {
   // A D-vertex's ring lies in the D-facets around it, far apart in memory at fine levels: visited
@@ -366,11 +398,25 @@ void MeshProcessor::visit_vertex(int sigma, int v, const V3* src, V3* dst) const
   dst[v] = shader_.vertex_vertex(disk);
 }
 
-void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel) const {
+void MeshProcessor::step(int sigma, const V3* src, V3* dst, bool parallel, const RegularPatches* patches) const {
   if (lod_.adaptive()) return step_adaptive(sigma, src, dst, parallel);
+  if (!patches || patches->patch.empty()) {  // every node (and no test per visit: Loop has no patches)
+    for_each(int(tiles_.size()), parallel, 32, [&](int i) {
+      visit_facets(sigma, tiles_[i], src, dst);
+      for (int32_t e : tile_edges_.of(i)) visit_edge(sigma, e, src, dst);
+      for (int32_t v : tile_vertices_.of(i)) visit_vertex(sigma, v, src, dst);
+    });
+    return;
+  }
+  auto regular = [&](int f) { return f >= 0 && patches->regular(f); };
   for_each(int(tiles_.size()), parallel, 32, [&](int i) {
-    visit_facets(sigma, tiles_[i], src, dst);
-    for (int32_t e : tile_edges_.of(i)) visit_edge(sigma, e, src, dst);
+    if (regular(tiles_[i].first)) visit_facet_corners(sigma, tiles_[i].first, src, dst);
+    else visit_facets(sigma, tiles_[i], src, dst);
+    for (int32_t e : tile_edges_.of(i)) {
+      const DEdge& d = atlas_.edges[e];
+      if (regular(d.major.facet) && regular(d.minor.facet) && fast_edge(e)) visit_edge_ends(sigma, e, src, dst);
+      else visit_edge(sigma, e, src, dst);
+    }
     for (int32_t v : tile_vertices_.of(i)) visit_vertex(sigma, v, src, dst);
   });
 }
@@ -435,15 +481,14 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
   const LevelLayout& l = lod_.layout(sigma);
   const int n = l.n;
   // A regular D-facet's interior from its patch on level 0 (regular_patches.h), positions and
-  // normals straight into the planes: its level-sigma nodes are not gathered at all.
+  // normals into the planes in the level's order, then moved to the output as one run: its
+  // level-sigma nodes are not gathered at all.
   if (n >= 3 && base && base->patches && base->patches->regular(facets.first)) {
     tile::Planes& s = t_planes;
     s.fit(size_t(n) * size_t(n));
-    base->patches->interior_limit(facets.first, sigma, base->points, base->origin, n, s.v[0][0].data(),
-                                  s.v[0][1].data(), s.v[0][2].data(), s.normal[0].data(), s.normal[1].data(),
-                                  s.normal[2].data());
-    tile::assemble_limit(s, n, n, l.s, true, false, offset, position + l.interior(facets.first),
-                         normal + l.interior(facets.first));
+    base->patches->interior_limit(facets.first, sigma, base->points, base->origin, s.v[0][0].data(), s.v[0][1].data(),
+                                  s.v[0][2].data(), s.normal[0].data(), s.normal[1].data(), s.normal[2].data());
+    tile::assemble_limit_run(s, l.s * l.s, offset, position + l.interior(facets.first), normal + l.interior(facets.first));
     return;
   }
   const bool quad = load_tile(sigma, facets, src);
@@ -475,22 +520,29 @@ void MeshProcessor::project_facets(int sigma, TileFacets facets, const V3* src, 
 
 void MeshProcessor::project_edge(int sigma, int e, const V3* src, V3* position, V3* normal, const V3* offset,
                                  const BaseLevel* base) const {
-  // A D-edge of a D-facet whose normals come from level 0 (regular_patches.h, facet_masks.h): from
-  // the major's patch or masks, else the minor's, whose side runs the other way; the stencils then
-  // give its positions alone.
+  // A D-edge of a regular D-facet, its positions and normals from the facet's patch (the major's,
+  // else the minor's, whose side runs the other way): its strip is not gathered at all.
   const LevelLayout& l = lod_.layout(sigma);
   const DEdge& d = atlas_.edges[e];
-  auto from_base = [&](const HalfEdge& h) {
-    return (base->patches && base->patches->regular(h.facet)) || (base->masks && base->masks->has(h.facet));
-  };
+  const bool patched = base && base->patches && l.s > 0;
+  if (patched && (base->patches->regular(d.major.facet) || (!d.minor.null() && base->patches->regular(d.minor.facet)))) {
+    const bool from_major = base->patches->regular(d.major.facet);
+    const HalfEdge& h = from_major ? d.major : d.minor;
+    V3 *p = position + l.edge_node(e, 0), *q = normal + l.edge_node(e, 0);
+    base->patches->side_limit(h.facet, sigma, h.side, base->points, base->origin, offset, p, q);
+    if (!from_major) std::reverse(p, p + l.s), std::reverse(q, q + l.s);
+    return;
+  }
+  // A D-edge of a D-facet whose normals come from level 0's masks (facet_masks.h): from the
+  // major's, else the minor's; the stencils then give its positions alone.
+  auto from_base = [&](const HalfEdge& h) { return base->masks && base->masks->has(h.facet); };
   const bool major = base && l.s > 0 && from_base(d.major);
   const bool minor = base && l.s > 0 && !major && !d.minor.null() && from_base(d.minor);
   project_edge_nodes(sigma, e, src, position, normal, offset, !(major || minor));
   if (!major && !minor) return;
   const HalfEdge& h = major ? d.major : d.minor;
   V3* out = normal + l.edge_node(e, 0);
-  if (base->patches && base->patches->regular(h.facet)) base->patches->side_normals(h.facet, sigma, h.side, base->points, out);
-  else base->masks->side_normals(h.facet, sigma, h.side, base->points, out);
+  base->masks->side_normals(h.facet, sigma, h.side, base->points, out);
   if (minor) std::reverse(out, out + l.s);
 }
 

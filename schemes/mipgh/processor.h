@@ -26,8 +26,14 @@ class MeshProcessor {
  public:
   MeshProcessor(const DAtlas& atlas, const DLoD& lod, const EdgeTags& tags, const MeshShader& shader);
 
-  // Level sigma's nodes in `src`, level sigma + 1's written to `dst`.
-  void step(int sigma, const V3* src, V3* dst, bool parallel) const;
+  // Level sigma's nodes in `src`, level sigma + 1's written to `dst`. `patches`, where given: the
+  // step before a projection that takes the regular D-facets' interiors and D-edges from them
+  // (project_facets, project_edge). Of those only what the projection of the D-vertices and the
+  // other D-facets and D-edges reads is made: a regular D-facet's node next to each corner (a
+  // D-vertex's 1-disk reaches one node in), a D-edge between two regular D-facets its node next
+  // to each end (the whole D-edge where another D-facet's tile holds it); the rest (at depth 4,
+  // 221 of a D-facet's 225 and 13 of a D-edge's 15) is left as it was, never read.
+  void step(int sigma, const V3* src, V3* dst, bool parallel, const RegularPatches* patches = nullptr) const;
   // Limit positions and unit normals of level sigma's nodes; the positions moved by `offset` where
   // one is given (the output's origin, so that they are written once, where they end).
   // `base`, where given, takes the D-vertices' normals from level 0's nodes (vertex_tangents.h).
@@ -75,6 +81,11 @@ class MeshProcessor {
   };
   // The parts of a step, public for the tests.
   void visit_facets(int sigma, TileFacets facets, const V3* src, V3* dst) const;
+  // step's with `patches`: quad f's four targets next to its corners (its squares' facet points),
+  // and a tag-free D-edge's between two quads next to its ends (edge points), as the full visits
+  // compute them.
+  void visit_facet_corners(int sigma, int f, const V3* src, V3* dst) const;
+  void visit_edge_ends(int sigma, int e, const V3* src, V3* dst) const;
   void visit_edge(int sigma, int e, const V3* src, V3* dst) const;
   void visit_vertex(int sigma, int v, const V3* src, V3* dst) const;
   // Adaptive: whether level sigma holds every D-facet a D-edge's (or a D-vertex's) next nodes

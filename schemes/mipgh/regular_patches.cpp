@@ -105,29 +105,30 @@ std::vector<float> RegularPatches::node_weights(int sigma) {
   return w;
 }
 
-void RegularPatches::interior_limit(int f, int sigma, const V3* base, V3 origin, int stride, float* px, float* py,
-                                    float* pz, float* nx, float* ny, float* nz) const {
+void RegularPatches::interior_limit(int f, int sigma, const V3* base, V3 origin, float* px, float* py, float* pz,
+                                    float* nx, float* ny, float* nz) const {
   const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
   const V3 c = base[q[5]];
   V3 D[16];
   for (int i = 0; i < 16; ++i) D[i] = base[q[i]] - c;
-  // Columns 1 .. n - 2 rounded up to whole SIMD vectors of eight where the row has room (column
-  // n - 1 is the side's, in the tile but never read from these planes): at n = 17, 15 columns left
-  // seven to a scalar tail.
+  // Columns 1 .. n - 2 rounded up to whole SIMD vectors of eight up to column n - 1 (the side's,
+  // written where the next row then starts, or one past the last row): at n = 17, 15 columns
+  // left seven to a scalar tail.
   const int n = (1 << sigma) + 1, columns = std::min(((n - 2) + 7) & ~7, n - 1);
   thread_local std::vector<float> t_rows;
   t_rows.resize(24 * size_t(columns));
   tile::patch_limit(by_function[size_t(sigma)].data() + 1, n, D, c - origin, basis[size_t(sigma)].data(),
-                    derivative[size_t(sigma)].data(), n - 2, columns, stride, t_rows.data(), px, py, pz, nx, ny, nz);
+                    derivative[size_t(sigma)].data(), n - 2, columns, n - 2, t_rows.data(), px, py, pz, nx, ny, nz);
 }
 
-void RegularPatches::side_normals(int f, int sigma, int side, const V3* base, V3* out) const {
+void RegularPatches::side_limit(int f, int sigma, int side, const V3* base, V3 origin, const V3* offset, V3* position,
+                                V3* normal) const {
   const int n = (1 << sigma) + 1, count = n - 2;
   if (count < 1) return;
   // Side k's nodes run along one row (sides 0, 2) or column (1, 3) of the grid (lod.h's side_ij),
   // forwards (0, 1) or backwards. The net reduced once to that line (four points for the patch
-  // along it, four for its derivative across), then two four-term sums per node; along a column
-  // u and v trade places (T2 x T1: the normal turned round).
+  // along it, four for its derivative across), then three four-term sums per node; along a
+  // column u and v trade places (T2 x T1: the normal turned round).
   const bool row = side == 0 || side == 2, backwards = side >= 2;
   const uint32_t* q = &net[size_t(patch[size_t(f)]) * 16];
   const V3 c = base[q[5]];
@@ -142,17 +143,19 @@ void RegularPatches::side_normals(int f, int sigma, int side, const V3* base, V3
   }
   // Points 1 .. n - 2, rounded up to whole SIMD vectors where the table has room (as interior_planes).
   const int points = std::min((count + 7) & ~7, n - 1);
-  constexpr int kOnStack = 64;
-  float stack[3 * kOnStack];
-  thread_local std::vector<float> t_normals;
-  if (points > kOnStack) t_normals.resize(3 * size_t(points));
-  float* nx = points > kOnStack ? t_normals.data() : stack;
-  float *ny = nx + points, *nz = ny + points;
-  tile::line_normals(by_function[size_t(sigma)].data() + 1, n, along, across, points, nx, ny, nz);
+  constexpr int kOnStack = 32;
+  float stack[6 * kOnStack];
+  thread_local std::vector<float> t_planes;
+  if (points > kOnStack) t_planes.resize(6 * size_t(points));
+  float* px = points > kOnStack ? t_planes.data() : stack;
+  float *py = px + points, *pz = py + points, *nx = pz + points, *ny = nx + points, *nz = ny + points;
+  tile::line_limit(by_function[size_t(sigma)].data() + 1, n, along, across, c - origin, points, px, py, pz, nx, ny, nz);
   const float sign = row ? 1.0f : -1.0f;
+  const V3 o = offset ? *offset : V3{0, 0, 0};
   for (int a = 0; a < count; ++a) {
     const int t = backwards ? count - 1 - a : a;
-    out[a] = {sign * nx[t], sign * ny[t], sign * nz[t]};
+    position[a] = offset ? V3{px[t] + o.x, py[t] + o.y, pz[t] + o.z} : V3{px[t], py[t], pz[t]};
+    normal[a] = {sign * nx[t], sign * ny[t], sign * nz[t]};
   }
 }
 

@@ -37,13 +37,18 @@ struct RegularPatches {
   // The limit positions (relative to `origin`, as the levels' nodes are) and unit normals (u along
   // a row, v across: the stencils' T1 x T2) of regular D-facet f's interior (rows and columns 1 ..
   // n - 2 of level sigma) from level 0's points `base`, into three planes each, node (i, j) at
-  // i * stride + j (a projection tile's planes, tile.h). The positions too: the patch is the limit
-  // surface there, so the facet's level-sigma nodes need not be gathered for its interior.
-  void interior_limit(int f, int sigma, const V3* base, V3 origin, int stride, float* px, float* py, float* pz,
-                      float* nx, float* ny, float* nz) const;
+  // (i - 1)(n - 2) + j - 1, as the level stores a quad's interior (tile::assemble_limit_run; the
+  // planes have room for (n - 2)^2 + 1 floats: the last row's vectors run one node past). The
+  // positions too: the patch is the limit surface there, so the facet's level-sigma nodes need
+  // not be gathered for its interior.
+  void interior_limit(int f, int sigma, const V3* base, V3 origin, float* px, float* py, float* pz, float* nx,
+                      float* ny, float* nz) const;
   // The same at the points (i, j) of side `side` (a = 1 .. n - 2 from corner `side`, lod.h's
-  // side_ij), written to out[a - 1].
-  void side_normals(int f, int sigma, int side, const V3* base, V3* out) const;
+  // side_ij), written to position[a - 1] (moved by *offset where given, as the projection's) and
+  // normal[a - 1]. The patch is the limit along its sides too: a D-edge with a regular D-facet on
+  // either side takes its nodes from it, and the stencils need not gather its strip.
+  void side_limit(int f, int sigma, int side, const V3* base, V3 origin, const V3* offset, V3* position,
+                  V3* normal) const;
   // The same tangents as weights on a net's 16 points, per grid node (i, j) of level sigma
   // row-major: 16 in T1, then 16 in T2 (facet_masks.h's layout, for the Vulkan pass).
   static std::vector<float> node_weights(int sigma);

@@ -151,7 +151,7 @@ SDB_TILE_CLONES void patch_limit(const float* f, int n, const V3 (&net)[16], V3 
     for (int k = 0; k < 3; ++k) value[a][k] = v + 2 * k * columns, slope[a][k] = v + (2 * k + 1) * columns;
   }
   for (int i = 1; i <= rows; ++i) {
-    const size_t at = size_t(i) * size_t(stride) + 1;
+    const size_t at = size_t(i - 1) * size_t(stride);
     sum_limit(value, slope, b + 4 * i, d + 4 * i, corner, columns, px + at, py + at, pz + at, nx + at, ny + at, nz + at);
   }
 }
@@ -180,14 +180,19 @@ SDB_TILE_CLONES void weighted_normals(const float* __restrict w, size_t pitch, c
   }
 }
 
-SDB_TILE_CLONES void line_normals(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
-                                  int count, float* __restrict nx, float* __restrict ny, float* __restrict nz) {
+SDB_TILE_CLONES void line_limit(const float* __restrict f, int n, const V3 (&along)[4], const V3 (&across)[4],
+                                V3 corner, int count, float* __restrict px, float* __restrict py,
+                                float* __restrict pz, float* __restrict nx, float* __restrict ny,
+                                float* __restrict nz) {
   const float *__restrict b0 = f, *__restrict b1 = f + n, *__restrict b2 = f + 2 * n, *__restrict b3 = f + 3 * n;
   const float *__restrict d0 = f + 4 * n, *__restrict d1 = f + 5 * n, *__restrict d2 = f + 6 * n, *__restrict d3 = f + 7 * n;
   const V3 P0 = along[0], P1 = along[1], P2 = along[2], P3 = along[3];
   const V3 Q0 = across[0], Q1 = across[1], Q2 = across[2], Q3 = across[3];
 #pragma GCC ivdep
   for (int k = 0; k < count; ++k) {
+    px[k] = corner.x + ((b0[k] * P0.x + b1[k] * P1.x) + (b2[k] * P2.x + b3[k] * P3.x));
+    py[k] = corner.y + ((b0[k] * P0.y + b1[k] * P1.y) + (b2[k] * P2.y + b3[k] * P3.y));
+    pz[k] = corner.z + ((b0[k] * P0.z + b1[k] * P1.z) + (b2[k] * P2.z + b3[k] * P3.z));
     const float ax = (d0[k] * P0.x + d1[k] * P1.x) + (d2[k] * P2.x + d3[k] * P3.x);
     const float ay = (d0[k] * P0.y + d1[k] * P1.y) + (d2[k] * P2.y + d3[k] * P3.y);
     const float az = (d0[k] * P0.z + d1[k] * P1.z) + (d2[k] * P2.z + d3[k] * P3.z);
@@ -391,6 +396,25 @@ template <bool kTurned, bool kOffset>
   }
 }
 
+template <bool kOffset>
+[[gnu::optimize("no-tree-vectorize")]] void assemble_limit_nodes(const Planes& s, int count, const V3& o,
+                                                                V3* __restrict p, V3* __restrict q) {
+  const float *__restrict px = s.v[0][0].data(), *__restrict py = s.v[0][1].data(), *__restrict pz = s.v[0][2].data();
+  const float *__restrict nx = s.normal[0].data(), *__restrict ny = s.normal[1].data(),
+                          *__restrict nz = s.normal[2].data();
+  const F4 ox = F4{} + o.x, oy = F4{} + o.y, oz = F4{} + o.z;
+  int L = 0;
+  for (; L + 4 <= count; L += 4, p += 4, q += 4) {
+    if (kOffset) interleave(load4(px + L) + ox, load4(py + L) + oy, load4(pz + L) + oz, p);
+    else interleave(load4(px + L), load4(py + L), load4(pz + L), p);
+    interleave(load4(nx + L), load4(ny + L), load4(nz + L), q);
+  }
+  for (; L < count; ++L, ++p, ++q) {
+    *p = kOffset ? V3{px[L] + o.x, py[L] + o.y, pz[L] + o.z} : V3{px[L], py[L], pz[L]};
+    *q = {nx[L], ny[L], nz[L]};
+  }
+}
+
 }  // namespace
 
 void assemble_targets(const Planes& s, int n, int stride, int width, bool quad, bool turned, V3* out) {
@@ -408,6 +432,11 @@ void assemble_limit(const Planes& s, int n, int stride, int inner, bool quad, bo
     if (offset) assemble_limit_rows<false, true>(s, n, stride, inner, quad, o, position, normal);
     else assemble_limit_rows<false, false>(s, n, stride, inner, quad, o, position, normal);
   }
+}
+
+void assemble_limit_run(const Planes& s, int count, const V3* offset, V3* position, V3* normal) {
+  if (offset) assemble_limit_nodes<true>(s, count, *offset, position, normal);
+  else assemble_limit_nodes<false>(s, count, V3{0, 0, 0}, position, normal);
 }
 
 }  // namespace sdb::mipgh::tile

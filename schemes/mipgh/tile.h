@@ -90,7 +90,8 @@ void triangle_limit_normals(const float* X, const float* Y, const float* Z, int 
 void quad_limit_positions(const float* X, const float* Y, const float* Z, int stride, int count, float* px, float* py,
                           float* pz);
 // Limit positions and unit normals (T1 x T2, u along a row) of a bicubic patch at the grid nodes
-// (i, j), i = 1 .. rows, j = 1 .. columns, into three planes each at i * stride + j: its 16
+// (i, j), i = 1 .. rows, j = 1 .. columns, into three planes each at (i - 1) stride + j - 1 (rows
+// written in order, so a row of `columns` > stride ends under the next one's start): its 16
 // control points `net` as differences from `corner` (row-major, net row a at 4 a), the basis at the
 // columns from f (B_m(j) at f[m * n + j - 1], B'_m at f[(4 + m) * n + j - 1]) and at the rows from
 // b and d (B_m(i) at b[4 i + m], B'_m at d[4 i + m]). Per net row and coordinate, the patch along
@@ -102,11 +103,12 @@ void patch_limit(const float* f, int n, const V3 (&net)[16], V3 corner, const fl
 // T1 = sum_c w[2 c pitch + node] p[c], T2 = sum_c w[(2 c + 1) pitch + node] p[c] (weights by point,
 // nodes contiguous: eight nodes' sums per SIMD lane; rows readable 8 floats past `count`).
 void weighted_normals(const float* w, size_t pitch, const V3* p, int terms, int count, V3* out);
-// Unit normals (C' x X) at `count` points t_k of one line of a bicubic patch: C(t) = sum_m B_m(t)
-// along[m] the patch along it, X(t) = sum_m B_m(t) across[m] its derivative across; B_m(t_k) at
-// f[m * n + k] and B'_m(t_k) at f[(4 + m) * n + k] (patch_limit's table).
-void line_normals(const float* f, int n, const V3 (&along)[4], const V3 (&across)[4], int count, float* nx, float* ny,
-                  float* nz);
+// Positions corner + C(t_k) and unit normals (C' x X) at `count` points t_k of one line of a
+// bicubic patch: C(t) = sum_m B_m(t) along[m] the patch along it, X(t) = sum_m B_m(t) across[m]
+// its derivative across; B_m(t_k) at f[m * n + k] and B'_m(t_k) at f[(4 + m) * n + k]
+// (patch_limit's table).
+void line_limit(const float* f, int n, const V3 (&along)[4], const V3 (&across)[4], V3 corner, int count, float* px,
+                float* py, float* pz, float* nx, float* ny, float* nz);
 // A step's targets in one D-facet of the tile whose class planes `s` holds (a quad, the first
 // triangle, or the turned one): level sigma + 1's interior rows 1 .. width, row-major into `out`.
 // Target (r, c) lies at square (r >> 1, c >> 1), class 2 (r & 1) + (c & 1), or at the turned
@@ -116,5 +118,9 @@ void assemble_targets(const Planes& s, int n, int stride, int width, bool quad, 
 // normals, rows 1 .. inner.
 void assemble_limit(const Planes& s, int n, int stride, int inner, bool quad, bool turned, const V3* offset,
                     V3* position, V3* normal);
+// The same from planes that hold `count` nodes one after another (patch_limit's at stride n - 2:
+// a quad's whole interior as one run, four nodes to a move, where rows of n - 2 left a scalar
+// tail each).
+void assemble_limit_run(const Planes& s, int count, const V3* offset, V3* position, V3* normal);
 
 }  // namespace sdb::mipgh::tile

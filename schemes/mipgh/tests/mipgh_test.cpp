@@ -26,6 +26,7 @@
 #include "schemes/mipgh/life.h"
 #include "schemes/mipgh/lod.h"
 #include "schemes/mipgh/mipgh.h"
+#include "schemes/mipgh/mutation.h"
 
 using namespace sdb;
 using namespace sdb::mipgh;
@@ -224,6 +225,70 @@ TEST(Mipgh, CpuMtEqualsCpuBitForBit) {
     EXPECT_EQ(a.positions, b.positions);
     EXPECT_EQ(a.normals, b.normals);
   }
+}
+
+// The step before the projection makes of what the projection takes from the patches only what
+// it reads (processor.h): a regular D-facet's node next to each corner, a D-edge's between two
+// regular D-facets next to each end. Those equal the full step's bit for bit, as does every node
+// of the other D-facets, D-edges and the D-vertices; the rest is left as it was. A pole mesh has
+// both kinds of D-facet, and D-edges with one regular D-facet (made whole: the other one's tile
+// holds them).
+TEST(MipghStep, BeforeTheProjectionWhatItReadsOfTheRegularDFacets) {
+  const ControlMesh mesh = gen::pole(6, 8);
+  constexpr int kDepth = 4;
+  const MeshMutation m(mesh, MeshRule::CatmullClark, build_atlas(mesh, FacetKinds::Quads), kDepth, true);
+  ASSERT_EQ(m.inner_depth(), kDepth);
+  std::vector<V3> level(m.lod.layout(0).num_nodes), spare;
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    level[v] = {mesh.positions[v][0] - m.origin[0], mesh.positions[v][1] - m.origin[1], mesh.positions[v][2] - m.origin[2]};
+  for (int sigma = 0; sigma + 1 < kDepth; ++sigma) {
+    spare.assign(m.lod.layout(sigma + 1).num_nodes, V3{});
+    m.processor.step(sigma, level.data(), spare.data(), false);
+    level.swap(spare);
+  }
+  const LevelLayout& last = m.lod.layout(kDepth);
+  const V3 unset{-7.0f, -7.0f, -7.0f};
+  std::vector<V3> full(last.num_nodes, unset), part(last.num_nodes, unset);
+  m.processor.step(kDepth - 1, level.data(), full.data(), false);
+  m.processor.step(kDepth - 1, level.data(), part.data(), false, &m.patches);
+  auto same = [](const V3& a, const V3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+  std::vector<char> skipped(last.num_nodes, 0);
+  const int s = last.s;  // nodes inside a D-edge; (i, j), i, j = 1 .. s, row-major inside a D-facet
+  int regular = 0, others = 0, edges = 0, half = 0;
+  for (int f = 0; f < m.atlas.num_facets(); ++f) {
+    if (!m.patches.regular(f)) {
+      ++others;
+      continue;
+    }
+    ++regular;
+    for (int k = 0; k < s * s; ++k)
+      if (k != 0 && k != s - 1 && k != (s - 1) * s && k != s * s - 1) skipped[last.interior(f) + uint32_t(k)] = 1;
+  }
+  for (int e = 0; e < m.atlas.num_edges(); ++e) {
+    const DEdge& d = m.atlas.edges[e];
+    const bool major = m.patches.regular(d.major.facet), minor = !d.minor.null() && m.patches.regular(d.minor.facet);
+    half += major != minor;
+    if (!major || !minor) continue;
+    ++edges;
+    for (int k = 1; k + 1 < s; ++k) skipped[last.edge_node(e, k)] = 1;
+  }
+  ASSERT_GT(regular, 0);
+  ASSERT_GT(others, 0);
+  ASSERT_GT(half, 0);
+  long kept = 0, made = 0;
+  for (uint32_t k = 0; k < last.num_nodes; ++k) {
+    if (skipped[k]) {
+      EXPECT_TRUE(same(part[k], unset)) << "node " << k << ", which the projection does not read, was made";
+      ++kept;
+    } else {
+      ASSERT_FALSE(same(full[k], unset)) << "node " << k;
+      ASSERT_TRUE(same(part[k], full[k])) << "node " << k;
+      ++made;
+    }
+  }
+  EXPECT_EQ(kept, long(regular) * (s * s - 4) + long(edges) * (s - 2));
+  std::printf("  %d regular D-facets, %d D-edges between two (%ld nodes left), %d others, %d D-edges with one; "
+              "%ld nodes equal the full step's\n", regular, edges, kept, others, half, made);
 }
 
 // Under the boundary rule "none" Far makes a hole of every face at a boundary vertex, and so does
