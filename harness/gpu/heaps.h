@@ -29,7 +29,7 @@ void check_memory(const Context& ctx, const MemoryNeed& need, const std::string&
 // `host_bytes` where they are more. Mesa 22.3's lavapipe reports a fixed 2 GiB
 // (lvp_GetPhysicalDeviceMemoryProperties) and counts no allocation against it: 3 GiB in three
 // buffers, and one of 2.5 GiB, allocate, fill and read back there
-// (schemes/halfedge/notes/2026-12-08-lavapipe-heap.md).
+// (notes/2026-12-08-lavapipe-heap.md).
 uint64_t heap_capacity(DeviceType type, uint64_t reported_bytes, uint64_t host_bytes);
 
 // The host's physical memory in bytes (0 where unknown).
