@@ -19,8 +19,21 @@ struct MemoryNeed {
   uint64_t readback_bytes = 0;
 };
 
-// Throws Unsupported naming `what` when the need exceeds the device's heaps.
+// Throws Unsupported naming `what` when the need exceeds what the device's heaps hold
+// (heap_capacity). Each buffer is held to maxMemoryAllocationSize and maxBufferSize where it is
+// made (Buffer); this is the sum.
 void check_memory(const Context& ctx, const MemoryNeed& need, const std::string& what);
+
+// Bytes a heap holds: the size the device reports, except on a CPU device (lavapipe), whose
+// device memory is the process's own, allocated from the host as any other: there the host's
+// `host_bytes` where they are more. Mesa 22.3's lavapipe reports a fixed 2 GiB
+// (lvp_GetPhysicalDeviceMemoryProperties) and counts no allocation against it: 3 GiB in three
+// buffers, and one of 2.5 GiB, allocate, fill and read back there
+// (notes/2026-12-08-lavapipe-heap.md).
+uint64_t heap_capacity(DeviceType type, uint64_t reported_bytes, uint64_t host_bytes);
+
+// The host's physical memory in bytes (0 where unknown).
+uint64_t host_memory_bytes();
 
 // "1.25 GiB" (or "12.5 MiB" below 1 GiB), for such messages.
 std::string gib_text(uint64_t bytes);

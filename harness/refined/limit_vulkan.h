@@ -6,11 +6,17 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "harness/gpu/gpu.h"
 #include "harness/refined/limit.h"
 
 namespace sdb::refined {
+
+// Entries in one view of the regular rings: the device's maxTexelBufferElements, or `entries` where
+// a test asks for fewer (0: the device's again), so that a small mesh takes the several-view path
+// of a 45.8 M-triangle output on lavapipe. For tests only; not thread-safe against frames being made.
+void limit_ring_view_entries_for_testing(uint64_t entries);
 
 class VulkanLimit {
  public:
@@ -35,9 +41,13 @@ class VulkanLimit {
     gpu::Buffer vertex, begin, ring, weights;
   };
   uint32_t ring_size_, face_size_, vertices_;
-  gpu::Buffer regular_ring_;
+  // The regular rings in views of at most maxTexelBufferElements entries (the sword's depth 5 has
+  // 183 M, lavapipe's view 134 M): one dispatch of the regular pass per view.
+  gpu::ChunkPlan ring_chunks_;
+  std::vector<gpu::Buffer> regular_ring_;
   Table special_, early_;
   std::shared_ptr<const gpu::ComputePipeline> regular_, special_pass_;
+  std::vector<gpu::DescriptorSet> regular_sets_;
   gpu::DescriptorSet set_, early_set_;
 };
 

@@ -107,6 +107,12 @@ class OsdUniform final : public Scheme {
     info_.accepts.manifold = false;  // OpenSubdiv takes non-manifold topology
     info_.accepts.creases = true;
     info_.accepts.holes = true;
+    // A validated run's peak grows by 332 to 345 bytes per output triangle (osd-uniform: the sword
+    // at depths 2 -> 3 -> 4, frog-party 3 -> 4) and 386 to 405 (osd-uniform-loop: frog-party-triangles
+    // and the bunny 3 -> 4), `validate --rays 1000`'s maximum RSS (notes/2026-12-08-peak.md); a
+    // bench's is about 200. A sixth to a fifth to spare, and the sword's 45.8 M triangles (depth 5,
+    // 17.1 GiB at 400) fit the 17.7 GiB a run may take on a 24 GB machine (512: 21.9, refused).
+    info_.peak_bytes_per_triangle = loop ? 490 : 400;
   }
   const SchemeInfo& info() const override { return info_; }
   std::optional<std::string> unsupported(const RunRequest& r) const override {

@@ -6,7 +6,7 @@
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0) uniform samplerBuffer points;           // the level's points, xyz of rgba32f texels
-layout(binding = 1) uniform usamplerBuffer regular_ring;    // per vertex, ring_size entries (kNone first: special)
+layout(binding = 1) uniform usamplerBuffer regular_ring;    // per vertex from pc.first, ring_size entries (kNone first: special)
 layout(binding = 2) uniform usamplerBuffer special;         // the special vertices
 layout(binding = 3) uniform usamplerBuffer begin;           // their entries' ranges
 layout(binding = 4) uniform usamplerBuffer ring;            // the entries' vertices
@@ -15,9 +15,10 @@ layout(binding = 6, r32f) uniform restrict writeonly imageBuffer out_position;  
 layout(binding = 7, r32f) uniform restrict writeonly imageBuffer out_normal;
 
 layout(push_constant) uniform Push {
-  uint count;      // vertices (regular pass) or special vertices (special pass)
+  uint count;      // vertices (regular pass: from `first`, one view of the rings) or special vertices (special pass)
   uint ring_size;  // 8 (Catmull-Clark) or 6 (Loop)
-  uint pad0, pad1;
+  uint first;      // the regular pass: the first vertex of this dispatch and of its view of the rings
+  uint pad;
   vec4 origin;     // added to every position
   vec4 k;          // the regular masks' constants from the CPU (GLSL's constant division is not C++'s)
 } pc;

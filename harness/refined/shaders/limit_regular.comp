@@ -1,14 +1,16 @@
 #version 450
 // The regular vertices' limit (limit.cpp, project_regular): Sdc's constant masks on the ring the
-// plan listed. One vertex an invocation; special vertices skip.
+// plan listed. One vertex an invocation, from pc.first (the ring table comes in views of at most
+// maxTexelBufferElements, one dispatch each); special vertices skip.
 #include "limit.glsl"
 
-vec3 ring_point(uint v, uint i) { return point(texelFetch(regular_ring, int(pc.ring_size * v + i)).x); }
+vec3 ring_point(uint v, uint i) { return point(texelFetch(regular_ring, int(pc.ring_size * (v - pc.first) + i)).x); }
 
 void main() {
-  const uint v = SDB_LINEAR_INVOCATION();
-  if (v >= pc.count) return;
-  if (texelFetch(regular_ring, int(pc.ring_size * v)).x == kNone) return;
+  const uint local = SDB_LINEAR_INVOCATION();
+  if (local >= pc.count) return;
+  const uint v = pc.first + local;
+  if (texelFetch(regular_ring, int(pc.ring_size * local)).x == kNone) return;
   precise vec3 centre = point(v);
   precise vec3 pos, t1, t2;
   if (pc.ring_size == 8u) {
