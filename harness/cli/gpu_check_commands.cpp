@@ -1,7 +1,7 @@
-// gpu-check: a thin wrapper over harness/bench/gpu_check.h, the report written by reports/.
+// gpu-check: a thin wrapper over harness/run/gpu_check.h, the report written by reports/.
 #include <memory>
 
-#include "harness/bench/gpu_check.h"
+#include "harness/run/gpu_check.h"
 #include "harness/cli/commands.h"
 #include "reports/report.h"
 
