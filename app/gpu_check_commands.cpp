@@ -2,10 +2,10 @@
 #include <memory>
 
 #include "harness/run/gpu_check.h"
-#include "harness/cli/commands.h"
+#include "app/commands.h"
 #include "reports/report.h"
 
-namespace sdb::cli {
+namespace sdb::app {
 
 void add_gpu_check_verbs(CLI::App& app, Verbs& verbs) {
   auto opts = std::make_shared<GpuCheckOptions>();
@@ -32,4 +32,4 @@ void add_gpu_check_verbs(CLI::App& app, Verbs& verbs) {
   };
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

@@ -15,7 +15,7 @@
 #include "harness/run/plan.h"
 #include "harness/bench/progress.h"
 #include "harness/run/run_summary.h"
-#include "harness/cli/commands.h"
+#include "app/commands.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gate/callgrind.h"
@@ -26,7 +26,7 @@
 
 namespace fs = std::filesystem;
 
-namespace sdb::cli {
+namespace sdb::app {
 namespace {
 
 struct GateOptions {
@@ -341,4 +341,4 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   verbs["workload"] = [opts] { return workload(*opts); };
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

@@ -8,7 +8,7 @@
 
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
-#include "harness/cli/commands.h"
+#include "app/commands.h"
 #include "harness/core/errors.h"
 #include "harness/gpu/context.h"
 #include "harness/pictures/pictures.h"
@@ -18,7 +18,7 @@
 #include "harness/run/run_pipeline.h"
 #include "reports/report.h"
 
-namespace sdb::cli {
+namespace sdb::app {
 namespace {
 
 constexpr int kQuickReps = 3;
@@ -226,4 +226,4 @@ void add_run_verbs(CLI::App& app, Verbs& verbs) {
   verbs["row-worker"] = [opts]() -> int { serve_rows(opts->worker_channel, opts->worker_parent); };
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app
