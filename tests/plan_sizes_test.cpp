@@ -10,7 +10,7 @@
 
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
-#include "harness/bench/plan.h"
+#include "harness/run/plan.h"
 
 using namespace sdb;
 

@@ -12,7 +12,7 @@
 
 #include "datasets/manifest.h"
 #include "harness/bench/machine.h"
-#include "harness/bench/plan.h"
+#include "harness/run/plan.h"
 
 namespace sdb {
 namespace {

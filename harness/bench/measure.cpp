@@ -702,6 +702,23 @@ std::vector<Backend> calibration_backends(const std::vector<RunSpec>& specs, con
 
 }  // namespace
 
+bool parse_benchmark_flags(const std::string& program, const std::vector<std::string>& flags) {
+  static std::vector<std::string> args;  // Google Benchmark keeps argv[0] for its context line
+  static std::vector<char*> argv;
+  args = {program};
+  args.insert(args.end(), flags.begin(), flags.end());
+  argv.clear();
+  for (auto& a : args) argv.push_back(a.data());
+  int argc = static_cast<int>(argv.size());
+  benchmark::Initialize(&argc, argv.data());
+  return !benchmark::ReportUnrecognizedArguments(argc, argv.data());
+}
+
+benchmark::BenchmarkReporter* benchmark_console() {
+  static benchmark::ConsoleReporter console;
+  return &console;
+}
+
 std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& o, MeasureContext& ctx,
                                benchmark::BenchmarkReporter* display, const BenchRounds& how) {
   const int rounds = how.rounds;

@@ -146,6 +146,13 @@ struct BenchRounds {
 std::vector<RunRow> bench_runs(const std::vector<RunSpec>& specs, const MeasureOptions& options,
                                MeasureContext& context, benchmark::BenchmarkReporter* display, const BenchRounds& how = {});
 
+// Google Benchmark's own flags for bench_runs (--benchmark_filter=..., --benchmark_min_time=...),
+// given to benchmark::Initialize with `program` as their argv[0] (kept for the process's life, as
+// Google Benchmark keeps it). False when one of them is not Google Benchmark's: it has said which.
+bool parse_benchmark_flags(const std::string& program, const std::vector<std::string>& flags);
+// Google Benchmark's console display for bench_runs' flag mode (`subdivbench bench`), one per process.
+benchmark::BenchmarkReporter* benchmark_console();
+
 // Sees every measure_run of this thread begin and end while it lives: how `paper` shows the
 // progress of tables that measure their cells with measure_run (only the table knows how many).
 class MeasureObserver {

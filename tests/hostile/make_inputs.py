@@ -341,7 +341,7 @@ def corpus_sweep(meshes):
 
 
 def journals():
-    """Run journals for `run --resume` (harness/bench/journal.h): a folder each, holding journal.jsonl."""
+    """Run journals for `run --resume` (harness/run/journal.h): a folder each, holding journal.jsonl."""
     selection = {"schemes": ["osd-uniform"], "meshes": ["cube"], "backends": [], "levels": [1], "all": False,
                  "all_corpus": False, "max_triangles": 1000000, "headline": True, "reps": 5, "rays": 50000,
                  "seed": 1, "validate": True}

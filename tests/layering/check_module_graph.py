@@ -4,7 +4,7 @@
   check_module_graph.py --root SRC [--graph FILE] [--scheme-dir DIR]... [--plant FILE:HEADER]...
                         [--allow MODULE:MODULE]...
 
-Reads every .h/.cpp under harness/, schemes/, datasets/, reports/ and tests/ of SRC, and of each
+Reads every .h/.cpp under app/, harness/, schemes/, datasets/, reports/ and tests/ of SRC, and of each
 out-of-tree scheme folder (a module schemes/<folder name>), and prints one line per include the
 graph does not allow; exit 1 when there is one (or when the graph has a cycle or names a module
 no file belongs to), 0 otherwise with a count of what was checked. --plant adds an include line
@@ -16,7 +16,7 @@ import os
 import re
 import sys
 
-SCANNED = ("harness", "schemes", "datasets", "reports", "tests")
+SCANNED = ("app", "harness", "schemes", "datasets", "reports", "tests")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^">]+)[">]')
 
 

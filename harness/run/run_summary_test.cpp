@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "harness/bench/run_summary.h"
+#include "harness/run/run_summary.h"
 
 using namespace sdb;
 

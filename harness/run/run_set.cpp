@@ -1,4 +1,4 @@
-#include "harness/bench/run_set.h"
+#include "harness/run/run_set.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include <set>
 
 #include "harness/bench/machine.h"
-#include "harness/bench/row_worker.h"
+#include "harness/run/row_worker.h"
 #include "harness/core/content_hash.h"
 #include "harness/core/errors.h"
 #include "harness/results/output_folder.h"

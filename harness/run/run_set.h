@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
-#include "harness/bench/journal.h"
-#include "harness/bench/plan.h"
+#include "harness/run/journal.h"
+#include "harness/run/plan.h"
 #include "harness/results/output_folder.h"
 
 namespace sdb {

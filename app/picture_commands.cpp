@@ -5,11 +5,11 @@
 #include <memory>
 #include <optional>
 
-#include "harness/cli/commands.h"
+#include "app/commands.h"
 #include "harness/gpu/context.h"
 #include "harness/pictures/pictures.h"
 
-namespace sdb::cli {
+namespace sdb::app {
 namespace {
 
 struct PictureVerbOptions {
@@ -69,4 +69,4 @@ void add_picture_verbs(CLI::App& app, Verbs& verbs) {
   verbs["pictures"] = [opts] { return pictures_cmd(*opts); };
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

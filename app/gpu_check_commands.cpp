@@ -1,11 +1,11 @@
-// gpu-check: a thin wrapper over harness/bench/gpu_check.h, the report written by reports/.
+// gpu-check: a thin wrapper over harness/run/gpu_check.h, the report written by reports/.
 #include <memory>
 
-#include "harness/bench/gpu_check.h"
-#include "harness/cli/commands.h"
+#include "harness/run/gpu_check.h"
+#include "app/commands.h"
 #include "reports/report.h"
 
-namespace sdb::cli {
+namespace sdb::app {
 
 void add_gpu_check_verbs(CLI::App& app, Verbs& verbs) {
   auto opts = std::make_shared<GpuCheckOptions>();
@@ -32,4 +32,4 @@ void add_gpu_check_verbs(CLI::App& app, Verbs& verbs) {
   };
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-namespace sdb::cli {
+namespace sdb::app {
 
 using Verbs = std::map<std::string, std::function<int()>>;
 
@@ -29,4 +29,4 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs);
 void add_picture_verbs(CLI::App& app, Verbs& verbs);
 void add_gpu_check_verbs(CLI::App& app, Verbs& verbs);
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

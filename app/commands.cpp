@@ -1,4 +1,4 @@
-#include "harness/cli/commands.h"
+#include "app/commands.h"
 
 #include <nlohmann/json.hpp>
 
@@ -16,7 +16,7 @@
 #include "harness/gpu/device_info.h"
 #include "harness/mesh/facts.h"
 
-namespace sdb::cli {
+namespace sdb::app {
 namespace {
 
 struct MeshVerbOptions {
@@ -179,4 +179,4 @@ int run_selected(const CLI::App& app, const Verbs& verbs) {
   return 2;
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

@@ -15,8 +15,8 @@
 #include <limits>
 #include <sstream>
 
-#include "harness/bench/journal.h"
-#include "harness/bench/run_set.h"
+#include "harness/run/journal.h"
+#include "harness/run/run_set.h"
 #include "harness/core/errors.h"
 
 using namespace sdb;

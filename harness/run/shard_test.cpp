@@ -10,8 +10,8 @@
 #include <map>
 #include <set>
 
-#include "harness/bench/plan.h"
-#include "harness/bench/run_set.h"
+#include "harness/run/plan.h"
+#include "harness/run/run_set.h"
 #include "harness/core/errors.h"
 #include "harness/results/results_merge.h"
 

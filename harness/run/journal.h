@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/bench/plan.h"
+#include "harness/run/plan.h"
 #include "harness/results/line_file.h"
 #include "harness/results/results.h"
 

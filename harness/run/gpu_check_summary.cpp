@@ -1,4 +1,4 @@
-#include "harness/bench/gpu_check_summary.h"
+#include "harness/run/gpu_check_summary.h"
 
 #include <cstdio>
 #include <map>

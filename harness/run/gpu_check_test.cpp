@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "harness/bench/gpu_check_plan.h"
-#include "harness/bench/gpu_check_summary.h"
+#include "harness/run/gpu_check_plan.h"
+#include "harness/run/gpu_check_summary.h"
 #include "harness/core/registry.h"
 
 namespace sdb {

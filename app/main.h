@@ -2,8 +2,8 @@
 // (tests/CMakeLists.txt) runs the same verbs.
 #pragma once
 
-namespace sdb::cli {
+namespace sdb::app {
 
 int main(int argc, char** argv);
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

@@ -1,4 +1,4 @@
-#include "harness/bench/gpu_check_plan.h"
+#include "harness/run/gpu_check_plan.h"
 
 #include <algorithm>
 #include <cmath>

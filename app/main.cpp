@@ -10,12 +10,12 @@
 #include <string>
 #include <iostream>
 
-#include "harness/cli/commands.h"
-#include "harness/cli/main.h"
+#include "app/commands.h"
+#include "app/main.h"
 #include "harness/core/errors.h"
 #include "harness/core/printable.h"
 
-namespace sdb::cli {
+namespace sdb::app {
 
 namespace {
 
@@ -64,4 +64,4 @@ int main(int argc, char** argv) {
   }
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

@@ -1,4 +1,4 @@
-#include "harness/bench/gpu_check.h"
+#include "harness/run/gpu_check.h"
 
 #include <nlohmann/json.hpp>
 
@@ -11,8 +11,8 @@
 #include <optional>
 #include <set>
 
-#include "harness/bench/gpu_check_plan.h"
-#include "harness/bench/gpu_check_summary.h"
+#include "harness/run/gpu_check_plan.h"
+#include "harness/run/gpu_check_summary.h"
 #include "harness/bench/machine.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"

@@ -1,4 +1,4 @@
-#include "harness/bench/row_worker.h"
+#include "harness/run/row_worker.h"
 
 #include <sys/prctl.h>
 #include <unistd.h>

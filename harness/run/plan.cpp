@@ -1,4 +1,4 @@
-#include "harness/bench/plan.h"
+#include "harness/run/plan.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,4 @@
 // bench, gate, report, paper and the hidden workload verb: thin wrappers over harness/bench.
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -12,10 +10,10 @@
 #include "harness/bench/machine.h"
 #include "harness/bench/measure.h"
 #include "harness/bench/paired.h"
-#include "harness/bench/plan.h"
+#include "harness/run/plan.h"
 #include "harness/bench/progress.h"
-#include "harness/bench/run_summary.h"
-#include "harness/cli/commands.h"
+#include "harness/run/run_summary.h"
+#include "app/commands.h"
 #include "harness/core/errors.h"
 #include "harness/core/registry.h"
 #include "harness/gate/callgrind.h"
@@ -26,7 +24,7 @@
 
 namespace fs = std::filesystem;
 
-namespace sdb::cli {
+namespace sdb::app {
 namespace {
 
 struct GateOptions {
@@ -90,14 +88,7 @@ int bench(const GateOptions& opts) {
   if (named) require_runnable(plan.runs);
   if (opts.machine_from.empty()) ctx.probe_bandwidth();  // after the selection is known to be good: a bad one is said at once
   for (const auto& n : plan.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
-  std::vector<std::string> args = {"subdivbench bench"};
-  args.insert(args.end(), opts.bench_flags.begin(), opts.bench_flags.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  int argc = static_cast<int>(argv.size());
-  benchmark::Initialize(&argc, argv.data());
-  if (benchmark::ReportUnrecognizedArguments(argc, argv.data())) return 2;
-  benchmark::ConsoleReporter console;
+  if (!parse_benchmark_flags("subdivbench bench", opts.bench_flags)) return 2;
   MeasureOptions m;
   m.validate = false;
   ResultsFile results;
@@ -110,7 +101,7 @@ int bench(const GateOptions& opts) {
   std::optional<Progress> progress;
   if (opts.rounds > 0)
     how.progress = &progress.emplace(std::cout, stdout_is_terminal(), size_t(opts.rounds), Progress::steady_seconds, terminal_columns());
-  results.runs = bench_runs(plan.runs, m, ctx, &console, how);
+  results.runs = bench_runs(plan.runs, m, ctx, benchmark_console(), how);
   if (progress) progress->close();
   const bool filtered = std::any_of(opts.bench_flags.begin(), opts.bench_flags.end(),
                                     [](const std::string& f) { return f.rfind("--benchmark_filter", 0) == 0; });
@@ -341,4 +332,4 @@ void add_gate_verbs(CLI::App& app, Verbs& verbs) {
   verbs["workload"] = [opts] { return workload(*opts); };
 }
 
-}  // namespace sdb::cli
+}  // namespace sdb::app

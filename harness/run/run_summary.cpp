@@ -1,4 +1,4 @@
-#include "harness/bench/run_summary.h"
+#include "harness/run/run_summary.h"
 
 #include <cstdio>
 #include <filesystem>

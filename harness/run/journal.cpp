@@ -1,4 +1,4 @@
-#include "harness/bench/journal.h"
+#include "harness/run/journal.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
