@@ -233,7 +233,7 @@ std::optional<std::string> probe_file_name() {
   if (!std::getline(boot, key) || key.empty()) return std::nullopt;
   const std::string id = build_id();
   if (id.empty()) return std::nullopt;
-  key += "\n" + id;
+  key += "\n" + id + "\n" + build_commit();  // the commit is read at run time: a commit keeps the build id
   for (const char* var : {"VK_ICD_FILENAMES", "VK_DRIVER_FILES", "VK_ADD_DRIVER_FILES", gpu::k_device_env,
                           "VK_INSTANCE_LAYERS", "SUBDIVBENCH_VK_VALIDATION", "LIBGL_ALWAYS_SOFTWARE", "GALLIUM_DRIVER",
                           "MESA_LOADER_DRIVER_OVERRIDE", "EGL_PLATFORM", "__EGL_VENDOR_LIBRARY_FILENAMES",
@@ -264,8 +264,9 @@ std::optional<MachineInfo> reused_machine_probes() {
   if (!path || !std::filesystem::exists(*path, ec)) return std::nullopt;
   try {
     return machine_from(path->string(), false);
-  } catch (const std::exception& e) {  // another machine or build, or a file cut short: measured anew
-    std::fprintf(stderr, "note: machine probes measured again: %s\n", e.what());
+  } catch (const std::exception&) {
+    // Another machine or build, or a file cut short: measured anew, quietly (an error's one line
+    // on stderr stays the only one).
     return std::nullopt;
   }
 }
