@@ -62,20 +62,11 @@ std::optional<InputError> unmeasured(const std::vector<RunSpec>& runs, const std
   return std::nullopt;
 }
 
-// bench --machine-from FILE: the machine block of a results file written here (gpu-check's device
-// stage), its probes included, so that several bench processes read their rows' bandwidth
-// fractions against one measurement instead of each paying for the probes.
-MachineInfo machine_from(const std::string& path) {
-  const MachineInfo here = describe_machine();
-  MachineInfo m = read_results(path).machine;
-  if (const std::string d = machine_difference(m, here); !d.empty() || m.git_commit != here.git_commit)
-    throw InputError(path, "describes another machine or build (" + (d.empty() ? "commit " + m.git_commit : d) + ")");
-  return m;
-}
-
 int bench(const GateOptions& opts) {
   if (!opts.out.empty()) prepare_output_folder(opts.out);
-  MeasureContext ctx(opts.machine_from.empty() ? describe_machine() : machine_from(opts.machine_from));
+  // bench --machine-from FILE: gpu-check's device stage measured the probes once for several bench
+  // processes (machine.h); otherwise the probes ctest's earlier processes kept, or this one's.
+  MeasureContext ctx(opts.machine_from.empty() ? describe_machine_or_reuse() : machine_from(opts.machine_from));
   Selection sel;
   sel.schemes = opts.schemes, sel.meshes = opts.meshes, sel.backends = opts.backends, sel.levels = opts.levels;
   Plan plan;

@@ -1,4 +1,5 @@
 #include "harness/bench/machine.h"
+#include "harness/core/errors.h"
 #include "harness/gl/context.h"
 #include "harness/results/resources.h"
 
@@ -9,6 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <elf.h>
+#include <link.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -16,7 +19,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -169,6 +174,124 @@ MachineInfo describe_machine_with_probes() {
   MachineInfo m = describe_machine();
   add_bandwidth_probes(m);
   return m;
+}
+
+MachineInfo machine_from(const std::string& path, bool devices_probed) {
+  MachineInfo here = describe_machine(devices_probed);
+  MachineInfo m = read_results(path).machine;
+  if (!devices_probed) {
+    here.vulkan_device = m.vulkan_device, here.vulkan_driver = m.vulkan_driver;
+    here.opengl_renderer = m.opengl_renderer;
+  }
+  if (const std::string d = machine_difference(m, here); !d.empty() || m.git_commit != here.git_commit)
+    throw InputError(path, "describes another machine or build (" + (d.empty() ? "commit " + m.git_commit : d) + ")");
+  m.probes_from = path;
+  return m;
+}
+
+namespace {
+
+// This executable's GNU build id in hex (the linker's note: it changes with every link of changed
+// code); "" where the executable has none.
+std::string build_id() {
+  std::string id;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) {
+        for (int i = 0; i < info->dlpi_phnum; ++i) {
+          const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+          if (ph.p_type != PT_NOTE) continue;
+          const char* p = reinterpret_cast<const char*>(info->dlpi_addr + ph.p_vaddr);
+          const char* end = p + ph.p_memsz;
+          while (p + sizeof(ElfW(Nhdr)) <= end) {
+            const auto* note = reinterpret_cast<const ElfW(Nhdr)*>(p);
+            const char* name = p + sizeof(ElfW(Nhdr));
+            const char* desc = name + ((note->n_namesz + 3) & ~3u);
+            if (note->n_type == NT_GNU_BUILD_ID && note->n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
+              auto& hex = *static_cast<std::string*>(out);
+              for (unsigned b = 0; b < note->n_descsz; ++b) {
+                char byte[3];
+                std::snprintf(byte, sizeof byte, "%02x", static_cast<unsigned char>(desc[b]));
+                hex += byte;
+              }
+              return 1;
+            }
+            p = desc + ((note->n_descsz + 3) & ~3u);
+          }
+        }
+        return 1;  // the first object is the executable: stop there
+      },
+      &id);
+  return id;
+}
+
+// The probe file's name: FNV-1a of the boot id, the build id and the variables that pick the
+// devices (harness/gpu's no_device_reason lists the Vulkan ones; Mesa's pick the OpenGL driver),
+// so a reboot, a rebuild or a test that hides the Vulkan driver finds no file and probes anew.
+std::optional<std::string> probe_file_name() {
+  std::string key;
+  std::ifstream boot("/proc/sys/kernel/random/boot_id");
+  if (!std::getline(boot, key) || key.empty()) return std::nullopt;
+  const std::string id = build_id();
+  if (id.empty()) return std::nullopt;
+  key += "\n" + id + "\n" + build_commit();  // the commit is read at run time: a commit keeps the build id
+  for (const char* var : {"VK_ICD_FILENAMES", "VK_DRIVER_FILES", "VK_ADD_DRIVER_FILES", gpu::k_device_env,
+                          "VK_INSTANCE_LAYERS", "SUBDIVBENCH_VK_VALIDATION", "LIBGL_ALWAYS_SOFTWARE", "GALLIUM_DRIVER",
+                          "MESA_LOADER_DRIVER_OVERRIDE", "EGL_PLATFORM", "__EGL_VENDOR_LIBRARY_FILENAMES",
+                          "__EGL_VENDOR_LIBRARY_DIRS", "LP_NUM_THREADS", "TBB_NUM_THREADS"}) {
+    const char* value = std::getenv(var);
+    key += std::string("\n") + var + (value ? "=" + std::string(value) : " unset");
+  }
+  uint64_t hash = 1469598103934665603ull;
+  for (const unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
+  char name[40];
+  std::snprintf(name, sizeof name, "machine-%016llx.json", static_cast<unsigned long long>(hash));
+  return name;
+}
+
+std::optional<std::filesystem::path> probe_file() {
+  const char* folder = std::getenv(kMachineProbesVariable);
+  if (!folder || !*folder) return std::nullopt;
+  const std::optional<std::string> name = probe_file_name();
+  if (!name) return std::nullopt;
+  return std::filesystem::path(folder) / *name;
+}
+
+}  // namespace
+
+std::optional<MachineInfo> reused_machine_probes() {
+  const std::optional<std::filesystem::path> path = probe_file();
+  std::error_code ec;
+  if (!path || !std::filesystem::exists(*path, ec)) return std::nullopt;
+  try {
+    return machine_from(path->string(), false);
+  } catch (const std::exception&) {
+    // Another machine or build, or a file cut short: measured anew, quietly (an error's one line
+    // on stderr stays the only one).
+    return std::nullopt;
+  }
+}
+
+MachineInfo describe_machine_or_reuse() {
+  if (std::optional<MachineInfo> m = reused_machine_probes()) return *m;
+  return describe_machine();
+}
+
+void keep_machine_probes(const MachineInfo& m) {
+  const std::optional<std::filesystem::path> path = probe_file();
+  if (!path || !m.probes_from.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(path->parent_path(), ec);
+  const std::string scratch = path->string() + "." + std::to_string(getpid()) + ".part";
+  try {
+    ResultsFile probes;
+    probes.machine = m;
+    probes.created = utc_now();
+    write_results(probes, scratch);
+    std::filesystem::rename(scratch, *path);
+  } catch (const std::exception& e) {  // an unwritable folder costs the next process its probes, nothing else
+    std::filesystem::remove(scratch, ec);
+    std::fprintf(stderr, "note: machine probes not kept for the next process: %s\n", e.what());
+  }
 }
 
 namespace {

@@ -1,6 +1,9 @@
 // The machine block of results.json, and the calibration probe every row is read against.
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include "harness/results/results.h"
 
 namespace sdb {
@@ -30,6 +33,26 @@ void add_bandwidth_probes(MachineInfo& m);
 // describe_machine() with the write-bandwidth probes measured (CPU one thread, all threads, and
 // the Vulkan device when there is one): what every results file records.
 MachineInfo describe_machine_with_probes();
+
+// bench --machine-from FILE and the reused probes below: the machine block of a results file
+// written here, probes included, its probes_from naming the file. InputError where it describes
+// another machine or build than this one (machine_difference, the commit); with devices_probed
+// false the devices are not probed here (the reuse's key vouches for them).
+MachineInfo machine_from(const std::string& path, bool devices_probed = true);
+
+// Probes measured once per machine, boot and build, and reused by the processes that follow:
+// where $SUBDIVBENCH_MACHINE_PROBES names a folder (ctest's environment sets it to one in the
+// build folder), a run or bench process takes its machine block, probes included, from the file
+// there named for this boot, this executable's build id and the environment that picks the Vulkan
+// and OpenGL devices, which the first such process wrote (keep_machine_probes). Without the
+// variable, or with no usable file, nullopt: the process probes as a user's does.
+inline constexpr const char* kMachineProbesVariable = "SUBDIVBENCH_MACHINE_PROBES";
+std::optional<MachineInfo> reused_machine_probes();
+// describe_machine(), or the reused block where there is one.
+MachineInfo describe_machine_or_reuse();
+// Writes a block whose probes this process measured to that file (atomically: written beside it,
+// then renamed), for the next process; nothing without the variable or when it was reused.
+void keep_machine_probes(const MachineInfo& m);
 
 // The same for the Vulkan device: a buffer fill timed by timestamp queries; 0 without a device.
 double measure_gpu_write_bandwidth();

@@ -90,8 +90,13 @@ class MeasureContext {
   // (shared_validation.h).
   ValidatedOutputs& validated_outputs() { return validated_; }
   const MachineInfo& machine() const { return machine_; }
-  // The bandwidth probes, taken once the selection is known to be good (machine.h).
-  void probe_bandwidth() { add_bandwidth_probes(machine_); }
+  // The bandwidth probes, taken once the selection is known to be good (machine.h), unless the
+  // machine block came with them (probes_from); kept for the next process where it asks.
+  void probe_bandwidth() {
+    if (!machine_.probes_from.empty()) return;
+    add_bandwidth_probes(machine_);
+    keep_machine_probes(machine_);
+  }
 
  private:
   MachineInfo machine_;

@@ -237,6 +237,7 @@ void to_json(json& j, const MachineInfo& m) {
        {"git_commit", m.git_commit},     {"write_bandwidth_gbs", m.write_bandwidth_gbs},
        {"write_bandwidth_mt_gbs", m.write_bandwidth_mt_gbs}, {"gpu_write_bandwidth_gbs", m.gpu_write_bandwidth_gbs},
        {"gpu_shader_write_bandwidth_gbs", m.gpu_shader_write_bandwidth_gbs}};
+  if (!m.probes_from.empty()) j["probes_from"] = m.probes_from;
 }
 void from_json(const json& j, MachineInfo& m) {
   m.cpu_model = j.value("cpu_model", ""), m.cores = whole(j, "cores", 0), m.memory_gib = number(j, "memory_gib", 0.0);
@@ -250,6 +251,7 @@ void from_json(const json& j, MachineInfo& m) {
   m.write_bandwidth_mt_gbs = number(j, "write_bandwidth_mt_gbs", 0.0);
   m.gpu_write_bandwidth_gbs = number(j, "gpu_write_bandwidth_gbs", 0.0);
   m.gpu_shader_write_bandwidth_gbs = number(j, "gpu_shader_write_bandwidth_gbs", 0.0);
+  m.probes_from = j.value("probes_from", "");
 }
 
 namespace {

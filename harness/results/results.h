@@ -108,6 +108,10 @@ struct MachineInfo {
   double write_bandwidth_mt_gbs = 0;  // all threads
   double gpu_write_bandwidth_gbs = 0;  // the Vulkan device: a buffer fill timed by timestamps
   double gpu_shader_write_bandwidth_gbs = 0;  // and a compute shader that only stores (vec4s)
+  // The file the probes above were read from (bench --machine-from, or a probe file reused by
+  // ctest's processes: harness/bench/machine.h); "" (and absent from the file) where this
+  // process measured them.
+  std::string probes_from;
 };
 
 // Which part of a sharded selection a file holds (`run --shard I/N`): the rows whose sorted

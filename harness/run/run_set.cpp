@@ -108,7 +108,7 @@ std::string RunSet::journal_path() const { return (fs::path(out_) / kJournalFile
 RunSet RunSet::start(const std::string& out, const RunSelection& selection, bool isolate, bool force) {
   prepare_output_folder(out);  // before the measuring, not after it
   FolderLock lock = FolderLock::take(out);
-  RunSet set(out, describe_machine(), isolate);
+  RunSet set(out, describe_machine_or_reuse(), isolate);
   set.lock_ = std::make_unique<FolderLock>(std::move(lock));
   set.selection_ = selection;
   // A bad selection (no such scheme, mesh or run) is said at once, not after seconds of probes.
@@ -133,7 +133,7 @@ RunSet RunSet::resume(const std::string& out, const std::optional<RunSelection>&
     throw InputError(path, "the interrupted run had another selection (" + selection_difference(h.selection, *selection) +
                                "): resume with its options or none");
   // The rows already journalled must be comparable with the ones still to measure.
-  const MachineInfo here = describe_machine();
+  const MachineInfo here = describe_machine_or_reuse();
   if (here.git_commit != h.machine.git_commit)
     throw InputError(path, "journalled at commit " + h.machine.git_commit + ", this build is " + here.git_commit +
                                ": resume with the build that started the run");
