@@ -1,4 +1,5 @@
 #include "harness/bench/machine.h"
+#include "harness/core/content_hash.h"
 #include "harness/core/errors.h"
 #include "harness/gl/context.h"
 #include "harness/results/resources.h"
@@ -241,11 +242,7 @@ std::optional<std::string> probe_file_name() {
     const char* value = std::getenv(var);
     key += std::string("\n") + var + (value ? "=" + std::string(value) : " unset");
   }
-  uint64_t hash = 1469598103934665603ull;
-  for (const unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
-  char name[40];
-  std::snprintf(name, sizeof name, "machine-%016llx.json", static_cast<unsigned long long>(hash));
-  return name;
+  return "machine-" + hex64(fnv1a_64(key)) + ".json";
 }
 
 std::optional<std::filesystem::path> probe_file() {
